@@ -1,0 +1,228 @@
+"""The goal-oriented learner on the tabular button console, over many seeds (Figure 5)."""
+
+import dataclasses
+
+import numpy as np
+
+from icm import _validate
+from icm.envs import buttons
+from icm.experiments._seeding import run_seeds
+from icm.learners import goal_oriented, interest, predictors
+from icm.stats import first_below, first_from_which
+
+TASKS = ("red", "green")
+"""Order of the task axis in the result arrays."""
+_REST = (0, 0)
+TASK_KEYS = {"red": (_REST, (1, 0)), "green": (_REST, (0, 1)), "nothing": (_REST, (0, 0))}
+"""The agent's task keys (boxes at rest -> boxes after the press) by name."""
+
+
+@dataclasses.dataclass(frozen=True)
+class GoalOrientedResult:
+    """What `run_goal_oriented` measured. Trials are counted from 1 in `mastery_trial`;
+    the arrays' trial axis holds trial 1 at index 0.
+
+    Attributes:
+      settings: the arguments of the run, as a dict.
+      interest: [seed, trial, task], interest in each task (red, green) at the end of
+        each trial (0 before the task was first witnessed).
+      prediction_error: [seed, trial, task], after each trial, the share of the 20
+        (layout, button) pairs for which the predictor is wrong about that task's box
+        (predicts it opens when it stays shut, or the reverse). 0 means mastered.
+      mastery_trial: [seed, task], the first trial after which the predictor is right
+        for that task in every layout and for every button, and stays right to the end
+        of the run; -1 if that never happens.
+      practice: [seed, trial, task], presses in the trial that opened each box.
+    """
+
+    settings: dict
+    interest: np.ndarray
+    prediction_error: np.ndarray
+    mastery_trial: np.ndarray
+    practice: np.ndarray
+
+    @property
+    def n_seeds(self):
+        return self.interest.shape[0]
+
+    @property
+    def n_trials(self):
+        return self.interest.shape[1]
+
+    def red_first_fraction(self):
+        """Share of seeds in which red is mastered strictly before green (a seed where
+        green is never mastered but red is counts as red first)."""
+        red, green = self.mastery_trial[:, 0], self.mastery_trial[:, 1]
+        red_first = (red >= 1) & ((green == -1) | (red < green))
+        return float(red_first.mean())
+
+    def mean_interest(self):
+        """Mean interest over seeds, [trial, task]."""
+        return self.interest.mean(axis=0)
+
+    def peak_trial(self, task):
+        """The trial (from 1) at which the mean interest in `task` is highest."""
+        return int(np.argmax(self.mean_interest()[:, TASKS.index(task)])) + 1
+
+    def fade_trial(self, task, fraction=0.1):
+        """The first trial after its peak at which the mean interest in `task` falls
+        below `fraction` of that peak; -1 if it never does."""
+        index = first_below(self.mean_interest()[:, TASKS.index(task)], fraction)
+        return index + 1 if index >= 0 else -1
+
+    def interest_centre(self, task):
+        """The interest-weighted mean trial of `task`: when, on average, the interest in
+        it is spent (a robust "when", unlike the peak of a flat curve)."""
+        curve = self.mean_interest()[:, TASKS.index(task)]
+        if curve.sum() == 0:
+            return float("nan")
+        return float(np.arange(1, len(curve) + 1) @ curve / curve.sum())
+
+    def summary(self):
+        """The numbers the book quotes, as a dict."""
+        mastery = self.mean_mastery_trial()
+        out = {"red_first": self.red_first_fraction()}
+        for i, task in enumerate(TASKS):
+            mastered = self.mastery_trial[:, i]
+            out[f"{task}_mastery_mean"] = mastery[task][0]
+            out[f"{task}_mastery_median"] = (float(np.median(mastered[mastered >= 1]))
+                                            if (mastered >= 1).any() else float("nan"))
+            out[f"{task}_mastered_share"] = mastery[task][1]
+            out[f"{task}_peak_interest"] = float(self.mean_interest()[:, i].max())
+            out[f"{task}_peak_trial"] = self.peak_trial(task)
+            out[f"{task}_fade_trial"] = self.fade_trial(task)
+            out[f"{task}_interest_centre"] = self.interest_centre(task)
+            share = self.practice[:, :, i].mean(axis=0) / self.settings["presses_per_trial"]
+            out[f"{task}_practice_peak_share"] = float(share.max())
+            out[f"{task}_practice_peak_trial"] = int(np.argmax(share)) + 1
+        return out
+
+    def mean_mastery_trial(self):
+        """Mean mastery trial of (red, green) over the seeds that master each task, and
+        the share of seeds that do."""
+        out = {}
+        for i, task in enumerate(TASKS):
+            done = self.mastery_trial[:, i] >= 1
+            mean = float(self.mastery_trial[done, i].mean()) if done.any() else float("nan")
+            out[task] = (mean, float(done.mean()))
+        return out
+
+
+def _check_run_arguments(n_seeds, n_trials, epsilon, window, new_task_factor, reading,
+                         action_weight, presses_per_trial, red_button, seed):
+    _validate.integer_at_least("n_seeds", n_seeds, 1)
+    _validate.integer_at_least("n_trials", n_trials, 1)
+    _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
+    _validate.integer_at_least("window", window, 2)
+    _validate.in_closed_interval("new_task_factor", new_task_factor, 0.0, 1.0)
+    _validate.one_of("reading", reading, interest.READINGS)
+    _validate.positive("action_weight", action_weight)
+    _validate.integer_at_least("presses_per_trial", presses_per_trial, 1)
+    buttons.check_red_button(red_button)
+    _validate.integer_at_least("seed", seed, 0)
+
+
+def run_goal_oriented(n_seeds=100, n_trials=100,
+                      epsilon=goal_oriented.DEFAULT_EPSILON,
+                      window=interest.DEFAULT_WINDOW,
+                      new_task_factor=interest.DEFAULT_NEW_TASK_FACTOR,
+                      reading="progress",
+                      action_weight=predictors.DEFAULT_ACTION_WEIGHT,
+                      presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
+                      red_button=buttons.DEFAULT_RED_BUTTON,
+                      seed=0):
+    """Runs the goal-oriented learner on the tabular button console, once per seed.
+
+    Each run builds a `ButtonConsole`, a `NearestNeighbourPredictor`, a
+    `LearningProgressInterest` and a `GoalOrientedAgent` with its own seeds (drawn
+    from `seed`), and plays `n_trials` trials. After each trial it records the
+    interest in the red and green tasks and tests the predictor on every (layout,
+    button) pair.
+
+    Args:
+      n_seeds: number of independent runs (>= 1).
+      n_trials: trials per run (>= 1).
+      epsilon: probability of a random press, in [0, 1].
+      window: errors in the progress slope (k), >= 2.
+      new_task_factor: share of the mean interest given to a task seen once, [0, 1].
+      reading: "progress" (errors going down are interesting) or "literal".
+      action_weight: the predictor's cost of a different button (> 0).
+      presses_per_trial: presses per trial (>= 1).
+      red_button: the button that is always red (0-4).
+      seed: root seed (int >= 0); run i's seeds depend only on it and i.
+
+    Returns:
+      A `GoalOrientedResult`.
+
+    Raises:
+      ValueError: for any argument outside its allowed range.
+    """
+    _check_run_arguments(n_seeds, n_trials, epsilon, window, new_task_factor, reading,
+                         action_weight, presses_per_trial, red_button, seed)
+    settings = dict(n_seeds=n_seeds, n_trials=n_trials, epsilon=epsilon, window=window,
+                    new_task_factor=new_task_factor, reading=reading,
+                    action_weight=action_weight, presses_per_trial=presses_per_trial,
+                    red_button=red_button, seed=seed)
+    shape = (n_seeds, n_trials, len(TASKS))
+    interest_out = np.zeros(shape)
+    error_out = np.zeros(shape)
+    practice = np.zeros(shape, dtype=np.int64)
+
+    contexts = [tuple(lights.tolist()) for lights in buttons.layouts(red_button)]
+    queries = [(c, b) for c in contexts for b in range(buttons.N_BUTTONS)]
+    truth = np.array([buttons.press_outcome(c, b) for c, b in queries])
+    task_keys = [TASK_KEYS[t] for t in TASKS]
+
+    for run, (env_seed, agent_seed) in enumerate(run_seeds(seed, n_seeds, 2)):
+        env = buttons.ButtonConsole(red_button=red_button,
+                                    presses_per_trial=presses_per_trial, seed=env_seed)
+        agent = goal_oriented.GoalOrientedAgent(
+            buttons.N_BUTTONS,
+            predictor=predictors.NearestNeighbourPredictor(action_weight),
+            interest=interest.LearningProgressInterest(window, new_task_factor, reading),
+            epsilon=epsilon, seed=agent_seed)
+        for trial in range(n_trials):
+            step = env.reset()
+            while not step.last():
+                action = agent.select_action(step.observation)
+                next_step = env.step(action)
+                agent.learn(step.observation, action, next_step.observation)
+                boxes = next_step.observation["boxes"]
+                if boxes[0] or boxes[1]:
+                    practice[run, trial] += boxes
+                step = next_step
+            for i, key in enumerate(task_keys):
+                interest_out[run, trial, i] = agent.interest.interest(key)
+            predicted = np.array([agent.predictor.predict(c, b, default=_REST)
+                                  for c, b in queries])
+            error_out[run, trial] = np.abs(predicted - truth).mean(axis=0)
+
+    mastery = first_from_which(np.moveaxis(error_out, 1, 2) == 0)
+    mastery = np.where(mastery >= 0, mastery + 1, -1)
+    return GoalOrientedResult(settings, interest_out, error_out, mastery, practice)
+
+
+def comparison_table(results):
+    """A Markdown table of the numbers that tell runs apart, one row per run.
+
+    Args:
+      results: a dict {row label: GoalOrientedResult}.
+
+    Returns:
+      A Markdown string (display it with `IPython.display.Markdown`).
+    """
+    header = ("| run | seeds | red mastered (mean trial) | green mastered (mean trial) "
+              "| red first | peak interest red / green | centre of interest, trial red / green "
+              "| interest < 10% of peak, trial red / green "
+              "| most practised, trial red / green |")
+    lines = [header, "|" + "---|" * 9]
+    for label, result in results.items():
+        s = result.summary()
+        lines.append(
+            f"| {label} | {result.n_seeds} | {s['red_mastery_mean']:.1f} "
+            f"| {s['green_mastery_mean']:.1f} | {s['red_first']:.0%} "
+            f"| {s['red_peak_interest']:.3f} / {s['green_peak_interest']:.3f} "
+            f"| {s['red_interest_centre']:.1f} / {s['green_interest_centre']:.1f} "
+            f"| {s['red_fade_trial']} / {s['green_fade_trial']} "
+            f"| {s['red_practice_peak_trial']} / {s['green_practice_peak_trial']} |")
+    return "\n".join(lines)

@@ -1,0 +1,250 @@
+"""Figures of the paper, rebuilt from the library's own runs.
+
+Every function returns a `matplotlib.figure.Figure` made without pyplot, so the
+library never touches the global backend, a notebook shows each figure exactly once,
+and a figure redrawn by a widget is not kept alive by pyplot.
+"""
+
+import io
+
+import matplotlib.figure
+import matplotlib.patches
+import numpy as np
+
+from icm import stats
+from icm.experiments import goal_oriented as _goal_oriented
+
+TASK_COLOURS = {"red": "#d62728", "green": "#2ca02c"}
+
+
+class Figure(matplotlib.figure.Figure):
+    """A matplotlib Figure that Jupyter displays as a PNG without pyplot's help."""
+
+    def _repr_png_(self):
+        buffer = io.BytesIO()
+        self.savefig(buffer, format="png", dpi=110)
+        return buffer.getvalue()
+
+
+def _new_figure(width=6.4, height=3.8, ncols=1, nrows=1, **kwargs):
+    fig = Figure(figsize=(width, height), layout="constrained")
+    axes = fig.subplots(nrows, ncols, **kwargs)
+    return fig, axes
+
+
+def plot_mean_band(ax, values, colour, label, x=None, per_seed=False):
+    """Draws the mean over seeds of `values` [seed, time] with its 95% band on `ax`."""
+    values = np.asarray(values, dtype=float)
+    x = np.arange(1, values.shape[1] + 1) if x is None else x
+    if per_seed:
+        for row in values:
+            ax.plot(x, row, color=colour, alpha=0.08, linewidth=0.6)
+    mean, low, high = stats.mean_band(values)
+    ax.fill_between(x, low, high, color=colour, alpha=0.25, linewidth=0)
+    ax.plot(x, mean, color=colour, linewidth=2, label=label)
+
+
+def figure5(result, ax=None, title=None):
+    """Figure 5: mean interest in the red and green tasks against trial, 95% bands.
+
+    Args:
+      result: a `GoalOrientedResult`.
+      ax: draw into this axes instead of a new figure.
+      title: the axes title; default says the reading and the number of seeds.
+
+    Returns:
+      The `Figure`.
+    """
+    if ax is None:
+        fig, ax = _new_figure()
+    else:
+        fig = ax.figure
+    for i, task in enumerate(_goal_oriented.TASKS):
+        plot_mean_band(ax, result.interest[:, :, i], TASK_COLOURS[task],
+                       f"open the {task} box")
+    ax.set_xlabel("trial")
+    ax.set_ylabel("interest (mean over seeds)")
+    ax.set_xlim(1, result.n_trials)
+    ax.set_ylim(bottom=0)
+    if title is None:
+        title = (f"Interest, reading \"{result.settings['reading']}\", "
+                 f"{result.n_seeds} seeds, 95% band")
+    ax.set_title(title, fontsize=10)
+    ax.legend(frameon=False)
+    return fig
+
+
+def figure5_for(**settings):
+    """Runs `run_goal_oriented(**settings)` and draws Figure 5 (used by the widget)."""
+    return figure5(_goal_oriented.run_goal_oriented(**settings))
+
+
+def mastery_figure(result):
+    """Two panels: the share of seeds that have mastered each task, and how often the
+    agent opened each box per trial (mean, 95% band), against trial."""
+    fig, (left, right) = _new_figure(width=9.6, height=3.6, ncols=2)
+    trials = np.arange(1, result.n_trials + 1)
+    for i, task in enumerate(_goal_oriented.TASKS):
+        mastered = result.mastery_trial[:, i]
+        share = [np.mean((mastered >= 1) & (mastered <= t)) for t in trials]
+        left.step(trials, share, where="post", color=TASK_COLOURS[task], linewidth=2,
+                  label=f"{task} task")
+        plot_mean_band(right, result.practice[:, :, i], TASK_COLOURS[task],
+                       f"presses opening the {task} box")
+    left.set(xlabel="trial", ylabel="share of seeds mastered", ylim=(0, 1.02),
+             xlim=(1, result.n_trials))
+    left.set_title("When the predictor has learned each task", fontsize=10)
+    right.set(xlabel="trial", ylabel="presses per trial (mean)", xlim=(1, result.n_trials))
+    right.set_title("What the agent practises", fontsize=10)
+    left.legend(frameon=False)
+    right.legend(frameon=False)
+    return fig
+
+
+def _box(ax, xy, text, colour):
+    x, y = xy
+    ax.add_patch(matplotlib.patches.FancyBboxPatch(
+        (x - 0.16, y - 0.08), 0.32, 0.16, boxstyle="round,pad=0.02",
+        facecolor=colour, edgecolor="#333333", linewidth=1.2))
+    ax.text(x, y, text, ha="center", va="center", fontsize=11, weight="bold")
+
+
+def _arrow(ax, start, end, label, label_offset=(0.0, 0.0), rad=0.0):
+    ax.annotate("", xy=end, xytext=start,
+                arrowprops=dict(arrowstyle="-|>", color="#333333", linewidth=1.4,
+                                shrinkA=2, shrinkB=2,
+                                connectionstyle=f"arc3,rad={rad}"))
+    mid = ((start[0] + end[0]) / 2 + label_offset[0], (start[1] + end[1]) / 2 + label_offset[1])
+    ax.text(*mid, label, ha="center", va="center", fontsize=9,
+            bbox=dict(boxstyle="round,pad=0.2", facecolor="white", edgecolor="none"))
+
+
+def figure2():
+    """Figure 2: the modular goal-oriented architecture, with the order of its messages.
+
+    (1) the actor observes the environment; (2) it asks the predictor what an action
+    would do; (3) the predicted effect goes to the interest module; (4) which says how
+    interesting it is. Steps 2-4 repeat for every action; then the actor acts, and the
+    predictor and interest module learn from what happened.
+    """
+    fig, ax = _new_figure(width=7.5, height=4.2)
+    ax.set_xlim(0, 1.6)
+    ax.set_ylim(0, 1)
+    ax.axis("off")
+    env, actor, predictor, interest = (0.25, 0.5), (0.8, 0.5), (1.35, 0.8), (1.35, 0.2)
+    _box(ax, env, "Environment", "#dde7f3")
+    _box(ax, actor, "Actor", "#f3e6d0")
+    _box(ax, predictor, "Predictor", "#e2f0d9")
+    _box(ax, interest, "Interest", "#f6dcdc")
+    _arrow(ax, (0.41, 0.55), (0.64, 0.55), "1  observation", (0, 0.05))
+    _arrow(ax, (0.64, 0.44), (0.41, 0.44), "action", (0, -0.05))
+    _arrow(ax, (0.9, 0.6), (1.19, 0.78), "2  context, action?", (-0.06, 0.06))
+    _arrow(ax, (1.35, 0.71), (1.35, 0.29), "3  predicted effect\n= task", (0.0, 0.0))
+    _arrow(ax, (1.19, 0.22), (0.9, 0.4), "4  interest of task", (-0.05, -0.06))
+    ax.text(0.8, 0.05, "2-3-4 repeat for each of the 5 buttons; the actor then picks\n"
+            "an action epsilon-greedily on interest and executes it",
+            ha="center", va="bottom", fontsize=8.5, style="italic")
+    return fig
+
+
+LIGHT_COLOURS = {0: "#d9d9d9", 1: TASK_COLOURS["red"], 2: TASK_COLOURS["green"]}
+
+
+def draw_console(ax, lights, boxes=(0, 0), pressed=None, title=None):
+    """Draws the button console: 5 buttons with their lights, and the two boxes.
+
+    Args:
+      ax: a matplotlib axes.
+      lights: 5 values, 0 off, 1 red, 2 green.
+      boxes: (red, green), 1 open.
+      pressed: index of the button being pressed, drawn with a hand marker.
+      title: axes title.
+    """
+    ax.set_xlim(-0.6, 4.6)
+    ax.set_ylim(-0.9, 2.0)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    ax.add_patch(matplotlib.patches.FancyBboxPatch(
+        (-0.5, -0.5), 5.0, 1.0, boxstyle="round,pad=0.05", facecolor="#f2f2f2",
+        edgecolor="#555555"))
+    for b, light in enumerate(lights):
+        ax.add_patch(matplotlib.patches.Circle((b, 0), 0.32, facecolor=LIGHT_COLOURS[int(light)],
+                                               edgecolor="#333333", linewidth=1.5))
+        ax.text(b, -0.75, str(b), ha="center", va="center", fontsize=8, color="#555555")
+    if pressed is not None:
+        ax.annotate("", xy=(pressed, 0.35), xytext=(pressed, 1.0),
+                    arrowprops=dict(arrowstyle="-|>", color="black", linewidth=2))
+    for i, (name, x) in enumerate((("red", 0.6), ("green", 3.4))):
+        is_open = bool(boxes[i])
+        colour = TASK_COLOURS[name]
+        ax.add_patch(matplotlib.patches.Rectangle((x - 0.45, 1.1), 0.9, 0.55,
+                                                  facecolor=colour if is_open else "white",
+                                                  edgecolor=colour, linewidth=2,
+                                                  alpha=0.85 if is_open else 1.0))
+        ax.text(x, 1.375, "open" if is_open else "shut", ha="center", va="center",
+                fontsize=7.5, color="white" if is_open else colour, weight="bold")
+    if title:
+        ax.set_title(title, fontsize=9)
+
+
+def trial_figure(steps, actions):
+    """One trial as a strip: the console before the first press, then after each press.
+
+    Args:
+      steps: the trial's dm_env time steps, from the FIRST one on.
+      actions: the buttons pressed (one fewer than steps).
+    """
+    fig, axes = _new_figure(width=2.3 * len(steps), height=1.9, ncols=len(steps))
+    for i, (ax, step) in enumerate(zip(np.atleast_1d(axes), steps)):
+        obs = step.observation
+        if i == 0:
+            title = "start of the trial"
+        else:
+            title = f"press {i}: button {int(actions[i - 1])}"
+        draw_console(ax, obs["lights"], obs["boxes"],
+                     pressed=None if i == 0 else int(actions[i - 1]), title=title)
+    return fig
+
+
+def outcome_table_figure(red_button=None):
+    """The rules as a table: for each of the 4 light layouts (rows) and each button
+    pressed (columns), the box that opens. Red's column never changes; green's moves."""
+    from icm.envs import buttons  # local: figures must not need envs at import time
+
+    red_button = buttons.DEFAULT_RED_BUTTON if red_button is None else red_button
+    layouts = buttons.layouts(red_button)
+    fig, ax = _new_figure(width=6.4, height=3.4)
+    for row, lights in enumerate(layouts):
+        for b in range(buttons.N_BUTTONS):
+            boxes = buttons.press_outcome(lights, b)
+            colour = (TASK_COLOURS["red"] if boxes[0] else
+                      TASK_COLOURS["green"] if boxes[1] else "#f0f0f0")
+            ax.add_patch(matplotlib.patches.Rectangle((b, row), 1, 1, facecolor=colour,
+                                                      edgecolor="white", linewidth=2))
+            label = "red box" if boxes[0] else "green box" if boxes[1] else "nothing"
+            ax.text(b + 0.5, row + 0.5, label, ha="center", va="center", fontsize=8,
+                    color="white" if boxes.any() else "#777777")
+    ax.set_xlim(0, buttons.N_BUTTONS)
+    ax.set_ylim(len(layouts), 0)
+    ax.set_xticks(np.arange(buttons.N_BUTTONS) + 0.5, [f"press {b}" for b in range(5)])
+    ax.set_yticks(np.arange(len(layouts)) + 0.5,
+                  [f"green at {int(np.flatnonzero(l == buttons.GREEN)[0])}" for l in layouts])
+    ax.tick_params(length=0)
+    for spine in ax.spines.values():
+        spine.set_visible(False)
+    ax.set_title(f"What each press does, in each of the 4 layouts (red at {red_button})",
+                 fontsize=10)
+    return fig
+
+
+def figure5_grid(results):
+    """Figure 5 for several results side by side, on a shared interest axis.
+
+    Args:
+      results: a dict {panel title: GoalOrientedResult}.
+    """
+    fig, axes = _new_figure(width=4.6 * len(results), height=3.6, ncols=len(results),
+                            sharey=True)
+    for ax, (title, result) in zip(np.atleast_1d(axes), results.items()):
+        figure5(result, ax=ax, title=title)
+    return fig

@@ -1,0 +1,116 @@
+"""The goal-oriented experiment: determinism, the paper's claims on many seeds."""
+
+import numpy as np
+import pytest
+
+import icm
+from icm.experiments import run_goal_oriented
+
+
+@pytest.fixture(scope="module")
+def default_run():
+    return run_goal_oriented(n_seeds=120, n_trials=60, seed=0)
+
+
+def test_result_arrays_have_the_documented_shapes(default_run):
+    r = default_run
+    assert r.interest.shape == (120, 60, 2)
+    assert r.prediction_error.shape == (120, 60, 2)
+    assert r.mastery_trial.shape == (120, 2)
+    assert r.practice.shape == (120, 60, 2)
+    assert np.all(r.interest >= 0) and np.all((0 <= r.prediction_error) & (r.prediction_error <= 1))
+    assert r.practice.sum(axis=2).max() <= r.settings["presses_per_trial"]
+
+
+def test_mastery_trial_is_where_the_error_reaches_zero_for_good(default_run):
+    r = default_run
+    for s in range(r.n_seeds):
+        for task in range(2):
+            m = r.mastery_trial[s, task]
+            errors = r.prediction_error[s, :, task]
+            if m == -1:
+                assert errors[-1] > 0
+            else:
+                assert np.all(errors[m - 1:] == 0)
+                assert m == 1 or errors[m - 2] > 0
+
+
+def test_same_seed_gives_identical_arrays_and_other_seeds_differ():
+    a = run_goal_oriented(n_seeds=5, n_trials=30, seed=11)
+    b = run_goal_oriented(n_seeds=5, n_trials=30, seed=11)
+    c = run_goal_oriented(n_seeds=5, n_trials=30, seed=12)
+    for name in ("interest", "prediction_error", "mastery_trial", "practice"):
+        assert np.array_equal(getattr(a, name), getattr(b, name))
+    assert not np.array_equal(a.interest, c.interest)
+
+
+def test_fewer_seeds_are_the_first_runs_of_more_seeds():
+    few = run_goal_oriented(n_seeds=3, n_trials=20, seed=4)
+    many = run_goal_oriented(n_seeds=6, n_trials=20, seed=4)
+    assert np.array_equal(few.interest, many.interest[:3])
+
+
+def test_paper_claim_red_is_mastered_before_green(default_run):
+    # Paper, section 4.1 and Figure 5: "the learning is immediate" for red, green
+    # "takes more time". Here: red first in at least 90% of seeds.
+    assert default_run.n_seeds >= 100
+    assert default_run.red_first_fraction() >= 0.9
+
+
+def test_paper_claim_interest_in_red_fades_before_interest_in_green(default_run):
+    # Red's interest "disappears quickly"; green's "rises slower and stays longer".
+    red_fade = default_run.fade_trial("red")
+    green_fade = default_run.fade_trial("green")
+    assert red_fade != -1 and green_fade != -1
+    assert red_fade < green_fade
+    # The interest in green is spent later: its interest-weighted mean trial is later.
+    assert default_run.interest_centre("red") + 2 < default_run.interest_centre("green")
+
+
+def test_the_literal_reading_has_almost_no_interest_in_red(default_run):
+    # The printed "d_t if d_t > 0" rewards errors going up: red's errors only go down.
+    literal = run_goal_oriented(n_seeds=120, n_trials=60, seed=0, reading="literal")
+    summary, literal_summary = default_run.summary(), literal.summary()
+    assert literal_summary["red_peak_interest"] < 0.1 * summary["red_peak_interest"]
+
+
+def test_plain_hamming_distance_loses_the_red_advantage(default_run):
+    plain = run_goal_oriented(n_seeds=120, n_trials=60, seed=0, action_weight=1.0)
+    assert plain.red_first_fraction() < 0.75 < default_run.red_first_fraction()
+
+
+def test_practice_follows_interest_red_first_then_green(default_run):
+    # The agent presses the red button well above chance (1/5 of presses) soon after
+    # discovering it, and later the green one: it focuses on the easy task first.
+    share = default_run.practice.mean(axis=0) / default_run.settings["presses_per_trial"]
+    red_peak, green_peak = np.argmax(share[:, 0]), np.argmax(share[:, 1])
+    assert share[red_peak, 0] > 0.3 and share[green_peak, 1] > 0.28
+    assert red_peak < green_peak
+    # A robot that presses at random (epsilon = 1) shows no such focus.
+    random = run_goal_oriented(n_seeds=120, n_trials=10, seed=0, epsilon=1.0)
+    assert random.practice.mean(axis=0).max() / 3 < 0.26
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(n_seeds=0), "n_seeds"),
+    (dict(n_trials=0), "n_trials"),
+    (dict(epsilon=2), "epsilon"),
+    (dict(window=1), "window"),
+    (dict(new_task_factor=-1), "new_task_factor"),
+    (dict(reading="upside-down"), "reading"),
+    (dict(action_weight=-2), "action_weight"),
+    (dict(presses_per_trial=0), "presses_per_trial"),
+    (dict(red_button=7), "red_button"),
+    (dict(seed=-5), "seed"),
+    (dict(seed=None), "seed"),
+])
+def test_bad_run_arguments_raise_value_error(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        run_goal_oriented(**{"n_seeds": 2, "n_trials": 2, **kwargs})
+
+
+def test_summary_holds_the_numbers_the_book_quotes(default_run):
+    s = default_run.summary()
+    assert s["red_mastery_mean"] < s["green_mastery_mean"]
+    assert s["red_mastered_share"] == 1.0
+    assert 0 < s["red_first"] <= 1
