@@ -134,6 +134,17 @@ def test_bad_environment_arguments_raise_value_error(kwargs, message):
         icm.envs.load("buttons", **kwargs)
 
 
+@pytest.mark.parametrize("rewarded_box, index", [("red", 0), ("green", 1)])
+def test_rewarded_box_pays_one_for_each_press_that_opens_it(rewarded_box, index):
+    env = icm.envs.load("buttons", seed=2, presses_per_trial=5, rewarded_box=rewarded_box)
+    env.reset()
+    for button in range(5):
+        step = env.step(button)
+        assert step.reward == float(step.observation["boxes"][index] == 1)
+    with pytest.raises(ValueError, match="rewarded_box"):
+        icm.envs.load("buttons", rewarded_box="blue")
+
+
 def test_layouts_and_press_outcome_describe_the_rules():
     all_layouts = buttons.layouts(red_button=2)
     assert len(all_layouts) == 4

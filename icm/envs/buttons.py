@@ -84,6 +84,19 @@ def press_outcome(lights, button):
     return boxes
 
 
+def check_rewarded_box(rewarded_box):
+    """Returns `rewarded_box` if it is None, "red" or "green", else raises ValueError."""
+    return _validate.one_of("rewarded_box", rewarded_box, (None,) + BOX_NAMES)
+
+
+def extrinsic_reward(boxes, rewarded_box):
+    """1.0 if the `rewarded_box` ("red" or "green") is open in `boxes`, else 0.0 (always
+    0.0 when `rewarded_box` is None: the paper's intrinsic setting)."""
+    if rewarded_box is None:
+        return 0.0
+    return float(boxes[BOX_NAMES.index(rewarded_box)] == 1)
+
+
 def observation_spec():
     """The observation spec shared by the tabular and the physics button environments."""
     return collections.OrderedDict(
@@ -103,22 +116,27 @@ class ButtonConsole(dm_env.Environment):
     One episode is one trial of `presses_per_trial` presses. The first time step of a
     trial shows the new light layout with both boxes closed; every later one shows the
     boxes right after the press. The last step of a trial is a time limit, not a
-    termination, so its discount is 1.0. Reward is always 0.0: nothing outside the
-    robot pays it to press anything.
+    termination, so its discount is 1.0. By default the reward is always 0.0: nothing
+    outside the robot pays it to press anything. For the extrinsic actor-critic of the
+    paper's Figure 3a, `rewarded_box` makes the environment pay 1.0 for each press that
+    opens that box.
 
     Args:
       red_button: index (0-4) of the button that is always red. Default 2, the middle.
       presses_per_trial: presses in one trial (>= 1). Default 3.
+      rewarded_box: None (default, no reward), "red" or "green": the box whose
+        opening pays 1.0.
       seed: None, an int or a `numpy.random.RandomState`; draws the green buttons.
 
     Raises:
-      ValueError: for a red button outside 0..4, presses_per_trial < 1, a bad seed,
-        or (in `step`) an action that is not a button index.
+      ValueError: for a red button outside 0..4, presses_per_trial < 1, an unknown
+        rewarded box, a bad seed, or (in `step`) an action that is not a button index.
     """
 
     def __init__(self, red_button=DEFAULT_RED_BUTTON,
-                 presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, seed=None):
+                 presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, rewarded_box=None, seed=None):
         self.red_button = check_red_button(red_button)
+        self.rewarded_box = check_rewarded_box(rewarded_box)
         self.presses_per_trial = _validate.integer_at_least(
             "presses_per_trial", presses_per_trial, 1)
         self._random = random_state(seed)
@@ -155,10 +173,11 @@ class ButtonConsole(dm_env.Environment):
         boxes = press_outcome(self._lights, button)
         self._presses += 1
         observation = self._observation(boxes)
+        reward = extrinsic_reward(boxes, self.rewarded_box)
         if self._presses >= self.presses_per_trial:
             self._reset_next_step = True
-            return dm_env.truncation(0.0, observation, discount=1.0)
-        return dm_env.transition(0.0, observation)
+            return dm_env.truncation(reward, observation, discount=1.0)
+        return dm_env.transition(reward, observation)
 
     def observation_spec(self):
         return observation_spec()

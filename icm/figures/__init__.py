@@ -1,0 +1,10 @@
+"""Figures of the paper, rebuilt from the library's own runs.
+
+Every function returns a `Figure` (a matplotlib Figure made without pyplot that Jupyter
+shows as a PNG), so the library never touches the global backend, a notebook shows
+each figure exactly once, and a figure redrawn by a widget is not kept alive by pyplot.
+"""
+
+from icm.figures._common import TASK_COLOURS, Figure, new_figure, plot_mean_band
+from icm.figures.buttons import draw_console, figure2, outcome_table_figure, trial_figure
+from icm.figures.goal_oriented import figure5, figure5_for, figure5_grid, mastery_figure
