@@ -1,24 +1,54 @@
-"""The paper's two scenarios as dm_env environments: `load(name, physics=..., seed=...)`."""
+"""The paper's two scenarios as dm_env environments.
 
-from icm.envs import buttons
+`load(name, physics=False, seed=...)` gives the paper's discrete tasks: the fast
+tabular twin (physics=False) or the simulated iCub (physics=True), with the same specs
+and episode rules. `load_continuous(name, seed=...)` gives the underlying dm_control
+tasks, whose action is the 7 arm joint targets.
+"""
 
-_TABULAR = {
-    "buttons": buttons.ButtonConsole,
+import inspect
+import os
+import sys
+
+if sys.platform.startswith("linux"):
+    os.environ.setdefault("MUJOCO_GL", "egl")  # headless rendering, unless the user chose
+
+from icm.envs import buttons, rods  # noqa: E402  (after MUJOCO_GL)
+
+_DISCRETE = {
+    "buttons": {False: buttons.ButtonConsole, True: buttons.PhysicsButtonConsole},
+    "rods": {False: rods.RodTable, True: rods.PhysicsRodTable},
 }
-NAMES = tuple(sorted(_TABULAR))
-"""Names that `load` knows."""
+_CONTINUOUS = {"buttons": buttons.load_continuous, "rods": rods.load_continuous}
+_TASKS = {"buttons": buttons.ButtonsTask, "rods": rods.RodsTask}
+NAMES = tuple(sorted(_DISCRETE))
+"""Names that `load` and `load_continuous` know."""
+
+
+def _check_name(name):
+    if name not in _DISCRETE:
+        raise ValueError(f"unknown environment {name!r}; known: {', '.join(NAMES)}")
+
+
+def _check_kwargs(name, factory, kwargs):
+    allowed = [p for p in inspect.signature(factory).parameters if p not in ("seed", "random")]
+    unknown = sorted(set(kwargs) - set(allowed))
+    if unknown:
+        raise ValueError(f"unknown argument(s) {', '.join(unknown)} for {name!r}; "
+                         f"allowed: {', '.join(allowed)}")
 
 
 def load(name, physics=False, seed=None, **kwargs):
-    """Loads one of the paper's environments.
+    """Loads one of the paper's environments, with its discrete actions.
 
     Args:
-      name: "buttons" (the button experiment).
-      physics: False for the fast tabular twin (the default). The simulated iCub
-        (`physics=True`) is not part of this package yet.
+      name: "buttons" (section 2.1) or "rods" (section 2.2).
+      physics: False for the fast tabular twin (default), True for the simulated iCub.
       seed: None, an int or a `numpy.random.RandomState`; the same seed gives the same
-        episodes.
-      **kwargs: passed to the environment's constructor (see its docstring).
+        episodes, in both versions.
+      **kwargs: passed to the environment's constructor (see its docstring): for the
+        buttons red_button, presses_per_trial, rewarded_box; for the rods start_cell,
+        max_moves.
 
     Returns:
       A `dm_env.Environment`.
@@ -26,10 +56,27 @@ def load(name, physics=False, seed=None, **kwargs):
     Raises:
       ValueError: for an unknown name, a bad `physics` flag or a bad keyword argument.
     """
-    if name not in _TABULAR:
-        raise ValueError(f"unknown environment {name!r}; known: {', '.join(NAMES)}")
+    _check_name(name)
     if not isinstance(physics, bool):
         raise ValueError(f"physics must be True or False, got {physics!r}")
-    if physics:
-        raise ValueError(f"physics=True is not available yet for {name!r}; use physics=False")
-    return _TABULAR[name](seed=seed, **kwargs)
+    factory = _DISCRETE[name][physics]
+    _check_kwargs(name, factory, kwargs)
+    return factory(seed=seed, **kwargs)
+
+
+def load_continuous(name, seed=None, **kwargs):
+    """Loads the continuous dm_control task of a scenario (action: 7 arm joint targets).
+
+    Args:
+      name: "buttons" or "rods".
+      seed: None, an int or a `numpy.random.RandomState`.
+      **kwargs: passed to the scenario's `load_continuous` (time_limit and task
+        arguments).
+
+    Returns:
+      A `dm_control.rl.control.Environment`.
+    """
+    _check_name(name)
+    task_kwargs = {k: v for k, v in kwargs.items() if k != "time_limit"}
+    _check_kwargs(name, _TASKS[name], task_kwargs)
+    return _CONTINUOUS[name](seed=seed, **kwargs)

@@ -6,17 +6,27 @@ four at the start of each trial. Pressing the lit red button opens the red box, 
 green one the green box, an unlit one nothing. Boxes close again before the next press,
 so every press starts from "no box open".
 
-This module holds the rules (`draw_green`, `press_outcome`, `layouts`) and the fast
-tabular environment `ButtonConsole`, which applies the rules directly.
+This module holds
+- the rules (`draw_green`, `press_outcome`, `layouts`),
+- the fast tabular environment `ButtonConsole`, which applies the rules directly,
+- the simulated iCub: `ButtonsPhysics` (the MJCF scene assets/buttons.xml with named
+  accessors), `ButtonsTask` (a continuous dm_control task: the action is the 7 arm
+  joint targets; a button pressed past `PRESS_DEPTH` opens the lid of its light's
+  colour), `load_continuous`, and `PhysicsButtonConsole`, the paper's discrete actions
+  as motor primitives on top of the same task.
 """
 
 import collections
 
 import dm_env
 import numpy as np
+from dm_control import mujoco
+from dm_control.rl import control
+from dm_control.suite import base
 from dm_env import specs
 
 from icm import _validate
+from icm.envs import icub
 from icm.envs._common import check_discrete_action, random_state
 
 N_BUTTONS = 5
@@ -171,6 +181,328 @@ class ButtonConsole(dm_env.Environment):
         if self._reset_next_step:
             return self.reset()
         boxes = press_outcome(self._lights, button)
+        self._presses += 1
+        observation = self._observation(boxes)
+        reward = extrinsic_reward(boxes, self.rewarded_box)
+        if self._presses >= self.presses_per_trial:
+            self._reset_next_step = True
+            return dm_env.truncation(reward, observation, discount=1.0)
+        return dm_env.transition(reward, observation)
+
+    def observation_spec(self):
+        return observation_spec()
+
+    def action_spec(self):
+        return action_spec()
+
+
+# --- The simulated iCub ---------------------------------------------------------------
+
+PRESS_DEPTH = 0.008
+"""A press counts when a button's slide joint goes deeper than this (metres; the
+buttons travel 15 mm)."""
+LID_OPEN_ANGLE = np.deg2rad(100.0)
+"""Where the task drives a lid that opens."""
+BOX_OPEN_ANGLE = np.deg2rad(30.0)
+"""A box counts as open in the observations when its lid is open at least this much."""
+LID_OPEN_TIME = 2.0
+"""Seconds a lid stays open in the continuous task before the task shuts it again."""
+CONTROL_TIMESTEP = 0.02
+"""Seconds between two actions of the continuous task (10 physics steps)."""
+_LIGHT_MATERIALS = {OFF: "light_off", RED: "red", GREEN: "green"}
+_BUTTON_JOINTS = [f"button{b}" for b in range(N_BUTTONS)]
+_LIDS = [f"{name}_lid" for name in BOX_NAMES]
+
+
+class ButtonsPhysics(mujoco.Physics):
+    """The button scene (assets/buttons.xml) with named accessors."""
+
+    def button_depths(self):
+        """How far each button is pushed in (metres, 0 at rest), shape (5,)."""
+        return -self.named.data.qpos[_BUTTON_JOINTS]
+
+    def button_depth(self, button):
+        """How far button `button` (0-4) is pushed in, in metres."""
+        return -float(self.named.data.qpos[_BUTTON_JOINTS[button]][0])
+
+    def lid_angles(self):
+        """The red and green lids' opening angles (radians), shape (2,)."""
+        return self.named.data.qpos[_LIDS].copy()
+
+    def boxes_open(self):
+        """The `boxes` observation read from the lids: 1 where a lid is open >= 30 deg."""
+        return (self.lid_angles() >= BOX_OPEN_ANGLE).astype(np.int64)
+
+    def set_lid_targets(self, red, green):
+        """Commands the lid actuators (radians)."""
+        self.named.data.ctrl[_LIDS] = [red, green]
+
+    def set_lights(self, lights):
+        """Lights the button caps: 0 off, 1 red, 2 green (changes their material)."""
+        for b, light in enumerate(lights):
+            self.named.model.geom_matid[f"button{b}_cap"] = self.model.name2id(
+                _LIGHT_MATERIALS[int(light)], "material")
+
+    def fingertip_position(self):
+        """The fingertip site's world position (metres)."""
+        return self.named.data.site_xpos["fingertip"].copy()
+
+    def arm_joint_positions(self):
+        """The 7 right-arm joint angles (radians), in the iCub's order."""
+        return self.named.data.qpos[list(icub.ARM_JOINTS)].copy()
+
+
+def load_physics():
+    """A fresh `ButtonsPhysics` of assets/buttons.xml."""
+    return ButtonsPhysics.from_xml_path(str(icub.asset_path("buttons.xml")))
+
+
+class ButtonMotions:
+    """The arm postures of the press primitive, from inverse kinematics on the model.
+
+    home: the hand resting above the table, in front of the console; above[b]: the
+    fingertip 6 cm above button b's cap; down[b]: the fingertip 2.5 cm below the cap's
+    top (the button stops it before: the push is what moves the button).
+    """
+
+    HOME = (0.26, -0.17, 0.60)
+    ABOVE = 0.06
+    DOWN = -0.025
+
+    def __init__(self, physics):
+        arm = icub.Arm(physics)
+        self.home = arm.solve(self.HOME)
+        self.above, self.down = [], []
+        for b in range(N_BUTTONS):
+            cap = physics.named.data.geom_xpos[f"button{b}_cap"].copy()
+            top = cap[2] + physics.named.model.geom_size[f"button{b}_cap"][1]
+            self.above.append(arm.solve([cap[0], cap[1], top + self.ABOVE], start=self.home))
+            self.down.append(arm.solve([cap[0], cap[1], top + self.DOWN], start=self.above[b]))
+
+
+class ButtonsTask(base.Task):
+    """The button experiment as a continuous dm_control task.
+
+    Action: target angles of the 7 right-arm joints (radians), tracked by the position
+    actuators. Each episode lights one red and one green button (the red one fixed,
+    the green one drawn from the task's `random`) and starts with the arm at home,
+    buttons up and lids shut. After every physics update the task checks the buttons:
+    one pushed deeper than `PRESS_DEPTH` opens the lid of its light's colour, which
+    shuts again `lid_open_time` seconds later. Reward 0.0, or 1.0 while `rewarded_box`
+    is open.
+
+    Args:
+      red_button: index of the red button (default 2).
+      rewarded_box: None, "red" or "green".
+      lid_open_time: seconds a lid stays open (> 0).
+      random: None, an int seed or a `numpy.random.RandomState`.
+    """
+
+    def __init__(self, red_button=DEFAULT_RED_BUTTON, rewarded_box=None,
+                 lid_open_time=LID_OPEN_TIME, random=None):
+        super().__init__(random=random_state(random))
+        self.red_button = check_red_button(red_button)
+        self.rewarded_box = check_rewarded_box(rewarded_box)
+        self.lid_open_time = _validate.positive("lid_open_time", lid_open_time)
+        self.lights = None
+        self.press_log = []
+        self.deepest = np.zeros(N_BUTTONS)
+        self._down = np.zeros(N_BUTTONS, dtype=bool)
+        self._lid_opened_at = [None, None]
+        self._motions = None
+
+    def motions(self, physics):
+        """The press primitive's postures for this physics (computed once)."""
+        if self._motions is None:
+            self._motions = ButtonMotions(physics)
+        return self._motions
+
+    def initialize_episode(self, physics):
+        green = draw_green(self.random, self.red_button)
+        self.lights = lights_for(self.red_button, green)
+        physics.set_lights(self.lights)
+        physics.named.data.qpos[_BUTTON_JOINTS] = 0.0
+        physics.named.data.qpos[_LIDS] = 0.0
+        physics.set_lid_targets(0.0, 0.0)
+        icub.Arm(physics).place(self.motions(physics).home)
+        self._down[:] = False
+        self._lid_opened_at = [None, None]
+        self.clear_log()
+
+    def clear_log(self):
+        """Forgets the presses and depths seen so far (`press_log`, `deepest`)."""
+        self.press_log = []
+        self.deepest = np.zeros(N_BUTTONS)
+
+    def before_step(self, action, physics):
+        physics.named.data.ctrl[list(icub.ARM_JOINTS)] = action
+
+    def after_step(self, physics):
+        self.update(physics)
+
+    def update(self, physics):
+        """Detects new presses and opens or shuts the lids (called after physics steps)."""
+        depths = physics.button_depths()
+        np.maximum(self.deepest, depths, out=self.deepest)
+        pressed = depths > PRESS_DEPTH
+        released = depths < PRESS_DEPTH / 2
+        now = physics.data.time
+        for b in np.flatnonzero(pressed & ~self._down):
+            self.press_log.append(int(b))
+            light = self.lights[b]
+            if light != OFF:
+                box = 0 if light == RED else 1
+                self._lid_opened_at[box] = now
+        self._down = (self._down | pressed) & ~released
+        targets = [LID_OPEN_ANGLE if opened is not None and now - opened < self.lid_open_time
+                   else 0.0 for opened in self._lid_opened_at]
+        physics.set_lid_targets(*targets)
+
+    def shut_lids(self, physics):
+        """Commands both lids shut now (the discrete layer does this before a press)."""
+        self._lid_opened_at = [None, None]
+        physics.set_lid_targets(0.0, 0.0)
+
+    def action_spec(self, physics):
+        lower, upper = physics.named.model.actuator_ctrlrange[list(icub.ARM_JOINTS)].T
+        return specs.BoundedArray((len(icub.ARM_JOINTS),), np.float64, lower, upper,
+                                  name="arm_joint_targets")
+
+    def observation_spec(self, physics):
+        return collections.OrderedDict(
+            arm_joints=specs.Array((7,), np.float64, name="arm_joints"),
+            fingertip=specs.Array((3,), np.float64, name="fingertip"),
+            button_depths=specs.Array((N_BUTTONS,), np.float64, name="button_depths"),
+            lights=specs.BoundedArray((N_BUTTONS,), np.float64, OFF, GREEN, name="lights"),
+            lid_angles=specs.Array((2,), np.float64, name="lid_angles"),
+        )
+
+    def get_observation(self, physics):
+        return collections.OrderedDict(
+            arm_joints=physics.arm_joint_positions(),
+            fingertip=physics.fingertip_position(),
+            button_depths=physics.button_depths(),
+            lights=self.lights.astype(np.float64),
+            lid_angles=physics.lid_angles(),
+        )
+
+    def get_reward(self, physics):
+        return extrinsic_reward(physics.boxes_open(), self.rewarded_box)
+
+
+def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
+    """The continuous button task: a dm_control `control.Environment`.
+
+    Args:
+      seed: None, an int or a `RandomState` (the layouts).
+      time_limit: seconds per episode.
+      **task_kwargs: `ButtonsTask` arguments (red_button, rewarded_box, lid_open_time).
+    """
+    task = ButtonsTask(random=seed, **task_kwargs)
+    return control.Environment(load_physics(), task, time_limit=time_limit,
+                               control_timestep=CONTROL_TIMESTEP)
+
+
+class PhysicsButtonConsole(dm_env.Environment):
+    """The paper's button experiment on the simulated iCub, with discrete actions.
+
+    Same action spec, observation spec and episode rules as `ButtonConsole`. An action
+    is a motor primitive: the lids are shut (and the arm waits until they are), the
+    arm reaches above the button, pushes down through it, lifts and returns home,
+    every posture a target that the position actuators track. The `ButtonsTask`
+    watches the buttons during the motion: a button pushed past `PRESS_DEPTH` opens
+    the lid of its colour. The observation is taken once the motion is over and, if a
+    lid was opened, once it is open at least 30 degrees: `boxes` is read from the lids.
+
+    Args: as `ButtonConsole` (red_button, presses_per_trial, rewarded_box, seed).
+
+    Attributes:
+      physics: the `ButtonsPhysics`, to inspect or render.
+      task: the `ButtonsTask`.
+    """
+
+    REACH_TIME, PUSH_TIME, HOLD_TIME, LIFT_TIME, RETURN_TIME = 0.45, 0.3, 0.15, 0.25, 0.45
+    """Durations (seconds) of the primitive's phases."""
+    LID_WAIT = 1.5
+    """Longest wait (seconds) for a lid to open or shut."""
+
+    def __init__(self, red_button=DEFAULT_RED_BUTTON,
+                 presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, rewarded_box=None, seed=None):
+        self.presses_per_trial = _validate.integer_at_least(
+            "presses_per_trial", presses_per_trial, 1)
+        self.task = ButtonsTask(red_button=red_button, rewarded_box=rewarded_box,
+                                random=seed)
+        self.red_button = self.task.red_button
+        self.rewarded_box = self.task.rewarded_box
+        self.physics = load_physics()
+        self.arm = icub.Arm(self.physics)
+        self.motions = self.task.motions(self.physics)
+        self._presses = 0
+        self._reset_next_step = True
+
+    @property
+    def lights(self):
+        return None if self.task.lights is None else self.task.lights.copy()
+
+    @property
+    def green_button(self):
+        return int(np.flatnonzero(self.task.lights == GREEN)[0])
+
+    def _observation(self, boxes):
+        return collections.OrderedDict(lights=self.task.lights.copy(), boxes=boxes)
+
+    def reset(self):
+        with self.physics.reset_context():
+            self.task.initialize_episode(self.physics)
+        self._presses = 0
+        self._reset_next_step = False
+        return dm_env.restart(self._observation(np.zeros(2, dtype=np.int64)))
+
+    def _wait(self, condition):
+        """Lets the physics run, arm holding still, until `condition()` or LID_WAIT."""
+        if not condition():
+            self.arm.hold(self.LID_WAIT, monitor=lambda: self.task.update(self.physics)
+                          or condition())
+
+    def press(self, button, recorder=None):
+        """Runs the press primitive on `button`; returns the boxes seen after it.
+
+        Args:
+          button: index of the button (0-4).
+          recorder: optional function of the physics, called after every update of
+            the actuators' targets (every 20 ms of simulated time), e.g. to record a
+            time series or render frames.
+        """
+        physics, task, motions = self.physics, self.task, self.motions
+        task.shut_lids(physics)
+        self._wait(lambda: np.all(physics.lid_angles() < np.deg2rad(3.0)))
+        task.clear_log()
+        opened_before = list(task._lid_opened_at)
+
+        def watch():
+            task.update(physics)
+            if recorder is not None:
+                recorder(physics)
+            return False
+
+        self.arm.move(motions.above[button], self.REACH_TIME, watch)
+        self.arm.move(motions.down[button], self.PUSH_TIME, watch)
+        self.arm.hold(self.HOLD_TIME, watch)
+        self.arm.move(motions.above[button], self.LIFT_TIME, watch)
+        self.arm.move(motions.home, self.RETURN_TIME, watch)
+        opened = [before is None and after is not None
+                  for before, after in zip(opened_before, task._lid_opened_at)]
+        lid_open = lambda: all(physics.lid_angles()[i] >= BOX_OPEN_ANGLE
+                               for i in range(2) if opened[i])
+        if not lid_open():
+            self.arm.hold(self.LID_WAIT, monitor=lambda: watch() or lid_open())
+        return physics.boxes_open()
+
+    def step(self, action):
+        button = check_discrete_action(action, N_BUTTONS)
+        if self._reset_next_step:
+            return self.reset()
+        boxes = self.press(button)
         self._presses += 1
         observation = self._observation(boxes)
         reward = extrinsic_reward(boxes, self.rewarded_box)

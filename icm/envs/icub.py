@@ -1,0 +1,185 @@
+"""The simulated iCub's right arm: model files, inverse kinematics, and motion.
+
+Shared by the button and rod scenes. The arm is driven only through its 7 position
+actuators: a motion interpolates the actuators' targets along a minimum-jerk profile
+and lets the physics track them, so the hand moves as the simulated arm moves, never
+by setting its position.
+"""
+
+import os
+import pathlib
+import sys
+
+import mujoco
+import numpy as np
+
+if sys.platform.startswith("linux"):
+    os.environ.setdefault("MUJOCO_GL", "egl")  # headless rendering, unless the user chose
+
+ASSETS = pathlib.Path(__file__).resolve().parents[2] / "assets"
+"""The folder of MJCF models and data (resolved from the package, not the working dir)."""
+
+ARM_JOINTS = ("r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw", "r_elbow",
+              "r_wrist_prosup", "r_wrist_pitch", "r_wrist_yaw")
+"""The right arm's joints (and their actuators), in the iCub's order."""
+
+POSTURE = np.deg2rad([-25.0, 20.0, 0.0, 95.0, 0.0, -15.0, 0.0])
+"""A comfortable arm posture (radians) that inverse kinematics is drawn towards, so
+that it picks natural solutions well inside the joint ranges."""
+
+SUBSTEPS = 10
+"""Physics steps between two updates of the actuator targets during a motion."""
+
+
+def asset_path(name):
+    """The path of a file in `assets/`, checked to exist."""
+    path = ASSETS / name
+    if not path.exists():
+        raise FileNotFoundError(f"missing asset {path}")
+    return path
+
+
+def minimum_jerk(fraction):
+    """The minimum-jerk profile 10 s^3 - 15 s^4 + 6 s^5, from 0 at s=0 to 1 at s=1."""
+    s = np.clip(fraction, 0.0, 1.0)
+    return s * s * s * (10.0 + s * (-15.0 + 6.0 * s))
+
+
+class Arm:
+    """Index bookkeeping, inverse kinematics and motion for the right arm of a Physics.
+
+    Args:
+      physics: a dm_control `mujoco.Physics` of a scene that includes icub.xml.
+    """
+
+    def __init__(self, physics):
+        self.physics = physics
+        model = physics.model
+        self.model_ptr, self.data_ptr = model.ptr, physics.data.ptr
+        joint_ids = [model.name2id(j, "joint") for j in ARM_JOINTS]
+        self.qpos_index = np.array([model.jnt_qposadr[i] for i in joint_ids])
+        self.dof_index = np.array([model.jnt_dofadr[i] for i in joint_ids])
+        self.actuator_index = np.array([model.name2id(j, "actuator") for j in ARM_JOINTS])
+        self.lower, self.upper = model.jnt_range[joint_ids].T.copy()
+        self.site_id = model.name2id("fingertip", "site")
+
+    def joint_positions(self):
+        """The arm's 7 joint angles (radians)."""
+        return self.physics.data.qpos[self.qpos_index].copy()
+
+    def fingertip(self):
+        """The fingertip's position in the world (metres)."""
+        return self.physics.data.site_xpos[self.site_id].copy()
+
+    def solve(self, target, start=None, posture=POSTURE, pointing=None, tolerance=1e-4,
+              iterations=600):
+        """Joint angles, within the joint ranges, that put the fingertip at `target`.
+
+        Damped least squares on the fingertip's position Jacobian, each step clamped to
+        the joint ranges. Two secondary goals act in the null space of the position
+        task, for the first half of the iterations only: turning the finger towards
+        `pointing` and drawing the arm towards `posture`. The second half converges on
+        the target alone. The physics state is left as it was.
+
+        Args:
+          target: (3,) world position for the fingertip.
+          start: joint angles to start from (default: `posture`).
+          posture: joint angles the solution is drawn towards.
+          pointing: optional (3,) world direction for the finger (from the wrist to the
+            fingertip), e.g. (0, 0, -1) to press down; None leaves it free.
+          tolerance: accepted distance to the target, in metres.
+          iterations: maximum number of steps.
+
+        Returns:
+          (7,) joint angles in radians.
+
+        Raises:
+          RuntimeError: if the target is out of reach within the joint ranges.
+        """
+        model, data = self.physics.model, self.physics.data
+        saved_qpos = data.qpos.copy()
+        q = np.clip(np.array(posture if start is None else start, dtype=float),
+                    self.lower, self.upper)
+        jac_pos, jac_rot = np.zeros((3, model.nv)), np.zeros((3, model.nv))
+        target = np.asarray(target, dtype=float)
+        if pointing is not None:
+            pointing = np.asarray(pointing, dtype=float) / np.linalg.norm(pointing)
+        damping = 1e-4
+        try:
+            for iteration in range(iterations):
+                data.qpos[self.qpos_index] = q
+                mujoco.mj_kinematics(model.ptr, data.ptr)
+                mujoco.mj_comPos(model.ptr, data.ptr)
+                error = target - data.site_xpos[self.site_id]
+                settling = iteration >= iterations // 2
+                if settling and np.linalg.norm(error) < tolerance:
+                    return q
+                mujoco.mj_jacSite(model.ptr, data.ptr, jac_pos, jac_rot, self.site_id)
+                jac = jac_pos[:, self.dof_index]
+                inverse = jac.T @ np.linalg.inv(jac @ jac.T + damping * np.eye(3))
+                step = inverse @ error
+                secondary = np.zeros(len(q))
+                if not settling:
+                    secondary += 0.1 * (posture - q)
+                    if pointing is not None:
+                        finger = -data.site_xmat[self.site_id].reshape(3, 3)[:, 2]
+                        secondary += 0.5 * (jac_rot[:, self.dof_index].T
+                                            @ np.cross(finger, pointing))
+                step += (np.eye(len(q)) - inverse @ jac) @ secondary
+                scale = min(1.0, 0.2 / (np.abs(step).max() + 1e-12))
+                q = np.clip(q + scale * step, self.lower, self.upper)
+            raise RuntimeError(f"fingertip target {np.round(target, 3).tolist()} is out of "
+                               f"reach (remaining error {np.linalg.norm(error):.4f} m)")
+        finally:
+            data.qpos[:] = saved_qpos
+            mujoco.mj_kinematics(model.ptr, data.ptr)
+
+    def finger_direction(self, q):
+        """The unit vector from the wrist towards the fingertip at joint angles `q`."""
+        model, data = self.physics.model, self.physics.data
+        saved_qpos = data.qpos.copy()
+        data.qpos[self.qpos_index] = q
+        mujoco.mj_kinematics(model.ptr, data.ptr)
+        direction = -data.site_xmat[self.site_id].reshape(3, 3)[:, 2].copy()
+        data.qpos[:] = saved_qpos
+        mujoco.mj_kinematics(model.ptr, data.ptr)
+        return direction
+
+    def place(self, q):
+        """Puts the arm at rest at joint angles `q` with its actuators holding them (for
+        the initial state of an episode only; motions go through `move`)."""
+        data = self.physics.data
+        data.qpos[self.qpos_index] = q
+        data.qvel[self.dof_index] = 0.0
+        data.ctrl[self.actuator_index] = q
+
+    def move(self, q_target, duration, monitor=None):
+        """Moves the arm to joint angles `q_target` in `duration` seconds.
+
+        The actuators' targets follow a minimum-jerk profile from the current targets
+        to `q_target`; the physics runs `SUBSTEPS` steps between updates.
+
+        Args:
+          q_target: (7,) joint angles (clipped to the joint ranges).
+          duration: seconds of simulated time (rounded to whole updates).
+          monitor: optional function called after every update; if it returns True
+            the motion stops early.
+
+        Returns:
+          True if `monitor` stopped the motion, else False.
+        """
+        data = self.physics.data
+        start = data.ctrl[self.actuator_index].copy()
+        goal = np.clip(q_target, self.lower, self.upper)
+        dt = self.physics.model.opt.timestep * SUBSTEPS
+        n_updates = max(1, int(round(duration / dt)))
+        for i in range(1, n_updates + 1):
+            data.ctrl[self.actuator_index] = start + (goal - start) * minimum_jerk(i / n_updates)
+            mujoco.mj_step(self.model_ptr, self.data_ptr, SUBSTEPS)
+            if monitor is not None and monitor():
+                return True
+        return False
+
+    def hold(self, duration, monitor=None):
+        """Keeps the current targets for `duration` seconds (see `move`)."""
+        return self.move(self.physics.data.ctrl[self.actuator_index].copy(), duration, monitor)

@@ -1,0 +1,318 @@
+"""The simulated iCub: the model, the physics tasks, and their agreement with the
+tabular twins."""
+
+import unittest
+import xml.etree.ElementTree as ElementTree
+
+import dm_env
+import mujoco
+import numpy as np
+import pytest
+from dm_env import test_utils
+
+import icm
+from icm.envs import buttons, icub, rods
+
+
+# --- the model --------------------------------------------------------------------
+
+ICUB_RANGES_DEG = {  # ../shared/icub-facts.md, right arm, in the iCub's joint order
+    "r_shoulder_pitch": (-95, 5), "r_shoulder_roll": (0, 160.8),
+    "r_shoulder_yaw": (-37, 100), "r_elbow": (5.5, 106), "r_wrist_prosup": (-50, 50),
+    "r_wrist_pitch": (-65, 10), "r_wrist_yaw": (-25, 25),
+}
+
+
+@pytest.fixture(scope="module", params=["buttons", "rods"])
+def physics(request):
+    module = buttons if request.param == "buttons" else rods
+    return module.load_physics()
+
+
+def test_arm_has_the_icub_joints_in_order_with_their_ranges(physics):
+    model = physics.model
+    hinge_names = [model.id2name(i, "joint") for i in range(model.njnt)
+                   if model.jnt_type[i] == mujoco.mjtJoint.mjJNT_HINGE
+                   and model.id2name(i, "joint").startswith("r_")]
+    assert tuple(hinge_names) == icub.ARM_JOINTS
+    for name, (low, high) in ICUB_RANGES_DEG.items():
+        assert np.rad2deg(physics.named.model.jnt_range[name]) == pytest.approx([low, high])
+        # Each joint has a position actuator whose targets span exactly that range.
+        assert physics.named.model.actuator_ctrlrange[name] == pytest.approx(
+            physics.named.model.jnt_range[name])
+        assert model.actuator_gaintype[model.name2id(name, "actuator")] == 0  # fixed gain
+
+
+def test_arm_links_have_icub_lengths(physics):
+    physics.forward()
+    x = physics.named.data.xpos
+    assert np.linalg.norm(x["r_forearm"] - x["r_upper_arm"]) == pytest.approx(0.152)
+    assert np.linalg.norm(x["r_hand"] - x["r_forearm"]) == pytest.approx(0.137)
+    torso = physics.named.data.xpos["torso"]
+    assert np.linalg.norm(x["r_upper_arm"] - torso) == pytest.approx(np.hypot(0.11, 0.17))
+
+
+def test_every_scene_has_two_cameras_and_named_elements(physics):
+    cameras = {physics.model.id2name(i, "camera") for i in range(physics.model.ncam)}
+    assert {"over_shoulder", "side", "eyes"} <= cameras
+    physics.named.data.site_xpos["fingertip"]  # named elements the code uses exist
+    physics.named.data.xpos["head"]
+
+
+def test_shared_look_lives_in_one_included_file():
+    for scene in ("buttons.xml", "rods.xml"):
+        root = ElementTree.parse(icub.asset_path(scene)).getroot()
+        includes = [e.get("file") for e in root.iter("include")]
+        assert "common.xml" in includes and "icub.xml" in includes
+        assert root.find("asset") is None  # materials and textures only in common.xml
+
+
+def test_rendering_works_headless():
+    env = icm.envs.load("buttons", physics=True, seed=0)
+    env.reset()
+    pixels = env.physics.render(120, 160, camera_id="over_shoulder")
+    assert pixels.shape == (120, 160, 3) and pixels.std() > 10
+
+
+# --- buttons ------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def button_env():
+    return buttons.PhysicsButtonConsole(seed=0, presses_per_trial=5)
+
+
+@pytest.mark.parametrize("green", [0, 1, 3, 4])
+def test_each_press_moves_only_its_button_and_opens_the_right_lid(button_env, green):
+    env = button_env
+    env.reset()
+    env.task.lights = buttons.lights_for(env.red_button, green)
+    env.physics.set_lights(env.task.lights)
+    for button in range(buttons.N_BUTTONS):
+        boxes = env.press(button)
+        assert env.task.press_log == [button]
+        assert env.task.deepest[button] > buttons.PRESS_DEPTH
+        others = np.delete(env.task.deepest, button)
+        assert others.max() < buttons.PRESS_DEPTH / 4, f"button {button} disturbed others"
+        lids = np.rad2deg(env.physics.lid_angles())
+        expected = buttons.press_outcome(env.task.lights, button)
+        assert boxes.tolist() == expected.tolist()
+        for i in range(2):
+            if expected[i]:
+                assert lids[i] >= 30.0  # observed with the lid open at least 30 degrees
+            else:
+                assert lids[i] < 5.0
+
+
+def test_physics_button_observations_equal_the_tabular_twin():
+    rng = np.random.RandomState(7)
+    actions = rng.randint(buttons.N_BUTTONS, size=280)  # a quarter start new trials
+    physics_env = icm.envs.load("buttons", physics=True, seed=3)
+    tabular_env = icm.envs.load("buttons", physics=False, seed=3)
+    a, b = physics_env.reset(), tabular_env.reset()
+    presses = 0
+    for action in actions:
+        a, b = physics_env.step(action), tabular_env.step(action)
+        assert a.step_type == b.step_type and a.discount == b.discount
+        for key in ("lights", "boxes"):
+            np.testing.assert_array_equal(a.observation[key], b.observation[key])
+        presses += not a.first()
+    assert presses >= 200
+
+
+def test_physics_buttons_pay_the_extrinsic_reward_like_the_twin():
+    physics_env = icm.envs.load("buttons", physics=True, seed=1, rewarded_box="green")
+    tabular_env = icm.envs.load("buttons", physics=False, seed=1, rewarded_box="green")
+    physics_env.reset(), tabular_env.reset()
+    for action in [0, 1, 2, 3, 4, 0, 1, 2, 3]:
+        assert physics_env.step(action).reward == tabular_env.step(action).reward
+
+
+# --- rods --------------------------------------------------------------------------
+
+def test_stored_topple_map_has_twice_as_many_red_pairs_and_no_nudges():
+    stored = rods.load_topple_map()
+    counts = rods.topple_counts(stored)
+    assert counts["blue"] >= 1 and counts["red"] >= 2 * counts["blue"]
+    assert len(stored["topples"]) == 4 * len(stored["standable"])
+    assert rods.DEFAULT_START_CELL in stored["standable"]
+
+
+def test_stored_topple_map_equals_a_fresh_physics_measurement():
+    stored = rods.load_topple_map()
+    toppling = {cell for (cell, _), rod in stored["topples"].items() if rod}
+    rng = np.random.RandomState(0)
+    others = sorted(stored["standable"] - toppling)
+    sample = sorted(toppling) + [others[i] for i in rng.choice(len(others), 3, replace=False)]
+    fresh = rods.measure_topple_map(cells=sample)
+    assert {tuple(c) for c in fresh["standable"]} == stored["standable"]
+    for pair in fresh["pairs"]:
+        cell, action = tuple(pair["cell"]), pair["action"]
+        assert pair["topples"] == stored["topples"][(cell, action)], (cell, action)
+        assert tuple(pair["hand"]) == rods.next_cell(cell, action)
+        assert pair["disturbance"] < 1e-3  # a rod that stays up is not nudged
+
+
+def test_physics_rod_observations_equal_the_tabular_twin():
+    rng = np.random.RandomState(11)
+    physics_env = icm.envs.load("rods", physics=True, max_moves=20)
+    tabular_env = icm.envs.load("rods", physics=False, max_moves=20)
+    physics_env.reset(), tabular_env.reset()
+    topples = 0
+    for action in rng.randint(4, size=300):
+        a, b = physics_env.step(action), tabular_env.step(action)
+        assert a.step_type == b.step_type and a.discount == b.discount
+        for key in ("hand", "rods"):
+            np.testing.assert_array_equal(a.observation[key], b.observation[key])
+        topples += int(a.last() and a.discount == 0.0)
+    assert topples >= 3  # the sequence exercised the topples, not only wandering
+
+
+def test_rod_table_rules():
+    env = icm.envs.load("rods", max_moves=5)
+    step = env.reset()
+    assert step.observation["hand"].tolist() == [0, 0]
+    step = env.step(1)  # backward, off the grid: the hand stays
+    assert step.observation["hand"].tolist() == [0, 0] and step.mid()
+    for _ in range(4):
+        step = env.step(2)  # left, off the grid
+    assert step.last() and step.discount == 1.0  # time limit, not termination
+    env = icm.envs.load("rods", start_cell=(2, 0))
+    env.reset()
+    step = env.step(0)  # forward into the red rod
+    assert step.observation["rods"].tolist() == [1, 0]
+    assert step.last() and step.discount == 0.0
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(start_cell=(2, 1)), "start_cell"),  # the red rod stands there
+    (dict(start_cell=(5, 0)), "start_cell"),
+    (dict(start_cell="corner"), "start_cell"),
+    (dict(max_moves=0), "max_moves"),
+    (dict(colour="red"), "unknown argument"),
+])
+def test_bad_rod_arguments_raise_value_error(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        icm.envs.load("rods", **kwargs)
+
+
+# --- dm_control-style checks ---------------------------------------------------------
+
+DISCRETE = [("buttons", True), ("rods", True), ("buttons", False), ("rods", False)]
+
+
+@pytest.mark.parametrize("name, physics_flag", DISCRETE)
+def test_observations_match_specs_and_are_finite(name, physics_flag):
+    env = icm.envs.load(name, physics=physics_flag, seed=2)
+    spec = env.observation_spec()
+    rng = np.random.RandomState(0)
+    step = env.reset()
+    for _ in range(12):
+        for key, value in step.observation.items():
+            spec[key].validate(value)
+            assert value.dtype == spec[key].dtype and np.all(np.isfinite(value))
+        step = env.step(rng.randint(env.action_spec().num_values))
+
+
+@pytest.mark.parametrize("name", ["buttons", "rods"])
+def test_same_seed_same_physics_trajectory(name):
+    def trajectory(seed):
+        env = icm.envs.load(name, physics=True, seed=seed)
+        rng = np.random.RandomState(5)
+        env.reset()
+        states = []
+        for _ in range(8):
+            step = env.step(rng.randint(env.action_spec().num_values))
+            states.append(np.concatenate([env.physics.data.qpos, env.physics.data.qvel,
+                                          *step.observation.values()]))
+        return np.array(states)
+    np.testing.assert_array_equal(trajectory(4), trajectory(4))
+    if name == "buttons":  # the seed draws the layouts
+        assert not np.array_equal(trajectory(4), trajectory(5))
+
+
+def _unstable(physics):
+    warnings = physics.data.warning
+    return (warnings[mujoco.mjtWarning.mjWARN_BADQACC].number
+            + warnings[mujoco.mjtWarning.mjWARN_BADQPOS].number
+            + warnings[mujoco.mjtWarning.mjWARN_BADQVEL].number)
+
+
+@pytest.mark.parametrize("name, n_actions", [("buttons", 1000), ("rods", 1000)])
+def test_thousands_of_random_actions_stay_stable(name, n_actions):
+    rng = np.random.RandomState(0)
+    done = 0
+    for seed in range(4):
+        env = icm.envs.load(name, physics=True, seed=seed)
+        env.reset()
+        for _ in range(n_actions // 4):
+            env.step(rng.randint(env.action_spec().num_values))
+            done += 1
+        state = np.concatenate([env.physics.data.qpos, env.physics.data.qvel])
+        assert np.all(np.isfinite(state))
+        assert _unstable(env.physics) == 0
+    assert done == n_actions
+
+
+@pytest.mark.parametrize("name", ["buttons", "rods"])
+def test_continuous_tasks_conform_and_are_deterministic(name):
+    def run(seed):
+        env = icm.envs.load_continuous(name, seed=seed, time_limit=1.0)
+        spec, action_spec = env.observation_spec(), env.action_spec()
+        rng = np.random.RandomState(1)
+        step = env.reset()
+        observations = []
+        while not step.last():
+            for key, value in step.observation.items():
+                spec[key].validate(value)
+                assert np.all(np.isfinite(value))
+            action = rng.uniform(action_spec.minimum, action_spec.maximum)
+            step = env.step(action)
+            observations.append(np.concatenate(list(step.observation.values())))
+        assert _unstable(env.physics) == 0
+        # 1 s at 20 ms per action, unless a flailing arm topples a rod first.
+        assert len(observations) == 50 or (name == "rods" and step.discount == 0.0)
+        return np.array(observations)
+    np.testing.assert_array_equal(run(3), run(3))
+
+
+def test_continuous_buttons_open_a_lid_when_the_arm_presses():
+    env = icm.envs.load_continuous("buttons", seed=0, time_limit=4.0)
+    env.reset()
+    motions = env.task.motions(env.physics)
+    green = int(np.flatnonzero(env.task.lights == buttons.GREEN)[0])
+    for target, steps in [(motions.above[green], 25), (motions.down[green], 25),
+                          (motions.above[green], 25)]:
+        for _ in range(steps):
+            step = env.step(target)
+    assert env.task.press_log == [green]
+    assert step.observation["lid_angles"][1] > np.deg2rad(30)
+    assert step.observation["lid_angles"][0] < np.deg2rad(5)
+
+
+# --- dm_env's own conformance tests on the physics environments ----------------------
+
+class PhysicsButtonsDmEnvTest(test_utils.EnvironmentTestMixin, unittest.TestCase):
+    def make_object_under_test(self):
+        return icm.envs.load("buttons", physics=True, seed=0)
+
+    def make_action_sequence(self):
+        for action in np.random.RandomState(0).randint(5, size=12):
+            yield np.int64(action)
+
+
+class PhysicsRodsDmEnvTest(test_utils.EnvironmentTestMixin, unittest.TestCase):
+    def make_object_under_test(self):
+        return icm.envs.load("rods", physics=True, max_moves=6)
+
+    def make_action_sequence(self):
+        for action in np.random.RandomState(0).randint(4, size=20):
+            yield np.int64(action)
+
+
+class TabularRodsDmEnvTest(test_utils.EnvironmentTestMixin, unittest.TestCase):
+    def make_object_under_test(self):
+        return icm.envs.load("rods", max_moves=6)
+
+    def make_action_sequence(self):
+        for action in np.random.RandomState(0).randint(4, size=40):
+            yield np.int64(action)
