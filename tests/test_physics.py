@@ -316,3 +316,21 @@ class TabularRodsDmEnvTest(test_utils.EnvironmentTestMixin, unittest.TestCase):
     def make_action_sequence(self):
         for action in np.random.RandomState(0).randint(4, size=40):
             yield np.int64(action)
+
+
+# --- the twins agree, as the book uses them -------------------------------------------
+
+@pytest.mark.parametrize("name", ["buttons", "rods"])
+def test_compare_twins_finds_agreement_and_would_find_a_difference(name):
+    same = icm.envs.compare_twins(name, n_steps=60, seed=2, action_seed=3)
+    assert same["steps"] == 60 and same["mismatches"] == 0
+    if name == "buttons":  # a twin with other layouts must be caught
+        other = icm.envs.compare_twins(name, n_steps=60, seed=2, action_seed=3, twin_seed=9)
+        assert other["mismatches"] > 0
+
+
+def test_goal_oriented_learner_gives_identical_results_on_the_physics_console():
+    tabular = icm.experiments.run_goal_oriented(n_seeds=2, n_trials=8, seed=5)
+    physics = icm.experiments.run_goal_oriented(n_seeds=2, n_trials=8, seed=5, physics=True)
+    for field in ("interest", "prediction_error", "mastery_trial", "practice"):
+        np.testing.assert_array_equal(getattr(tabular, field), getattr(physics, field))

@@ -169,13 +169,17 @@ class Arm:
           True if `monitor` stopped the motion, else False.
         """
         data = self.physics.data
-        start = data.ctrl[self.actuator_index].copy()
+        ctrl, index = data.ctrl, self.actuator_index
+        start = ctrl[index].copy()
         goal = np.clip(q_target, self.lower, self.upper)
         dt = self.physics.model.opt.timestep * SUBSTEPS
         n_updates = max(1, int(round(duration / dt)))
-        for i in range(1, n_updates + 1):
-            data.ctrl[self.actuator_index] = start + (goal - start) * minimum_jerk(i / n_updates)
-            mujoco.mj_step(self.model_ptr, self.data_ptr, SUBSTEPS)
+        profile = minimum_jerk(np.arange(1, n_updates + 1) / n_updates)
+        targets = start + np.outer(profile, goal - start)  # one row per update
+        model_ptr, data_ptr = self.model_ptr, self.data_ptr
+        for row in targets:
+            ctrl[index] = row
+            mujoco.mj_step(model_ptr, data_ptr, SUBSTEPS)
             if monitor is not None and monitor():
                 return True
         return False
@@ -183,3 +187,14 @@ class Arm:
     def hold(self, duration, monitor=None):
         """Keeps the current targets for `duration` seconds (see `move`)."""
         return self.move(self.physics.data.ctrl[self.actuator_index].copy(), duration, monitor)
+
+
+def describe_arm(physics):
+    """A Markdown table of the right arm's joints: order, range and actuator gain."""
+    lines = ["| # | joint | range (degrees) | actuator gain kp (N m / rad) |",
+             "|---|---|---|---|"]
+    for i, name in enumerate(ARM_JOINTS, start=1):
+        low, high = np.rad2deg(physics.named.model.jnt_range[name])
+        kp = physics.named.model.actuator_gainprm[name][0]
+        lines.append(f"| {i} | {name} | {low:.1f} to {high:.1f} | {kp:g} |")
+    return "\n".join(lines)

@@ -1,0 +1,45 @@
+"""Checks that a tabular twin and its physics version behave the same."""
+
+import numpy as np
+
+from icm import _validate
+
+
+def compare_twins(name, n_steps=200, seed=0, action_seed=0, twin_seed=None, **kwargs):
+    """Plays the same random actions in the tabular and the physics version of `name`.
+
+    Args:
+      name: "buttons" or "rods".
+      n_steps: number of steps (actions) to play (>= 1).
+      seed: the seed of both environments.
+      action_seed: the seed of the random actions.
+      twin_seed: a different seed for the tabular twin only (to see the comparison
+        fail); default `seed`.
+      **kwargs: environment arguments, given to both.
+
+    Returns:
+      A dict: "steps" (steps compared), "mismatches" (steps whose step type,
+      discount, reward or observation differ), "episodes" (episodes begun), and
+      "terminations" (episodes that ended with discount 0).
+    """
+    from icm import envs  # here: envs imports this module's package
+
+    _validate.integer_at_least("n_steps", n_steps, 1)
+    physics_env = envs.load(name, physics=True, seed=seed, **kwargs)
+    tabular_env = envs.load(name, physics=False,
+                            seed=seed if twin_seed is None else twin_seed, **kwargs)
+    actions = np.random.RandomState(action_seed).randint(
+        physics_env.action_spec().num_values, size=n_steps)
+    physics_env.reset(), tabular_env.reset()
+    counts = {"steps": 0, "mismatches": 0, "episodes": 1, "terminations": 0}
+    for action in actions:
+        a, b = physics_env.step(action), tabular_env.step(action)
+        same = (a.step_type == b.step_type and a.discount == b.discount
+                and (a.reward or 0.0) == (b.reward or 0.0)
+                and all(np.array_equal(a.observation[k], b.observation[k])
+                        for k in a.observation))
+        counts["steps"] += 1
+        counts["mismatches"] += not same
+        counts["episodes"] += int(a.first())
+        counts["terminations"] += int(a.last() and a.discount == 0.0)
+    return counts

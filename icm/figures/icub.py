@@ -1,0 +1,218 @@
+"""Figures of the simulated iCub: Figure 1 rendered from the model, animations of a
+press and a topple, a press's time series, and the measured topple map."""
+
+import base64
+import io
+
+import matplotlib.animation
+import matplotlib.patches
+import numpy as np
+from PIL import Image
+
+from icm.envs import buttons, rods
+from icm.figures._common import TASK_COLOURS, new_figure
+
+ROD_COLOURS = {"red": TASK_COLOURS["red"], "blue": "#1f5fcc"}
+
+
+def render(physics, camera, height=480, width=640):
+    """An RGB image (height, width, 3) of `physics` seen from the named `camera`."""
+    return physics.render(height, width, camera_id=camera)
+
+
+def pressing_green(seed=0, camera="front", height=480, width=640):
+    """Renders the iCub pressing the lit green button, once the green box is open.
+
+    Runs the press primitive's reach and push on a `PhysicsButtonConsole` and stops
+    the physics while the finger holds the button down and the lid is open.
+    """
+    env = buttons.PhysicsButtonConsole(seed=seed)
+    env.reset()
+    green = env.green_button
+    physics, task, motions = env.physics, env.task, env.motions
+    watch = lambda: task.update(physics) or False
+    env.arm.move(motions.above[green], env.REACH_TIME, watch)
+    env.arm.move(motions.down[green], env.PUSH_TIME, watch)
+    env.arm.hold(1.5, lambda: task.update(physics) or physics.lid_angles()[1] > np.deg2rad(80))
+    return render(physics, camera, height, width)
+
+
+def toppling_rod(camera="front", height=480, width=640, start_cell=(2, 0), action=0):
+    """Renders the iCub's hand toppling the red rod, caught while the rod falls."""
+    env = rods.PhysicsRodTable(start_cell=start_cell)
+    env.reset()
+    frames = []
+
+    def catch(physics):
+        if not frames and physics.rod_tilt("red") > np.deg2rad(35):
+            frames.append(render(physics, camera, height, width))
+
+    env.move(action, recorder=catch)
+    return frames[0] if frames else render(env.physics, camera, height, width)
+
+
+def figure1(seed=0, camera="front"):
+    """Figure 1, rebuilt from the model: (a) the iCub pushing the green button, the
+    green box open; (b) the iCub's hand toppling the red rod."""
+    fig, (left, right) = new_figure(width=11, height=4.4, ncols=2)
+    for ax, image, title in [
+            (left, pressing_green(seed=seed, camera=camera),
+             "(a) pressing the green button opens the green box"),
+            (right, toppling_rod(camera=camera), "(b) the hand topples the red rod")]:
+        ax.imshow(image)
+        ax.set_title(title, fontsize=10)
+        ax.axis("off")
+    return fig
+
+
+def cameras_figure(physics, cameras, height=240, width=320):
+    """The scene of `physics` from each of `cameras`, side by side."""
+    fig, axes = new_figure(width=3.2 * len(cameras), height=2.7, ncols=len(cameras))
+    for ax, camera in zip(np.atleast_1d(axes), cameras):
+        ax.imshow(render(physics, camera, height, width))
+        ax.set_title(camera, fontsize=9)
+        ax.axis("off")
+    return fig
+
+
+def record_press(seed=0, button=None, camera=None, frame_every=2, height=240, width=320):
+    """Runs one press on the simulated iCub and records it.
+
+    Args:
+      seed: the environment's seed (it draws the layout).
+      button: the button to press; default the lit green one.
+      camera: if given, also render a frame from this camera every `frame_every`
+        control updates (40 ms of simulated time at 2).
+
+    Returns:
+      A dict of arrays: "time" (s), "depth" (the pressed button's depth, mm), "other"
+      (deepest of the other buttons, mm), "lids" (red and green lid angles, degrees),
+      "fingertip" (m), "frames" (list of images), and "button", "boxes" (the
+      observation after the press), "lights".
+    """
+    env = buttons.PhysicsButtonConsole(seed=seed)
+    env.reset()
+    button = env.green_button if button is None else button
+    log = {"time": [], "depth": [], "other": [], "lids": [], "fingertip": [], "frames": []}
+
+    def recorder(physics):
+        depths = physics.button_depths() * 1000
+        log["time"].append(physics.data.time)
+        log["depth"].append(depths[button])
+        log["other"].append(np.delete(depths, button).max())
+        log["lids"].append(np.rad2deg(physics.lid_angles()))
+        log["fingertip"].append(physics.fingertip_position())
+        if camera is not None and len(log["time"]) % frame_every == 1:
+            log["frames"].append(render(physics, camera, height, width))
+
+    boxes = env.press(button, recorder=recorder)
+    out = {key: np.array(value) for key, value in log.items() if key != "frames"}
+    out["time"] = out["time"] - out["time"][0]
+    out.update(frames=log["frames"], button=button, boxes=boxes, lights=env.lights)
+    return out
+
+
+def record_move(start_cell=(2, 0), action=0, camera=None, frame_every=2, height=240,
+                width=320):
+    """Runs one move of the hand on the rod table and records the rods' tilts (degrees)
+    and, if `camera` is given, frames. Returns a dict like `record_press`."""
+    env = rods.PhysicsRodTable(start_cell=start_cell)
+    env.reset()
+    log = {"time": [], "tilts": [], "frames": []}
+
+    def recorder(physics):
+        log["time"].append(physics.data.time)
+        log["tilts"].append(np.rad2deg(physics.rod_tilts()))
+        if camera is not None and len(log["time"]) % frame_every == 1:
+            log["frames"].append(render(physics, camera, height, width))
+
+    toppled = env.move(action, recorder=recorder)
+    return {"time": np.array(log["time"]) - log["time"][0], "tilts": np.array(log["tilts"]),
+            "frames": log["frames"], "toppled": toppled}
+
+
+def press_trace_figure(record):
+    """The pressed button's depth and the lids' angles against time during one press."""
+    fig, (top, bottom) = new_figure(width=7.5, height=4.6, nrows=2, sharex=True)
+    top.plot(record["time"], record["depth"], color="black", linewidth=2,
+             label=f"button {record['button']} (pressed)")
+    top.plot(record["time"], record["other"], color="grey", linestyle="--",
+             label="deepest of the other buttons")
+    top.axhline(buttons.PRESS_DEPTH * 1000, color="#888888", linewidth=0.8)
+    top.text(record["time"][0], buttons.PRESS_DEPTH * 1000, "press threshold",
+             va="bottom", ha="left", fontsize=8, color="#555555")
+    top.set_ylabel("depth (mm)")
+    top.legend(frameon=False, fontsize=8, loc="upper right")
+    for i, name in enumerate(buttons.BOX_NAMES):
+        bottom.plot(record["time"], record["lids"][:, i], color=TASK_COLOURS[name],
+                    linewidth=2, label=f"{name} lid")
+    bottom.axhline(np.rad2deg(buttons.BOX_OPEN_ANGLE), color="#888888", linewidth=0.8)
+    bottom.text(record["time"][-1], np.rad2deg(buttons.BOX_OPEN_ANGLE), "counts as open",
+                va="bottom", ha="right", fontsize=8, color="#555555")
+    bottom.set_ylabel("lid angle (degrees)")
+    bottom.set_xlabel("time since the start of the press (s)")
+    bottom.legend(frameon=False, fontsize=8, loc="center left")
+    return fig
+
+
+def animation_html(frames, fps=25):
+    """An HTML snippet that plays `frames` (RGB arrays) as an animated GIF, embedded in
+    the page (no external file, no video codec needed)."""
+    images = [Image.fromarray(frame) for frame in frames]
+    buffer = io.BytesIO()
+    images[0].save(buffer, format="GIF", save_all=True, append_images=images[1:],
+                   duration=int(1000 / fps), loop=0)
+    data = base64.b64encode(buffer.getvalue()).decode("ascii")
+    return f'<img src="data:image/gif;base64,{data}" alt="animation" style="max-width:100%"/>'
+
+
+def topple_map_figure(topple_map=None):
+    """The measured topple map on the 5 x 3 grid: an arrow for every move that topples
+    a rod, coloured by the rod; the rods' cells and the cells where the hand cannot
+    rest with the rods standing are marked.
+
+    Args:
+      topple_map: as returned by `icm.envs.rods.load_topple_map()` (default: that).
+    """
+    topple_map = rods.load_topple_map() if topple_map is None else topple_map
+    fig, ax = new_figure(width=6.4, height=4.4)
+    physics = rods.load_physics()
+    physics.forward()
+    rod_cells = {}
+    for name in rods.ROD_NAMES:
+        position = physics.named.data.xpos[f"{name}_rod"][:2]
+        rod_cells[name] = min(
+            ((c, r) for c in range(rods.N_COLUMNS) for r in range(rods.N_ROWS)),
+            key=lambda cell: np.linalg.norm(physics.cell_centre(cell)[:2] - position))
+    for column in range(rods.N_COLUMNS):
+        for row in range(rods.N_ROWS):
+            cell = (column, row)
+            standable = cell in topple_map["standable"]
+            ax.add_patch(matplotlib.patches.Rectangle(
+                (column - 0.45, row - 0.45), 0.9, 0.9, facecolor="#f4f4f4" if standable
+                else "white", edgecolor="#bbbbbb", hatch=None if standable else "///"))
+            ax.text(column - 0.4, row - 0.4, f"{column},{row}", fontsize=7, color="#999999")
+    for name, (column, row) in rod_cells.items():
+        ax.add_patch(matplotlib.patches.Rectangle((column - 0.1, row - 0.1), 0.2, 0.2,
+                                                  facecolor=ROD_COLOURS[name]))
+        ax.text(column, row + 0.22, f"{name} rod", ha="center", fontsize=8,
+                color=ROD_COLOURS[name])
+    for (cell, action), rod in topple_map["topples"].items():
+        if rod is None:
+            continue
+        target = rods.next_cell(cell, action)
+        ax.annotate("", xy=(cell[0] + 0.7 * (target[0] - cell[0]), cell[1] + 0.7 * (target[1] - cell[1])),
+                    xytext=cell, arrowprops=dict(arrowstyle="-|>", color=ROD_COLOURS[rod],
+                                                 linewidth=2.2, shrinkA=4))
+    ax.set_xlim(-0.6, rods.N_COLUMNS - 0.4)
+    ax.set_ylim(-0.6, rods.N_ROWS - 0.4)
+    ax.set_aspect("equal")
+    ax.set_xticks(range(rods.N_COLUMNS), [f"col {c}" for c in range(rods.N_COLUMNS)])
+    ax.set_yticks(range(rods.N_ROWS), ["row 0 (near)", "row 1", "row 2 (far)"])
+    ax.tick_params(length=0)
+    for spine in ax.spines.values():
+        spine.set_visible(False)
+    counts = rods.topple_counts(topple_map)
+    ax.set_title(f"Moves that topple a rod, measured in physics: red {counts['red']}, "
+                 f"blue {counts['blue']}", fontsize=10)
+    return fig
