@@ -1,0 +1,307 @@
+"""The actor-critic on the tabular button console, over many seeds (Figure 6)."""
+
+import dataclasses
+import math
+
+import numpy as np
+
+from icm import _validate
+from icm.envs import buttons
+from icm.experiments._progress import progress_bar
+from icm.experiments._seeding import run_seeds
+from icm.learners import actor_critic, predictors
+from icm.stats import first_from_which
+
+TASKS = ("red", "green")
+"""Order of the task axis in the result arrays."""
+LATE_TRIALS = 10
+"""`summary()` describes the end of a run by its last `LATE_TRIALS` trials."""
+
+
+def probe_queries(red_button=buttons.DEFAULT_RED_BUTTON):
+    """The test of section 4.1, as (task, state, button, true boxes) tuples.
+
+    "We presented the robot with only the red button [...] Then we presented the robot
+    with only the green button": the red query lights only the red button and presses
+    it; the green queries light only the green button, at each of the 4 places it
+    takes in training, and press it. Boxes are shut before the press. None of these
+    states occurs in training, where two buttons are always lit.
+
+    Args:
+      red_button: the button that is always red (0-4).
+
+    Returns:
+      A list of (task, state, button, true boxes): one for red, then one for each
+      place of the green button, left to right. A state is the 5 lights, then the 2
+      boxes, as `ActorCritic.state` builds it.
+
+    Raises:
+      ValueError: for a red button outside 0..4.
+    """
+    red_button = buttons.check_red_button(red_button)
+    red_only = np.full(buttons.N_BUTTONS, buttons.OFF, dtype=np.int64)
+    red_only[red_button] = buttons.RED
+    queries = [("red", tuple(red_only.tolist()) + (0, 0), red_button, (1, 0))]
+    for green in buttons.green_candidates(red_button):
+        lights = np.full(buttons.N_BUTTONS, buttons.OFF, dtype=np.int64)
+        lights[green] = buttons.GREEN
+        queries.append(("green", tuple(lights.tolist()) + (0, 0), green, (0, 1)))
+    return queries
+
+
+@dataclasses.dataclass(frozen=True)
+class ActorCriticResult:
+    """What `run_actor_critic` measured. Trials are counted from 1 in `zero_trial`;
+    the arrays' trial axis holds trial 1 at index 0.
+
+    Attributes:
+      settings: the arguments of the run, as a dict.
+      prediction_error: [seed, trial, task], after each trial, section 4.1's test:
+        the Euclidean distance between the predicted and the true boxes when only the
+        red button is lit and pressed (task red), and the same averaged over the 4
+        places of the green button when only it is lit and pressed (task green).
+      zero_trial: [seed, task], the first trial from which that error is 0 to the end
+        of the run; -1 if it is not 0 at the end.
+      practice: [seed, trial, task], presses in the trial that opened each box.
+      press_probability: [seed, trial, task], after each trial, the actor's
+        probability of pressing the red (task red) and the green (task green) button
+        at the start of a trial (boxes shut), averaged over the 4 layouts.
+      reward: [seed, trial], the rewards the learner received in the trial, summed.
+      max_abs_value: [seed, trial], the largest absolute value of the critic after each trial.
+    """
+
+    settings: dict
+    prediction_error: np.ndarray
+    zero_trial: np.ndarray
+    practice: np.ndarray
+    press_probability: np.ndarray
+    reward: np.ndarray
+    max_abs_value: np.ndarray
+
+    @property
+    def n_seeds(self):
+        """Number of runs (seeds)."""
+        return self.prediction_error.shape[0]
+
+    @property
+    def n_trials(self):
+        """Trials per run."""
+        return self.prediction_error.shape[1]
+
+    def red_first_fraction(self):
+        """Share of seeds in which the red error reaches 0 (for good) strictly before
+        the green one (a seed where only red reaches 0 counts as red first)."""
+        red, green = self.zero_trial[:, 0], self.zero_trial[:, 1]
+        return float(((red >= 1) & ((green == -1) | (red < green))).mean())
+
+    def seed_summaries(self):
+        """One dict per seed of the numbers a sweep compares: the trial from which each
+        task's error is 0 (-1 if never), the gap green - red (NaN unless both reach 0),
+        and whether red came first."""
+        rows = []
+        for red, green in self.zero_trial.tolist():
+            gap = float(green - red) if red >= 1 and green >= 1 else float("nan")
+            rows.append({"red_zero_trial": red, "green_zero_trial": green, "zero_gap": gap,
+                         "red_first": bool(red >= 1 and (green == -1 or red < green))})
+        return rows
+
+    def green_below_red(self):
+        """[seed, trial] True where the green error is below the red one: the learner
+        is, for the moment, more familiar with the hard task than with the easy one."""
+        return self.prediction_error[:, :, 1] < self.prediction_error[:, :, 0]
+
+    def green_below_red_fraction(self):
+        """Share of seeds in which the green error is below the red one at some trial
+        (the paper's "familiarity with the more complex task would temporarily
+        increase above the simple task")."""
+        return float(self.green_below_red().any(axis=1).mean())
+
+    def summary(self):
+        """The numbers the book quotes, as a dict.
+
+        For each task (keys starting ``red_`` or ``green_``): the share of seeds whose
+        error reaches 0 for good (``_zero_share``), the mean and median of that trial
+        over those seeds, the mean final error, the share of presses opening the box in
+        the last `LATE_TRIALS` trials (``_late_practice_share``) and the final
+        probability of pressing its button. Also `red_first`, `green_below_red` (with
+        how many trials and until when), the reward per press at the end, and the
+        largest absolute critic value at the end (max and median over seeds)."""
+        out = {"red_first": self.red_first_fraction(),
+               "green_below_red": self.green_below_red_fraction()}
+        below = self.green_below_red()
+        seeds_below = below.any(axis=1)
+        if seeds_below.any():
+            trials = np.arange(1, self.n_trials + 1)
+            last = np.where(below, trials, 0).max(axis=1)[seeds_below]
+            out["green_below_red_trials"] = float(below[seeds_below].sum(axis=1).mean())
+            out["green_below_red_last_mean"] = float(last.mean())
+            out["green_below_red_last_max"] = int(last.max())
+        else:
+            out["green_below_red_trials"] = 0.0
+            out["green_below_red_last_mean"] = math.nan
+            out["green_below_red_last_max"] = -1
+        late = slice(max(0, self.n_trials - LATE_TRIALS), None)
+        presses = self.settings["presses_per_trial"]
+        for i, task in enumerate(TASKS):
+            zero = self.zero_trial[:, i]
+            done = zero >= 1
+            out[f"{task}_zero_share"] = float(done.mean())
+            out[f"{task}_zero_mean"] = float(zero[done].mean()) if done.any() else math.nan
+            out[f"{task}_zero_median"] = float(np.median(zero[done])) if done.any() else math.nan
+            out[f"{task}_final_error"] = float(self.prediction_error[:, -1, i].mean())
+            out[f"{task}_late_practice_share"] = float(
+                self.practice[:, late, i].mean() / presses)
+            out[f"{task}_final_press_probability"] = float(
+                self.press_probability[:, -1, i].mean())
+        out["late_reward_per_press"] = float(self.reward[:, late].mean() / presses)
+        out["max_abs_value"] = float(self.max_abs_value[:, -1].max())
+        out["median_abs_value"] = float(np.median(self.max_abs_value[:, -1]))
+        return out
+
+
+def _check_run_arguments(n_seeds, n_trials, temperature, lr_actor, lr_critic, gamma,
+                         reward, variant, rewarded_box, action_weight, presses_per_trial,
+                         red_button, seed):
+    _validate.integer_at_least("n_seeds", n_seeds, 1)
+    _validate.integer_at_least("n_trials", n_trials, 1)
+    _validate.positive("temperature", temperature)
+    _validate.learning_rate("lr_actor", lr_actor)
+    _validate.learning_rate("lr_critic", lr_critic)
+    _validate.in_closed_interval("gamma", gamma, 0.0, 1.0)
+    _validate.one_of("reward", reward, actor_critic.REWARDS)
+    _validate.one_of("variant", variant, tuple(actor_critic.VARIANTS))
+    _validate.one_of("rewarded_box", rewarded_box, buttons.BOX_NAMES)
+    _validate.positive("action_weight", action_weight)
+    _validate.integer_at_least("presses_per_trial", presses_per_trial, 1)
+    buttons.check_red_button(red_button)
+    _validate.integer_at_least("seed", seed, 0)
+
+
+def run_actor_critic(n_seeds=100, n_trials=100,
+                     temperature=actor_critic.DEFAULT_TEMPERATURE,
+                     lr_actor=actor_critic.DEFAULT_LR_ACTOR,
+                     lr_critic=actor_critic.DEFAULT_LR_CRITIC,
+                     gamma=actor_critic.DEFAULT_GAMMA,
+                     reward="intrinsic",
+                     variant="standard",
+                     rewarded_box="green",
+                     action_weight=predictors.DEFAULT_ACTION_WEIGHT,
+                     presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
+                     red_button=buttons.DEFAULT_RED_BUTTON,
+                     seed=0,
+                     progress=True):
+    """Runs the actor-critic on the tabular button console, once per seed.
+
+    Each run builds a `ButtonConsole` (paying 1.0 when `rewarded_box` opens if the
+    reward is extrinsic, nothing otherwise), a `NearestNeighbourPredictor` and an
+    `ActorCritic` with their own seeds (drawn from `seed`), and plays `n_trials`
+    trials. After each trial it runs section 4.1's test (see `probe_queries`) and
+    records the policy at the start of a trial.
+
+    Args:
+      n_seeds: number of independent runs (>= 1).
+      n_trials: trials per run (>= 1).
+      temperature: softmax temperature (> 0).
+      lr_actor: actor learning rate, in (0, 1].
+      lr_critic: critic learning rate, in (0, 1].
+      gamma: discount, in [0, 1].
+      reward: "intrinsic" (from the predictor's errors) or "extrinsic" (from the
+        environment).
+      variant: a reading of the formulas, one of `icm.learners.actor_critic.VARIANTS`.
+      rewarded_box: "red" or "green", the box that pays 1.0 when the reward is
+        extrinsic (ignored for an intrinsic reward).
+      action_weight: the predictor's cost of a different button (> 0).
+      presses_per_trial: presses per trial (>= 1).
+      red_button: the button that is always red (0-4).
+      seed: root seed (int >= 0); run i's seeds depend only on it and i.
+      progress: show a progress bar over the seeds when the run lasts over a second.
+
+    Returns:
+      An `ActorCriticResult`.
+
+    Raises:
+      ValueError: for any argument outside its allowed range.
+    """
+    _check_run_arguments(n_seeds, n_trials, temperature, lr_actor, lr_critic, gamma,
+                         reward, variant, rewarded_box, action_weight, presses_per_trial,
+                         red_button, seed)
+    settings = dict(n_seeds=n_seeds, n_trials=n_trials, temperature=temperature,
+                    lr_actor=lr_actor, lr_critic=lr_critic, gamma=gamma, reward=reward,
+                    variant=variant, rewarded_box=rewarded_box, action_weight=action_weight,
+                    presses_per_trial=presses_per_trial, red_button=red_button, seed=seed)
+    shape = (n_seeds, n_trials, len(TASKS))
+    error_out = np.zeros(shape)
+    practice = np.zeros(shape, dtype=np.int64)
+    press_probability = np.zeros(shape)
+    reward_out = np.zeros((n_seeds, n_trials))
+    max_abs_value = np.zeros((n_seeds, n_trials))
+
+    queries = probe_queries(red_button)
+    n_green = sum(1 for task, *_ in queries if task == "green")
+    starts = [tuple(lights.tolist()) + (0, 0) for lights in buttons.layouts(red_button)]
+    greens = buttons.green_candidates(red_button)
+
+    seeds = progress_bar(enumerate(run_seeds(seed, n_seeds, 2)), n_seeds, "actor-critic",
+                         progress)
+    for run, (env_seed, agent_seed) in seeds:
+        env = buttons.ButtonConsole(
+            red_button=red_button, presses_per_trial=presses_per_trial,
+            rewarded_box=rewarded_box if reward == "extrinsic" else None, seed=env_seed)
+        agent = actor_critic.ActorCritic(
+            buttons.N_BUTTONS, temperature=temperature, lr_actor=lr_actor,
+            lr_critic=lr_critic, gamma=gamma, reward=reward, variant=variant,
+            predictor=predictors.NearestNeighbourPredictor(action_weight), seed=agent_seed)
+        for trial in range(n_trials):
+            step = env.reset()
+            while not step.last():
+                action = agent.select_action(step.observation)
+                next_step = env.step(action)
+                r, _ = agent.learn(step.observation, action, next_step.observation,
+                                   external_reward=next_step.reward,
+                                   discount=next_step.discount)
+                reward_out[run, trial] += r
+                practice[run, trial] += next_step.observation["boxes"]
+                step = next_step
+            for task, state, button, truth in queries:
+                error = math.dist(agent.predict(state, button), truth)
+                if task == "red":
+                    error_out[run, trial, 0] = error
+                else:
+                    error_out[run, trial, 1] += error / n_green
+            for state, green in zip(starts, greens):
+                policy = agent.policy(state)
+                press_probability[run, trial, 0] += policy[red_button] / len(starts)
+                press_probability[run, trial, 1] += policy[green] / len(starts)
+            max_abs_value[run, trial] = max(map(abs, agent.critic.values()), default=0.0)
+
+    zero = first_from_which(np.moveaxis(error_out, 1, 2) == 0)
+    zero = np.where(zero >= 0, zero + 1, -1)
+    return ActorCriticResult(settings, error_out, zero, practice, press_probability,
+                             reward_out, max_abs_value)
+
+
+def comparison_table(results):
+    """A Markdown table of the numbers that tell actor-critic runs apart, one row per run.
+
+    Args:
+      results: a dict {row label: ActorCriticResult}.
+
+    Returns:
+      A Markdown string (display it with `IPython.display.Markdown`); the trials
+      marked † are means over the seeds whose error does reach 0.
+    """
+    header = ("| run | seeds | red error 0 from trial (mean†) | green error 0 from trial "
+              "(mean†) | green learned | red first | green below red at some trial "
+              f"| presses opening red / green, last {LATE_TRIALS} trials | largest abs(V) |")
+    lines = [header, "|" + "---|" * 9]
+    for label, result in results.items():
+        s = result.summary()
+        lines.append(
+            f"| {label} | {result.n_seeds} | {s['red_zero_mean']:.1f} "
+            f"| {s['green_zero_mean']:.1f} | {s['green_zero_share']:.0%} "
+            f"| {s['red_first']:.0%} | {s['green_below_red']:.0%} "
+            f"| {s['red_late_practice_share']:.0%} / {s['green_late_practice_share']:.0%} "
+            f"| {s['max_abs_value']:.3g} |")
+    lines.append("")
+    lines.append("† mean over the seeds whose error reaches 0 for good within the run.")
+    return "\n".join(lines)

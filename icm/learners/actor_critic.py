@@ -1,0 +1,270 @@
+"""The actor-critic of the paper (section 3.2, Figures 3 and 4), with an extrinsic or
+an intrinsic reward."""
+
+import math
+
+import numpy as np
+
+from icm import _validate
+from icm.learners.predictors import NearestNeighbourPredictor
+
+DEFAULT_TEMPERATURE = 0.2
+"""Softmax temperature. With rewards of 0 or 1 and the default learning rates, one
+surprise raises a preference by 0.5, which makes that button e^(0.5/0.2) = 12 times
+likelier than an untried one: the learner repeats what surprised it, as the paper
+describes, yet still tries the other buttons."""
+DEFAULT_LR_ACTOR = 0.5
+"""Actor learning rate (the paper's lrA; its value is not given)."""
+DEFAULT_LR_CRITIC = 0.5
+"""Critic learning rate (the paper's lrC; its value is not given)."""
+DEFAULT_GAMMA = 0.5
+"""Discount (the paper's gamma; its value is not given). No press changes what the
+next one does (the console shuts the boxes before every press), so a short horizon."""
+
+REWARDS = ("intrinsic", "extrinsic")
+"""Where the reward comes from: the predictor's errors (Figure 3b) or the environment
+(Figure 3a)."""
+VARIANTS = {
+    "standard": ("standard", "error"),
+    "printed_td": ("printed", "error"),
+    "printed_reward": ("standard", "correct"),
+    "printed": ("printed", "correct"),
+}
+"""The four readings of the paper's formulas, as (TD form, intrinsic reward on):
+
+TD form "standard": r + gamma * V(s') - V(s), the usual TD error.
+TD form "printed": r + gamma * (V(s) - V(s')), equation 2 as printed.
+reward on "error": the intrinsic reward is 1 when the prediction is wrong (the text:
+"the interest of the agent is maximal in situations where it makes mistakes").
+reward on "correct": 1 when the prediction is right (the formula as printed).
+
+"standard" (the default) is the standard reading of both; "printed" takes both
+formulas as printed; the other two change one at a time. With an extrinsic reward
+only the TD form matters."""
+
+
+def softmax(preferences, temperature):
+    """Softmax probabilities exp(p / T) / sum(exp(p / T)), computed without overflow.
+
+    The largest preference is subtracted before exponentiating, so every exponent is
+    <= 0 and the largest is exactly 0: preferences of 1e6 (or 1e300) give
+    probabilities, not inf / inf.
+
+    Args:
+      preferences: a non-empty sequence of finite numbers.
+      temperature: T, a finite number > 0; the smaller, the greedier.
+
+    Returns:
+      A float numpy array of probabilities, same length as `preferences`, summing to 1.
+
+    Raises:
+      ValueError: for an empty or non-finite `preferences` or a bad temperature.
+    """
+    temperature = _validate.positive("temperature", temperature)
+    p = [float(x) for x in np.asarray(preferences, dtype=float).ravel()]
+    if not p or not all(map(math.isfinite, p)) or np.ndim(preferences) != 1:
+        raise ValueError(f"preferences must be a non-empty sequence of finite numbers, "
+                         f"got {preferences!r}")
+    return np.array(_softmax(p, temperature))
+
+
+def _softmax(preferences, temperature):
+    """`softmax` on a list of floats, unchecked, as a list (the learner's inner loop)."""
+    top = max(preferences)
+    # (p - top) <= 0, so exp never overflows; a difference of -inf gives exp 0.0.
+    weights = [math.exp((p - top) / temperature) for p in preferences]
+    total = sum(weights)  # >= 1: the top preference contributes exp(0) = 1
+    if not math.isfinite(total):  # an infinite or NaN preference: a diverged actor
+        raise FloatingPointError(f"preferences must be finite, got {preferences!r}")
+    return [w / total for w in weights]
+
+
+def _check_finite(td_error):
+    """Returns `td_error` if it is finite, else raises FloatingPointError."""
+    if not math.isfinite(td_error):
+        raise FloatingPointError(
+            f"the TD error overflowed ({td_error!r}): the critic diverged. The printed TD "
+            f"form feeds V(s) back into itself, multiplying it by up to "
+            f"1 + lr_critic * gamma at every visit; use the standard form or fewer trials")
+    return td_error
+
+
+class ActorCritic:
+    """A tabular actor-critic whose reward is extrinsic or intrinsic (Figures 3, 4).
+
+    The state s is the observation as a tuple (for the buttons: the 5 lights, then the
+    2 boxes as they are shown). The actor keeps a preference per (state, action) and
+    picks an action by softmax with a `temperature`; the critic keeps a value V(s).
+    Both start at 0 and are updated after every action with the TD error (see
+    `VARIANTS` for its two forms).
+
+    The reward:
+      - "extrinsic" (Figure 3a): the reward the environment pays (for the buttons:
+        a `ButtonConsole(rewarded_box=...)`).
+      - "intrinsic" (Figure 3b, Figure 4): the predictor guesses what the action will
+        do to the `effect_key` entry (for the buttons: the boxes) from the state; the
+        internal reward is 1 when that guess is wrong (default) or right (printed),
+        else 0. The lights do not change when a button is pressed, so predicting the
+        next observation (x2, y2) amounts to predicting the boxes y2.
+
+    The predictor learns from every action in both cases, so the prediction errors
+    of an extrinsic learner can be measured too.
+
+    Args:
+      n_actions: number of discrete actions (integer >= 1).
+      temperature: softmax temperature, a finite number > 0.
+      lr_actor: actor learning rate (lrA), in (0, 1].
+      lr_critic: critic learning rate (lrC), in (0, 1].
+      gamma: discount, in [0, 1].
+      reward: "intrinsic" or "extrinsic"; see `REWARDS`.
+      variant: one of `VARIANTS` ("standard", "printed_td", "printed_reward",
+        "printed").
+      predictor: has `predict(context, action, default)` and `update(context, action,
+        effect)`; default a `NearestNeighbourPredictor()`.
+      state_keys: observation entries that make the state, in order.
+      effect_key: the observation entry the predictor predicts.
+      effect_at_rest: what the predictor predicts before it has stored anything
+        (default: zeros the size of the effect, i.e. "no box opens").
+      seed: None, an int >= 0, or a `numpy.random.Generator`, for the softmax draws.
+
+    Raises:
+      ValueError: for any argument outside its allowed range.
+    """
+
+    def __init__(self, n_actions, temperature=DEFAULT_TEMPERATURE, lr_actor=DEFAULT_LR_ACTOR,
+                 lr_critic=DEFAULT_LR_CRITIC, gamma=DEFAULT_GAMMA, reward="intrinsic",
+                 variant="standard", predictor=None, state_keys=("lights", "boxes"),
+                 effect_key="boxes", effect_at_rest=None, seed=None):
+        self.n_actions = _validate.integer_at_least("n_actions", n_actions, 1)
+        self.temperature = _validate.positive("temperature", temperature)
+        self.lr_actor = _validate.learning_rate("lr_actor", lr_actor)
+        self.lr_critic = _validate.learning_rate("lr_critic", lr_critic)
+        self.gamma = _validate.in_closed_interval("gamma", gamma, 0.0, 1.0)
+        self.reward = _validate.one_of("reward", reward, REWARDS)
+        self.variant = _validate.one_of("variant", variant, tuple(VARIANTS))
+        self.td_form, self.reward_on = VARIANTS[variant]
+        self.predictor = NearestNeighbourPredictor() if predictor is None else predictor
+        self.state_keys = tuple(state_keys)
+        self.effect_key = effect_key
+        self.effect_at_rest = None if effect_at_rest is None else tuple(effect_at_rest)
+        if isinstance(seed, np.random.Generator):
+            self._random = seed
+        else:
+            self._random = np.random.default_rng(_validate.seed("seed", seed))
+        self.critic = {}  # state -> V(state)
+        self.actor = {}  # state -> list of preferences, one per action
+
+    def state(self, observation):
+        """The state of an observation: its `state_keys` entries as one flat tuple."""
+        values = []
+        for key in self.state_keys:
+            values.extend(np.asarray(observation[key]).ravel().tolist())
+        return tuple(values)
+
+    def value(self, state):
+        """The critic's V(state) (0.0 for a state never updated)."""
+        return self.critic.get(state, 0.0)
+
+    def preferences(self, state):
+        """A copy of the actor's preferences in `state`, one per action."""
+        return list(self.actor.get(state, [0.0] * self.n_actions))
+
+    def policy(self, state):
+        """The probability of each action in `state` (a numpy array): the softmax of
+        its preferences at the learner's temperature."""
+        return np.array(self._policy(state))
+
+    def _policy(self, state):
+        preferences = self.actor.get(state)
+        if preferences is None:
+            return [1.0 / self.n_actions] * self.n_actions
+        return _softmax(preferences, self.temperature)
+
+    def select_action(self, observation):
+        """Draws an action from the softmax policy in the observation's state."""
+        probabilities = self._policy(self.state(observation))
+        threshold = self._random.random()
+        cumulative = 0.0
+        for action, probability in enumerate(probabilities):
+            cumulative += probability
+            if threshold < cumulative:
+                return action
+        return self.n_actions - 1  # rounding: the cumulative sum fell short of 1
+
+    def effect(self, observation):
+        """The `effect_key` entry of an observation (for the buttons, the boxes) as a
+        tuple; the first one seen also sets `effect_at_rest` if it was not given."""
+        effect = tuple(np.asarray(observation[self.effect_key]).ravel().tolist())
+        if self.effect_at_rest is None:
+            self.effect_at_rest = (0,) * len(effect)
+        return effect
+
+    def predict(self, state, action):
+        """The predictor's guess of the effect entry after `action` in `state`; with
+        nothing stored yet, `effect_at_rest` (no change: for the buttons, boxes shut)."""
+        return self.predictor.predict(state, action, default=self.effect_at_rest)
+
+    def internal_reward(self, state, action, effect):
+        """Figure 4's internal reward for a prediction of `effect` (a tuple).
+
+        Returns:
+          With `reward_on` "error": 1.0 if the prediction is wrong, else 0.0; with
+          "correct" (as printed): 1.0 if it is right, else 0.0.
+        """
+        right = tuple(self.predict(state, action)) == tuple(effect)
+        if self.reward_on == "correct":
+            return 1.0 if right else 0.0
+        return 0.0 if right else 1.0
+
+    def td_error(self, reward, state, next_state, discount=1.0):
+        """The TD error of one step, in the variant's form.
+
+        Args:
+          reward: r, the reward of the step.
+          state: s, the state the action was taken in.
+          next_state: s', the state after it.
+          discount: the environment's discount (0 at a true end of episode, where
+            V(s') is not counted; the button console never ends an episode).
+
+        Returns:
+          The TD error, a float.
+
+        Raises:
+          FloatingPointError: if it is not finite (a diverged critic).
+        """
+        gamma = self.gamma * discount
+        if self.td_form == "printed":  # equation 2 as printed: r + gamma * (V(s) - V(s'))
+            td_error = reward + gamma * (self.value(state) - self.value(next_state))
+        else:  # the standard TD error: r + gamma * V(s') - V(s)
+            td_error = reward + gamma * self.value(next_state) - self.value(state)
+        return _check_finite(td_error)
+
+    def learn(self, observation, action, next_observation, external_reward=0.0,
+              discount=1.0):
+        """One step of Figure 4, after `action` took `observation` to `next_observation`.
+
+        Args:
+          observation: the observation the action was chosen in.
+          action: the action taken.
+          next_observation: the observation after the action.
+          external_reward: the environment's reward (used when `reward` is "extrinsic").
+          discount: the environment's discount of the step.
+
+        Returns:
+          (reward, td_error): the reward used and the TD error of the step.
+        """
+        state, next_state = self.state(observation), self.state(next_observation)
+        effect = self.effect(next_observation)
+        if self.reward == "intrinsic":  # Figure 3b: the agent pays itself
+            reward = self.internal_reward(state, action, effect)
+        else:  # Figure 3a: the environment pays
+            reward = float(external_reward)
+        td_error = self.td_error(reward, state, next_state, discount)
+        # critic(s) <- critic(s) + lrC * tdError
+        self.critic[state] = self.value(state) + self.lr_critic * td_error
+        # actor(s, selectedA) <- actor(s, selectedA) + lrA * tdError
+        preferences = self.actor.setdefault(state, [0.0] * self.n_actions)
+        preferences[action] += self.lr_actor * td_error
+        # the predictor remembers what the action did
+        self.predictor.update(state, action, effect)
+        return reward, td_error
