@@ -2,6 +2,8 @@
 
 import operator
 
+import numpy as np
+
 from icm import _validate
 
 DEFAULT_ACTION_WEIGHT = 10.0
@@ -101,3 +103,152 @@ class NearestNeighbourPredictor:
             d = sum(map(ne, query_context, context)) + (weight if query_action != action else 0.0)
             if d <= entry[0]:
                 entry[0], entry[1] = d, effect
+
+
+DEFAULT_LINEAR_LR = 0.2
+"""Learning rate of the linear predictor: the paper's value (section 4.2)."""
+UNTRIED_ERROR = 1.0
+"""The error `LinearPredictor.confidence` counts for an action never tried from a
+state: nothing is known about it, as if the last prediction had been wholly wrong."""
+
+
+class LinearPredictor:
+    """A table of predicted outcomes per (state, action), each moved a step towards
+    what is observed: the paper's "tabular linear predictor" (sections 2.2 and 4.2).
+
+    For the rods, a state is the hand's cell, an action a move, and the outcome one
+    number per rod: 0 standing, 1 toppled. Every prediction starts at
+    `initial_prediction` (0: "the rods stay up") and after each observation o of
+    (s, a) becomes
+
+        p(s, a) <- p(s, a) + lr * (o - p(s, a)),
+
+    so after n observations of the same outcome the remaining error is (1 - lr)^n
+    times the first one (with lr = 0.2, 0.8^n: 11 topples bring it below 0.1).
+
+    The *error* of a prediction is its absolute error summed over the outcome's
+    entries, ``sum_i abs(o_i - p_i(s, a))``; on the rods only one rod falls at a time, so it
+    is the error on that rod, in [0, 1]. `update` returns the error of the prediction
+    it corrects: that is the intrinsic reward of the Q-learner.
+
+    The predictor also keeps, for every (state, action), the error of its latest
+    prediction there, from which `confidence` (the paper's "state confidence", Figure
+    7) is computed.
+
+    States are any hashable values, actions integers 0..n_actions-1.
+
+    Args:
+      n_actions: number of actions (integer >= 1).
+      n_outputs: entries of an outcome (integer >= 1; the rods: 2).
+      lr: learning rate in (0, 1] (paper: 0.2).
+      initial_prediction: the prediction before any observation (a number in [0, 1]).
+
+    Raises:
+      ValueError: for an argument outside its range, or (in `update`) an outcome of
+        the wrong length.
+    """
+
+    def __init__(self, n_actions, n_outputs, lr=DEFAULT_LINEAR_LR, initial_prediction=0.0):
+        self.n_actions = _validate.integer_at_least("n_actions", n_actions, 1)
+        self.n_outputs = _validate.integer_at_least("n_outputs", n_outputs, 1)
+        self.lr = _validate.learning_rate("lr", lr)
+        self.initial_prediction = _validate.in_closed_interval(
+            "initial_prediction", initial_prediction, 0.0, 1.0)
+        self._predictions = {}  # state -> [action][output], lists of floats
+        self._last_errors = {}  # state -> [action] latest error, None if untried
+
+    def _row(self, state):
+        row = self._predictions.get(state)
+        if row is None:
+            row = [[self.initial_prediction] * self.n_outputs for _ in range(self.n_actions)]
+            self._predictions[state] = row
+            self._last_errors[state] = [None] * self.n_actions
+        return row
+
+    def _check_action(self, action):
+        if not (isinstance(action, (int, np.integer)) and 0 <= action < self.n_actions):
+            raise ValueError(f"action must be an integer in 0..{self.n_actions - 1}, "
+                             f"got {action!r}")
+
+    def predict(self, state, action):
+        """The predicted outcome of `action` in `state`, a float array [n_outputs]."""
+        self._check_action(action)
+        row = self._predictions.get(state)
+        if row is None:
+            return np.full(self.n_outputs, self.initial_prediction)
+        return np.array(row[action])
+
+    def error(self, state, action, observed):
+        """The absolute error ``sum_i abs(observed_i - p_i)`` of the current prediction."""
+        predicted = self.predict(state, action)
+        observed = self._check_outcome(observed)
+        return float(sum(abs(o - p) for o, p in zip(observed, predicted)))
+
+    def _check_outcome(self, observed):
+        if type(observed) is list:  # the learner's inner loop passes lists: no numpy
+            observed = [float(v) for v in observed]
+        else:
+            observed = np.asarray(observed, dtype=float).ravel().tolist()
+        if len(observed) != self.n_outputs:
+            raise ValueError(f"observed must have {self.n_outputs} entries, got {len(observed)}")
+        return observed
+
+    def update(self, state, action, observed):
+        """Moves the prediction of (state, action) towards `observed`.
+
+        Args:
+          state: a hashable state.
+          action: an integer action.
+          observed: the outcome, n_outputs numbers.
+
+        Returns:
+          The absolute error of the prediction before the update (the surprise).
+        """
+        return sum(self.update_per_output(state, action, observed))
+
+    def update_per_output(self, state, action, observed):
+        """`update`, returning the absolute error of each entry of the prediction
+        before the update (a list of n_outputs floats) instead of their sum."""
+        self._check_action(action)
+        observed = self._check_outcome(observed)
+        predicted = self._row(state)[action]
+        errors = []
+        for i, o in enumerate(observed):
+            difference = o - predicted[i]
+            errors.append(abs(difference))
+            predicted[i] += self.lr * difference
+        self._last_errors[state][action] = sum(errors)
+        return errors
+
+    def last_error(self, state, action):
+        """The error of the latest prediction for (state, action); None if never tried."""
+        self._check_action(action)
+        errors = self._last_errors.get(state)
+        return None if errors is None else errors[action]
+
+    def confidence(self, state):
+        """The *state confidence* of `state`, in [0, 1]: how well the predictor knows
+        what every action does there.
+
+        It is 1 minus the mean, over the actions, of the error of the latest
+        prediction for (state, action), each error capped at 1; an action never tried
+        from the state counts as an error of `UNTRIED_ERROR` (1). A state never
+        visited has confidence 0; a state whose every action was tried and predicted
+        right the last time has confidence 1. On the rods, a cell from which one move
+        topples a rod that was predicted with error e (the other moves known) has
+        confidence 1 - e / 4.
+        """
+        errors = self._last_errors.get(state, [None] * self.n_actions)
+        capped = [UNTRIED_ERROR if e is None else min(e, 1.0) for e in errors]
+        return 1.0 - sum(capped) / self.n_actions
+
+    def table(self, states):
+        """The predictions for every action in each of `states`, a float array
+        [len(states), n_actions, n_outputs] (states never updated: the initial
+        prediction)."""
+        fresh = [[self.initial_prediction] * self.n_outputs] * self.n_actions
+        return np.array([self._predictions.get(s, fresh) for s in states], dtype=float)
+
+    def states(self):
+        """The states seen so far (by `update`), in the order first seen."""
+        return list(self._predictions)
