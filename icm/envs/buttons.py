@@ -6,7 +6,8 @@ four at the start of each trial. Pressing the lit red button opens the red box, 
 green one the green box, an unlit one nothing. Boxes close again before the next press,
 so every press starts from "no box open".
 
-This module holds
+This module holds:
+
 - the rules (`draw_green`, `press_outcome`, `layouts`),
 - the fast tabular environment `ButtonConsole`, which applies the rules directly,
 - the simulated iCub: `ButtonsPhysics` (the MJCF scene assets/buttons.xml with named
@@ -20,9 +21,7 @@ import collections
 
 import dm_env
 import numpy as np
-from dm_control import mujoco
 from dm_control.rl import control
-from dm_control.suite import base
 from dm_env import specs
 
 from icm import _validate
@@ -120,8 +119,9 @@ def action_spec():
     return specs.DiscreteArray(N_BUTTONS, dtype=np.int64, name="button")
 
 
-class ButtonConsole(dm_env.Environment):
-    """The tabular button experiment: the paper's rules applied directly, no physics.
+class ButtonTrials(dm_env.Environment):
+    """The episode rules of the button experiment, shared by `ButtonConsole` (tabular)
+    and `PhysicsButtonConsole` (simulated iCub), so both follow them by construction.
 
     One episode is one trial of `presses_per_trial` presses. The first time step of a
     trial shows the new light layout with both boxes closed; every later one shows the
@@ -129,7 +129,86 @@ class ButtonConsole(dm_env.Environment):
     termination, so its discount is 1.0. By default the reward is always 0.0: nothing
     outside the robot pays it to press anything. For the extrinsic actor-critic of the
     paper's Figure 3a, `rewarded_box` makes the environment pay 1.0 for each press that
-    opens that box.
+    opens that box. A step after the end of a trial starts a new one.
+
+    Subclasses say how a trial starts (`_new_trial`, returning the lights) and what a
+    press does (`_press`, returning the boxes).
+    """
+
+    def __init__(self, presses_per_trial, rewarded_box):
+        self.presses_per_trial = _validate.integer_at_least(
+            "presses_per_trial", presses_per_trial, 1)
+        self.rewarded_box = check_rewarded_box(rewarded_box)
+        self._lights = None
+        self._presses = 0
+        self._reset_next_step = True
+
+    def _new_trial(self):
+        raise NotImplementedError
+
+    def _press(self, button):
+        raise NotImplementedError
+
+    @property
+    def lights(self):
+        """A copy of the current light layout (None before the first reset)."""
+        return None if self._lights is None else self._lights.copy()
+
+    @property
+    def green_button(self):
+        """Index of the button lit green in the current trial."""
+        return int(np.flatnonzero(self._lights == GREEN)[0])
+
+    def _observation(self, boxes):
+        return collections.OrderedDict(lights=self._lights.copy(), boxes=boxes)
+
+    def reset(self):
+        """Starts a new trial: a new layout, both boxes shut.
+
+        Returns:
+          The FIRST time step: the new layout, both boxes shut.
+        """
+        self._lights = self._new_trial()
+        self._presses = 0
+        self._reset_next_step = False
+        return dm_env.restart(self._observation(np.zeros(2, dtype=np.int64)))
+
+    def step(self, action):
+        """Presses button `action` (0-4).
+
+        Returns:
+          The time step after the press: the lights and the boxes as they are after it;
+          the first step after the end of a trial starts a new one instead.
+
+        Raises:
+          ValueError: if `action` is not a button index.
+        """
+        button = check_discrete_action(action, N_BUTTONS)
+        if self._reset_next_step:
+            return self.reset()
+        boxes = self._press(button)
+        self._presses += 1
+        observation = self._observation(boxes)
+        reward = extrinsic_reward(boxes, self.rewarded_box)
+        if self._presses >= self.presses_per_trial:
+            self._reset_next_step = True
+            return dm_env.truncation(reward, observation, discount=1.0)
+        return dm_env.transition(reward, observation)
+
+    def observation_spec(self):
+        """The observation spec: `lights` and `boxes` (see `observation_spec()`)."""
+        return observation_spec()
+
+    def action_spec(self):
+        """The action spec: one of 5 buttons (see `action_spec()`)."""
+        return action_spec()
+
+
+class ButtonConsole(ButtonTrials):
+    """The tabular button experiment: the paper's rules applied directly, no physics.
+
+    The episode rules are those of `ButtonTrials`: one trial of `presses_per_trial`
+    presses, ended by a time limit (discount 1.0); reward 0.0 unless `rewarded_box`.
 
     Args:
       red_button: index (0-4) of the button that is always red. Default 2, the middle.
@@ -146,54 +225,20 @@ class ButtonConsole(dm_env.Environment):
     def __init__(self, red_button=DEFAULT_RED_BUTTON,
                  presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, rewarded_box=None, seed=None):
         self.red_button = check_red_button(red_button)
-        self.rewarded_box = check_rewarded_box(rewarded_box)
-        self.presses_per_trial = _validate.integer_at_least(
-            "presses_per_trial", presses_per_trial, 1)
+        super().__init__(presses_per_trial, rewarded_box)
         self._random = random_state(seed)
-        self._lights = None
-        self._presses = 0
+
+    def reseed(self, seed):
+        """Restarts the layouts' random generator from `seed`; the next step starts a
+        new trial."""
+        self._random = random_state(seed)
         self._reset_next_step = True
 
-    @property
-    def lights(self):
-        """A copy of the current light layout (None before the first reset)."""
-        return None if self._lights is None else self._lights.copy()
+    def _new_trial(self):
+        return lights_for(self.red_button, draw_green(self._random, self.red_button))
 
-    @property
-    def green_button(self):
-        """Index of the button lit green in the current trial."""
-        return int(np.flatnonzero(self._lights == GREEN)[0])
-
-    def _observation(self, boxes):
-        return collections.OrderedDict(lights=self._lights.copy(), boxes=boxes)
-
-    def reset(self):
-        """Starts a new trial: draws the green button, closes both boxes."""
-        green = draw_green(self._random, self.red_button)
-        self._lights = lights_for(self.red_button, green)
-        self._presses = 0
-        self._reset_next_step = False
-        return dm_env.restart(self._observation(np.zeros(2, dtype=np.int64)))
-
-    def step(self, action):
-        """Presses button `action` and returns the boxes as they are after the press."""
-        button = check_discrete_action(action, N_BUTTONS)
-        if self._reset_next_step:
-            return self.reset()
-        boxes = press_outcome(self._lights, button)
-        self._presses += 1
-        observation = self._observation(boxes)
-        reward = extrinsic_reward(boxes, self.rewarded_box)
-        if self._presses >= self.presses_per_trial:
-            self._reset_next_step = True
-            return dm_env.truncation(reward, observation, discount=1.0)
-        return dm_env.transition(reward, observation)
-
-    def observation_spec(self):
-        return observation_spec()
-
-    def action_spec(self):
-        return action_spec()
+    def _press(self, button):
+        return press_outcome(self._lights, button)
 
 
 # --- The simulated iCub ---------------------------------------------------------------
@@ -214,7 +259,7 @@ _BUTTON_JOINTS = [f"button{b}" for b in range(N_BUTTONS)]
 _LIDS = [f"{name}_lid" for name in BOX_NAMES]
 
 
-class ButtonsPhysics(mujoco.Physics):
+class ButtonsPhysics(icub.ArmPhysics):
     """The button scene (assets/buttons.xml) with named accessors.
 
     The accessors that the press primitive calls every 20 ms of simulated time use
@@ -260,13 +305,6 @@ class ButtonsPhysics(mujoco.Physics):
             self.named.model.geom_matid[f"button{b}_cap"] = self.model.name2id(
                 _LIGHT_MATERIALS[int(light)], "material")
 
-    def fingertip_position(self):
-        """The fingertip site's world position (metres)."""
-        return self.named.data.site_xpos["fingertip"].copy()
-
-    def arm_joint_positions(self):
-        """The 7 right-arm joint angles (radians), in the iCub's order."""
-        return self.named.data.qpos[list(icub.ARM_JOINTS)].copy()
 
 
 def load_physics():
@@ -297,7 +335,7 @@ class ButtonMotions:
             self.down.append(arm.solve([cap[0], cap[1], top + self.DOWN], start=self.above[b]))
 
 
-class ButtonsTask(base.Task):
+class ButtonsTask(icub.ArmTask):
     """The button experiment as a continuous dm_control task.
 
     Action: target angles of the 7 right-arm joints (radians), tracked by the position
@@ -351,8 +389,6 @@ class ButtonsTask(base.Task):
         self.press_log = []
         self.deepest = np.zeros(N_BUTTONS)
 
-    def before_step(self, action, physics):
-        physics.named.data.ctrl[list(icub.ARM_JOINTS)] = action
 
     def after_step(self, physics):
         self.update(physics)
@@ -381,15 +417,10 @@ class ButtonsTask(base.Task):
         self._lid_opened_at = [None, None]
         physics.set_lid_targets(0.0, 0.0)
 
-    def action_spec(self, physics):
-        lower, upper = physics.named.model.actuator_ctrlrange[list(icub.ARM_JOINTS)].T
-        return specs.BoundedArray((len(icub.ARM_JOINTS),), np.float64, lower, upper,
-                                  name="arm_joint_targets")
 
     def observation_spec(self, physics):
         return collections.OrderedDict(
-            arm_joints=specs.Array((7,), np.float64, name="arm_joints"),
-            fingertip=specs.Array((3,), np.float64, name="fingertip"),
+            **self.arm_observation_spec(),
             button_depths=specs.Array((N_BUTTONS,), np.float64, name="button_depths"),
             lights=specs.BoundedArray((N_BUTTONS,), np.float64, OFF, GREEN, name="lights"),
             lid_angles=specs.Array((2,), np.float64, name="lid_angles"),
@@ -421,16 +452,17 @@ def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
                                control_timestep=CONTROL_TIMESTEP)
 
 
-class PhysicsButtonConsole(dm_env.Environment):
+class PhysicsButtonConsole(ButtonTrials):
     """The paper's button experiment on the simulated iCub, with discrete actions.
 
-    Same action spec, observation spec and episode rules as `ButtonConsole`. An action
-    is a motor primitive: the lids are shut (and the arm waits until they are), the
-    arm reaches above the button, pushes down through it, lifts and returns home,
-    every posture a target that the position actuators track. The `ButtonsTask`
-    watches the buttons during the motion: a button pushed past `PRESS_DEPTH` opens
-    the lid of its colour. The observation is taken once the motion is over and, if a
-    lid was opened, once it is open at least 30 degrees: `boxes` is read from the lids.
+    Same action spec, observation spec and episode rules (`ButtonTrials`) as
+    `ButtonConsole`. An action is a motor primitive: the lids are shut (and the arm
+    waits until they are), the arm reaches above the button, pushes down through it,
+    lifts and returns home, every posture a target that the position actuators track.
+    The `ButtonsTask` watches the buttons during the motion: a button pushed past
+    `PRESS_DEPTH` opens the lid of its colour. The observation is taken once the
+    motion is over and, if a lid was opened, once it is open at least 30 degrees:
+    `boxes` is read from the lids.
 
     Args: as `ButtonConsole` (red_button, presses_per_trial, rewarded_box, seed).
 
@@ -446,35 +478,28 @@ class PhysicsButtonConsole(dm_env.Environment):
 
     def __init__(self, red_button=DEFAULT_RED_BUTTON,
                  presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, rewarded_box=None, seed=None):
-        self.presses_per_trial = _validate.integer_at_least(
-            "presses_per_trial", presses_per_trial, 1)
         self.task = ButtonsTask(red_button=red_button, rewarded_box=rewarded_box,
                                 random=seed)
         self.red_button = self.task.red_button
-        self.rewarded_box = self.task.rewarded_box
+        super().__init__(presses_per_trial, rewarded_box)
         self.physics = load_physics()
         self.arm = icub.Arm(self.physics)
         self.motions = self.task.motions(self.physics)
-        self._presses = 0
+
+    def reseed(self, seed):
+        """Restarts the layouts' random generator from `seed`; the next step starts a
+        new trial."""
+        self.task._random = random_state(seed)
         self._reset_next_step = True
 
-    @property
-    def lights(self):
-        return None if self.task.lights is None else self.task.lights.copy()
-
-    @property
-    def green_button(self):
-        return int(np.flatnonzero(self.task.lights == GREEN)[0])
-
-    def _observation(self, boxes):
-        return collections.OrderedDict(lights=self.task.lights.copy(), boxes=boxes)
-
-    def reset(self):
+    def _new_trial(self):
+        """Resets the physics: a new layout, arm at home, buttons up, lids shut."""
         with self.physics.reset_context():
             self.task.initialize_episode(self.physics)
-        self._presses = 0
-        self._reset_next_step = False
-        return dm_env.restart(self._observation(np.zeros(2, dtype=np.int64)))
+        return self.task.lights.copy()
+
+    def _press(self, button):
+        return self.press(button)
 
     def _wait(self, condition):
         """Lets the physics run, arm holding still, until `condition()` or LID_WAIT."""
@@ -515,22 +540,3 @@ class PhysicsButtonConsole(dm_env.Environment):
         if not lid_open():
             self.arm.hold(self.LID_WAIT, monitor=lambda: watch() or lid_open())
         return physics.boxes_open()
-
-    def step(self, action):
-        button = check_discrete_action(action, N_BUTTONS)
-        if self._reset_next_step:
-            return self.reset()
-        boxes = self.press(button)
-        self._presses += 1
-        observation = self._observation(boxes)
-        reward = extrinsic_reward(boxes, self.rewarded_box)
-        if self._presses >= self.presses_per_trial:
-            self._reset_next_step = True
-            return dm_env.truncation(reward, observation, discount=1.0)
-        return dm_env.transition(reward, observation)
-
-    def observation_spec(self):
-        return observation_spec()
-
-    def action_spec(self):
-        return action_spec()

@@ -12,6 +12,9 @@ import sys
 
 import mujoco
 import numpy as np
+from dm_control import mujoco as dm_mujoco
+from dm_control.suite import base
+from dm_env import specs
 
 if sys.platform.startswith("linux"):
     os.environ.setdefault("MUJOCO_GL", "egl")  # headless rendering, unless the user chose
@@ -198,3 +201,34 @@ def describe_arm(physics):
         kp = physics.named.model.actuator_gainprm[name][0]
         lines.append(f"| {i} | {name} | {low:.1f} to {high:.1f} | {kp:g} |")
     return "\n".join(lines)
+
+
+class ArmPhysics(dm_mujoco.Physics):
+    """A dm_control Physics of a scene with the iCub: accessors for its right arm."""
+
+    def fingertip_position(self):
+        """The fingertip site's world position (metres)."""
+        return self.named.data.site_xpos["fingertip"].copy()
+
+    def arm_joint_positions(self):
+        """The 7 right-arm joint angles (radians), in the iCub's order."""
+        return self.named.data.qpos[list(ARM_JOINTS)].copy()
+
+
+class ArmTask(base.Task):
+    """A dm_control task whose action is the 7 right-arm joint targets (radians),
+    tracked by the arm's position actuators."""
+
+    def before_step(self, action, physics):
+        physics.named.data.ctrl[list(ARM_JOINTS)] = action
+
+    def action_spec(self, physics):
+        lower, upper = physics.named.model.actuator_ctrlrange[list(ARM_JOINTS)].T
+        return specs.BoundedArray((len(ARM_JOINTS),), np.float64, lower, upper,
+                                  name="arm_joint_targets")
+
+    @staticmethod
+    def arm_observation_spec():
+        """Specs of the arm's observations: joint angles and fingertip position."""
+        return {"arm_joints": specs.Array((len(ARM_JOINTS),), np.float64, name="arm_joints"),
+                "fingertip": specs.Array((3,), np.float64, name="fingertip")}

@@ -5,7 +5,8 @@ forward, backward, left, right; a move off the grid leaves the hand where it is)
 rods stand on the table: the red one is toppled from many (cell, action) pairs, the
 blue one from few. An episode ends when a rod topples.
 
-This module holds
+This module holds:
+
 - the rules of the grid (`next_cell`, `ACTIONS`, the start cell) and the topple map,
   measured in physics and stored in assets/rod_topple_map.json (`load_topple_map`,
   `measure_topple_map`),
@@ -21,9 +22,7 @@ import json
 
 import dm_env
 import numpy as np
-from dm_control import mujoco
 from dm_control.rl import control
-from dm_control.suite import base
 from dm_env import specs
 
 from icm import _validate
@@ -102,20 +101,101 @@ def load_topple_map():
     return {"standable": {tuple(c) for c in data["standable"]}, "topples": topples}
 
 
+def _standable_cells():
+    """The standable cells of the stored map; every cell if no map is stored yet (when
+    `python -m icm.envs.rods` measures the first one)."""
+    if not (icub.ASSETS / TOPPLE_MAP_FILE).exists():
+        return {(c, r) for c in range(N_COLUMNS) for r in range(N_ROWS)}
+    return load_topple_map()["standable"]
+
+
 def topple_counts(topple_map):
     """How many (cell, action) pairs topple each rod: {"red": n, "blue": m}."""
     values = list(topple_map["topples"].values())
     return {name: values.count(name) for name in ROD_NAMES}
 
 
-class RodTable(dm_env.Environment):
-    """The tabular rod experiment: the grid rules and the stored topple map, no physics.
+class RodEpisodes(dm_env.Environment):
+    """The episode rules of the rod experiment, shared by `RodTable` (tabular) and
+    `PhysicsRodTable` (simulated iCub), so both follow them by construction.
 
     An episode starts with the hand over `start_cell` and both rods standing. Each
-    action moves the hand to the neighbouring cell (off the grid: it stays). If the
-    stored map says the move topples a rod, the `rods` observation shows it and the
-    episode ends (discount 0.0, a termination); after `max_moves` moves without a
-    topple the episode ends on a time limit (discount 1.0). Reward is always 0.0.
+    action moves the hand to the neighbouring cell (off the grid: it stays). A move
+    that topples a rod ends the episode (discount 0.0, a termination) with the rod
+    shown toppled; after `max_moves` moves without a topple the episode ends on a time
+    limit (discount 1.0). Reward is always 0.0. A step after the end of an episode
+    starts a new one.
+
+    Subclasses say how an episode starts (`_start`) and what a move does (`_move`,
+    returning the hand's cell and the rods' toppled flags).
+    """
+
+    def __init__(self, start_cell, max_moves):
+        self.start_cell = check_start_cell(start_cell, _standable_cells())
+        self.max_moves = _validate.integer_at_least("max_moves", max_moves, 1)
+        self._moves = 0
+        self._reset_next_step = True
+
+    def _start(self):
+        raise NotImplementedError
+
+    def _move(self, action):
+        raise NotImplementedError
+
+    @staticmethod
+    def _observation(cell, rods):
+        return collections.OrderedDict(hand=np.array(cell, dtype=np.int64),
+                                       rods=np.asarray(rods, dtype=np.int64))
+
+    def reset(self):
+        """Starts a new episode: the hand over the start cell, both rods standing.
+
+        Returns:
+          The FIRST time step.
+        """
+        self._start()
+        self._moves = 0
+        self._reset_next_step = False
+        return dm_env.restart(self._observation(self.start_cell, [0, 0]))
+
+    def step(self, action):
+        """Moves the hand: 0 forward, 1 backward, 2 left, 3 right.
+
+        Returns:
+          The time step after the move; after the end of an episode, a new one starts
+          instead.
+
+        Raises:
+          ValueError: if `action` is not 0-3.
+        """
+        action = check_discrete_action(action, len(ACTIONS))
+        if self._reset_next_step:
+            return self.reset()
+        cell, rods = self._move(action)
+        self._moves += 1
+        observation = self._observation(cell, rods)
+        if np.any(rods):
+            self._reset_next_step = True
+            return dm_env.termination(0.0, observation)
+        if self._moves >= self.max_moves:
+            self._reset_next_step = True
+            return dm_env.truncation(0.0, observation, discount=1.0)
+        return dm_env.transition(0.0, observation)
+
+    def observation_spec(self):
+        """The observation spec: `hand` and `rods` (see `observation_spec()`)."""
+        return observation_spec()
+
+    def action_spec(self):
+        """The action spec: four moves (see `action_spec()`)."""
+        return action_spec()
+
+
+class RodTable(RodEpisodes):
+    """The tabular rod experiment: the grid rules and the stored topple map, no physics.
+
+    The episode rules are those of `RodEpisodes`; whether a move topples a rod is read
+    from the topple map measured in physics (assets/rod_topple_map.json).
 
     Args:
       start_cell: (column, row) where each episode starts; must be a standable cell of
@@ -130,12 +210,15 @@ class RodTable(dm_env.Environment):
     """
 
     def __init__(self, start_cell=DEFAULT_START_CELL, max_moves=DEFAULT_MAX_MOVES, seed=None):
+        super().__init__(start_cell, max_moves)
         self._map = load_topple_map()
-        self.start_cell = check_start_cell(start_cell, self._map["standable"])
-        self.max_moves = _validate.integer_at_least("max_moves", max_moves, 1)
         random_state(seed)  # validates it
         self._cell = self.start_cell
-        self._moves = 0
+
+    def reseed(self, seed):
+        """Checks `seed` (the rules use no randomness); the next step starts a new
+        episode."""
+        random_state(seed)
         self._reset_next_step = True
 
     @property
@@ -143,39 +226,14 @@ class RodTable(dm_env.Environment):
         """{(cell, action): "red" | "blue" | None} for the standable cells."""
         return dict(self._map["topples"])
 
-    def _observation(self, toppled=None):
-        rods = np.zeros(len(ROD_NAMES), dtype=np.int64)
-        if toppled is not None:
-            rods[ROD_NAMES.index(toppled)] = 1
-        return collections.OrderedDict(hand=np.array(self._cell, dtype=np.int64), rods=rods)
-
-    def reset(self):
+    def _start(self):
         self._cell = self.start_cell
-        self._moves = 0
-        self._reset_next_step = False
-        return dm_env.restart(self._observation())
 
-    def step(self, action):
-        action = check_discrete_action(action, len(ACTIONS))
-        if self._reset_next_step:
-            return self.reset()
+    def _move(self, action):
         toppled = self._map["topples"][(self._cell, action)]
         self._cell = next_cell(self._cell, action)
-        self._moves += 1
-        observation = self._observation(toppled)
-        if toppled is not None:
-            self._reset_next_step = True
-            return dm_env.termination(0.0, observation)
-        if self._moves >= self.max_moves:
-            self._reset_next_step = True
-            return dm_env.truncation(0.0, observation, discount=1.0)
-        return dm_env.transition(0.0, observation)
-
-    def observation_spec(self):
-        return observation_spec()
-
-    def action_spec(self):
-        return action_spec()
+        rods = [int(toppled == name) for name in ROD_NAMES]
+        return self._cell, rods
 
 
 def check_start_cell(start_cell, standable):
@@ -192,7 +250,7 @@ def check_start_cell(start_cell, standable):
 _RODS = [f"{name}_rod" for name in ROD_NAMES]
 
 
-class RodsPhysics(mujoco.Physics):
+class RodsPhysics(icub.ArmPhysics):
     """The rod scene (assets/rods.xml) with named accessors."""
 
     def rod_tilt(self, name):
@@ -211,13 +269,6 @@ class RodsPhysics(mujoco.Physics):
         """Both rods' centres (world, metres), shape (2, 3)."""
         return self.named.data.xpos[_RODS].copy()
 
-    def fingertip_position(self):
-        """The fingertip site's world position (metres)."""
-        return self.named.data.site_xpos["fingertip"].copy()
-
-    def arm_joint_positions(self):
-        """The 7 right-arm joint angles (radians), in the iCub's order."""
-        return self.named.data.qpos[list(icub.ARM_JOINTS)].copy()
 
     def cell_centre(self, cell):
         """World position (metres) of the centre of grid cell (column, row), on the table."""
@@ -272,7 +323,7 @@ class GridMotions:
                     self.midpoints[(cell, other)] = self.midpoints[(other, cell)] = mid
 
 
-class RodsTask(base.Task):
+class RodsTask(icub.ArmTask):
     """The rod experiment as a continuous dm_control task.
 
     Action: target angles of the 7 right-arm joints (radians). Each episode stands both
@@ -300,18 +351,11 @@ class RodsTask(base.Task):
         physics.stand_rods()
         icub.Arm(physics).place(self.motions(physics).cells[self.start_cell])
 
-    def before_step(self, action, physics):
-        physics.named.data.ctrl[list(icub.ARM_JOINTS)] = action
 
-    def action_spec(self, physics):
-        lower, upper = physics.named.model.actuator_ctrlrange[list(icub.ARM_JOINTS)].T
-        return specs.BoundedArray((len(icub.ARM_JOINTS),), np.float64, lower, upper,
-                                  name="arm_joint_targets")
 
     def observation_spec(self, physics):
         return collections.OrderedDict(
-            arm_joints=specs.Array((7,), np.float64, name="arm_joints"),
-            fingertip=specs.Array((3,), np.float64, name="fingertip"),
+            **self.arm_observation_spec(),
             rod_tilts=specs.BoundedArray((2,), np.float64, 0.0, np.pi, name="rod_tilts"),
             rod_positions=specs.Array((6,), np.float64, name="rod_positions"),
         )
@@ -349,16 +393,16 @@ def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
                                control_timestep=CONTROL_TIMESTEP)
 
 
-class PhysicsRodTable(dm_env.Environment):
+class PhysicsRodTable(RodEpisodes):
     """The paper's rod experiment on the simulated iCub, with discrete moves.
 
-    Same action spec, observation spec and episode rules as `RodTable`. A move drives
-    the arm's actuators along the grid line to the neighbouring cell's posture (via
-    the midpoint) at rod height; whatever is in the way is pushed by the physics. The
-    physics then runs on until the rods are still, or a toppling rod lies on the
-    table. `hand` is the cell nearest the fingertip and `rods` is read from the rods'
-    tilts; a topple ends the episode (discount 0.0). A move off the grid leaves the
-    hand where it is.
+    Same action spec, observation spec and episode rules (`RodEpisodes`) as
+    `RodTable`. A move drives the arm's actuators along the grid line to the
+    neighbouring cell's posture (via the midpoint) at rod height; whatever is in the
+    way is pushed by the physics. The physics then runs on until the rods are still,
+    or a toppling rod lies on the table. `hand` is the cell nearest the fingertip and
+    `rods` is read from the rods' tilts. A move off the grid leaves the hand where it
+    is.
 
     Args:
       start_cell: (column, row) where each episode starts (default (0, 0)).
@@ -377,29 +421,29 @@ class PhysicsRodTable(dm_env.Environment):
     """Longest wait (seconds) for a tipping rod to come to rest."""
 
     def __init__(self, start_cell=DEFAULT_START_CELL, max_moves=DEFAULT_MAX_MOVES, seed=None):
-        self.max_moves = _validate.integer_at_least("max_moves", max_moves, 1)
-        check_start_cell(start_cell, load_topple_map()["standable"])
-        self.task = RodsTask(start_cell=start_cell, random=seed)
-        self.start_cell = self.task.start_cell
+        super().__init__(start_cell, max_moves)
+        self.task = RodsTask(start_cell=self.start_cell, random=seed)
         self.physics = load_physics()
         self.arm = icub.Arm(self.physics)
         self.motions = self.task.motions(self.physics)
         self._cell = self.start_cell
-        self._moves = 0
+
+    def reseed(self, seed):
+        """Restarts the task's random generator from `seed` (the rules use none); the
+        next step starts a new episode."""
+        self.task._random = random_state(seed)
         self._reset_next_step = True
 
-    def _observation(self):
-        return collections.OrderedDict(
-            hand=np.array(self.physics.hand_cell(), dtype=np.int64),
-            rods=self.physics.rods_toppled())
-
-    def reset(self):
+    def _start(self):
+        """Resets the physics: both rods stood upright, the hand over the start cell."""
+        self.task.start_cell = self.start_cell
         with self.physics.reset_context():
             self.task.initialize_episode(self.physics)
         self._cell = self.start_cell
-        self._moves = 0
-        self._reset_next_step = False
-        return dm_env.restart(self._observation())
+
+    def _move(self, action):
+        rods = self.move(action)
+        return self.physics.hand_cell(), rods
 
     def move(self, action, recorder=None):
         """Runs one move on the physics; returns the rods' toppled flags after it.
@@ -427,27 +471,6 @@ class PhysicsRodTable(dm_env.Environment):
             self.arm.hold(self.FALL_TIME, monitor=lambda: watch() or speed() < 0.05)
         return physics.rods_toppled()
 
-    def step(self, action):
-        action = check_discrete_action(action, len(ACTIONS))
-        if self._reset_next_step:
-            return self.reset()
-        rods = self.move(action)
-        self._moves += 1
-        observation = self._observation()
-        if rods.any():
-            self._reset_next_step = True
-            return dm_env.termination(0.0, observation)
-        if self._moves >= self.max_moves:
-            self._reset_next_step = True
-            return dm_env.truncation(0.0, observation, discount=1.0)
-        return dm_env.transition(0.0, observation)
-
-    def observation_spec(self):
-        return observation_spec()
-
-    def action_spec(self):
-        return action_spec()
-
 
 def arm_touches_a_rod(physics):
     """True if any part of the arm is in contact with a rod."""
@@ -469,11 +492,14 @@ def measure_pair(env, cell, action):
       "disturbance" (the largest displacement, in metres, of a rod that did not topple:
       a nudge that would make later moves depend on history).
     """
-    env.task.start_cell = env.start_cell = cell
+    env.start_cell = cell  # any cell: the map is what is being measured
     env.reset()
     before = env.physics.rod_positions()
     step = env.step(action)
     rods = step.observation["rods"]
+    if rods.all():
+        raise RuntimeError(f"the move {ACTIONS[action]} from {cell} topples both rods: the "
+                           "rules (and the tabular twin) allow one; move the rods apart")
     moved = np.linalg.norm(env.physics.rod_positions() - before, axis=1)
     standing = rods == 0
     return {"topples": ROD_NAMES[int(np.argmax(rods))] if rods.any() else None,
@@ -491,16 +517,11 @@ def measure_topple_map(cells=None):
       {"standable": sorted list of cells, "pairs": [{"cell", "action", "topples",
       "hand", "disturbance"}, ...]}.
     """
-    env = PhysicsRodTable.__new__(PhysicsRodTable)  # bypass the stored-map check
-    env.max_moves, env.task = 1, RodsTask()
-    env.start_cell = env.task.start_cell
-    env.physics = load_physics()
-    env.arm = icub.Arm(env.physics)
-    env.motions = env.task.motions(env.physics)
+    env = PhysicsRodTable(max_moves=1)
     standable = []
     for row in range(N_ROWS):
         for column in range(N_COLUMNS):
-            env.task.start_cell = env.start_cell = (column, row)
+            env.start_cell = (column, row)
             env.reset()
             if not arm_touches_a_rod(env.physics):
                 standable.append((column, row))
