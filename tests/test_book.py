@@ -1,24 +1,13 @@
 """The book: notebooks committed clean, the table of contents complete, and a full
 build with every notebook executed and every warning fatal."""
 
-import pathlib
-import subprocess
-import sys
-
 import nbformat
 import pytest
 import yaml
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+from conftest import ROOT, toc_files
+
 NOTEBOOKS = sorted((ROOT / "book").glob("*.ipynb"))
-
-
-def toc_files():
-    toc = yaml.safe_load((ROOT / "_toc.yml").read_text())
-    files = [toc["root"]]
-    for chapter in toc.get("chapters", []):
-        files.append(chapter["file"])
-    return files
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
@@ -54,19 +43,6 @@ def test_build_configuration_makes_failures_fatal():
     assert config["execute"]["allow_errors"] is False
 
 
-@pytest.fixture(scope="session")
-def built_book(tmp_path_factory):
-    """Builds the whole book once, as CI does: -W (warnings fatal), --keep-going."""
-    out = tmp_path_factory.mktemp("book")
-    jupyter_book = pathlib.Path(sys.executable).parent / "jupyter-book"
-    completed = subprocess.run(
-        [str(jupyter_book), "build", str(ROOT), "-W", "--keep-going", "--path-output", str(out)],
-        capture_output=True, text=True, cwd=ROOT)
-    log = completed.stdout + completed.stderr
-    assert completed.returncode == 0, "book build failed:\n" + log[-6000:]
-    return out / "_build" / "html"
-
-
 @pytest.mark.book
 def test_book_builds_with_every_chapter_and_figure(built_book):
     for name in toc_files():
@@ -81,3 +57,50 @@ def test_book_builds_with_every_chapter_and_figure(built_book):
         html = (built_book / "book" / f"{path.stem}.html").read_text()
         assert html.count("<img") >= expected, f"{path.name}: a figure did not render"
         assert "&lt;Figure size" not in html, f"{path.name}: a figure rendered as text"
+
+
+def public_objects():
+    """Every public class and function of the package, as "module.name" where it is
+    defined: those of public modules, and those of private modules (a name part
+    starting with "_") that a public package re-exports."""
+    import importlib
+    import inspect
+    import pkgutil
+
+    import icm
+
+    found = set()
+    for info in pkgutil.walk_packages(icm.__path__, "icm."):
+        if info.name.endswith("__main__"):
+            continue
+        module = importlib.import_module(info.name)
+        for name, obj in vars(module).items():
+            if name.startswith("_") or not (inspect.isclass(obj) or inspect.isfunction(obj)):
+                continue
+            if obj.__module__ != info.name:
+                continue
+            private = any(part.startswith("_") for part in info.name.split("."))
+            package = importlib.import_module(info.name.rsplit(".", 1)[0])
+            if not private or getattr(package, name, None) is obj:
+                found.add(f"{info.name}.{name}")
+    return found
+
+
+@pytest.mark.book
+def test_api_reference_covers_every_public_class_and_function(built_book):
+    html = (built_book / "book" / "api.html").read_text()
+    objects = public_objects()
+    assert len(objects) > 40
+    missing = sorted(name for name in objects if f'id="{name}"' not in html)
+    assert missing == [], f"not in the API reference: {missing}"
+
+
+@pytest.mark.book
+def test_chapters_have_launch_and_download_buttons(built_book):
+    config = yaml.safe_load((ROOT / "_config.yml").read_text())
+    repository = config["repository"]["url"].removeprefix("https://github.com/")
+    for path in NOTEBOOKS:
+        html = (built_book / "book" / f"{path.stem}.html").read_text()
+        assert f"mybinder.org/v2/gh/{repository}/main?urlpath=lab/tree/book/{path.name}" in html
+        assert f"colab.research.google.com/github/{repository}/blob/main/book/{path.name}" in html
+        assert f"_sources/book/{path.name}" in html  # the notebook download button

@@ -14,6 +14,7 @@ if sys.platform.startswith("linux"):
     os.environ.setdefault("MUJOCO_GL", "egl")  # headless rendering, unless the user chose
 
 from icm.envs import buttons, rods  # noqa: E402  (after MUJOCO_GL)
+from icm.envs.gym import as_gymnasium  # noqa: E402
 from icm.envs.twins import compare_twins  # noqa: E402
 
 _DISCRETE = {

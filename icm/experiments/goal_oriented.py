@@ -6,6 +6,7 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import buttons
+from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import run_seeds
 from icm.learners import goal_oriented, interest, predictors
 from icm.stats import first_below, first_from_which
@@ -97,6 +98,18 @@ class GoalOrientedResult:
             out[f"{task}_practice_peak_trial"] = int(np.argmax(share)) + 1
         return out
 
+    def seed_summaries(self):
+        """One dict per seed of the numbers a sweep compares: each task's mastery trial
+        (-1 if never), the gap green - red (NaN unless both are mastered), and whether
+        red came first."""
+        rows = []
+        for red, green in self.mastery_trial.tolist():
+            gap = float(green - red) if red >= 1 and green >= 1 else float("nan")
+            rows.append({"red_mastery_trial": red, "green_mastery_trial": green,
+                         "mastery_gap": gap,
+                         "red_first": bool(red >= 1 and (green == -1 or red < green))})
+        return rows
+
     def mean_mastery_trial(self):
         """Mean mastery trial of (red, green) over the seeds that master each task, and
         the share of seeds that do."""
@@ -131,7 +144,8 @@ def run_goal_oriented(n_seeds=100, n_trials=100,
                       presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
                       red_button=buttons.DEFAULT_RED_BUTTON,
                       physics=False,
-                      seed=0):
+                      seed=0,
+                      progress=True):
     """Runs the goal-oriented learner on the tabular button console, once per seed.
 
     Each run builds a `ButtonConsole`, a `NearestNeighbourPredictor`, a
@@ -154,6 +168,7 @@ def run_goal_oriented(n_seeds=100, n_trials=100,
         (about 11 ms of computing per press). The same seeds give the same layouts
         and, the physics agreeing with its twin, the same results.
       seed: root seed (int >= 0); run i's seeds depend only on it and i.
+      progress: show a progress bar over the seeds when the run lasts over a second.
 
     Returns:
       A `GoalOrientedResult`.
@@ -180,7 +195,9 @@ def run_goal_oriented(n_seeds=100, n_trials=100,
     truth = np.array([buttons.press_outcome(c, b) for c, b in queries])
     task_keys = [TASK_KEYS[t] for t in TASKS]
 
-    for run, (env_seed, agent_seed) in enumerate(run_seeds(seed, n_seeds, 2)):
+    seeds = progress_bar(enumerate(run_seeds(seed, n_seeds, 2)), n_seeds,
+                         "goal-oriented learner", progress)
+    for run, (env_seed, agent_seed) in seeds:
         env = console(red_button=red_button, presses_per_trial=presses_per_trial,
                       seed=env_seed)
         agent = goal_oriented.GoalOrientedAgent(

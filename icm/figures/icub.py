@@ -1,14 +1,11 @@
 """Figures of the simulated iCub: Figure 1 rendered from the model, animations of a
 press and a topple, a press's time series, and the measured topple map."""
 
-import base64
-import io
+import re
 
 import matplotlib.animation
 import matplotlib.patches
 import numpy as np
-from PIL import Image
-
 from icm.envs import buttons, rods
 from icm.figures._common import TASK_COLOURS, new_figure
 
@@ -104,11 +101,17 @@ def record_press(seed=0, button=None, camera=None, frame_every=2, height=240, wi
         log["fingertip"].append(physics.fingertip_position())
         if camera is not None and len(log["time"]) % frame_every == 1:
             log["frames"].append(render(physics, camera, height, width))
+            log["frame_index"].append(len(log["time"]) - 1)
 
+    log["frame_index"] = []
     boxes = env.press(button, recorder=recorder)
     out = {key: np.array(value) for key, value in log.items() if key != "frames"}
     out["time"] = out["time"] - out["time"][0]
     out.update(frames=log["frames"], button=button, boxes=boxes, lights=env.lights)
+    out["captions"] = [f"t = {out['time'][i]:.2f} s, button {button} in "
+                       f"{max(out['depth'][i], 0.0):.1f} mm\nlids: red "
+                       f"{max(out['lids'][i, 0], 0.0):.0f} deg, green "
+                       f"{max(out['lids'][i, 1], 0.0):.0f} deg" for i in out["frame_index"]]
     return out
 
 
@@ -118,17 +121,22 @@ def record_move(start_cell=(2, 0), action=0, camera=None, frame_every=2, height=
     and, if `camera` is given, frames. Returns a dict like `record_press`."""
     env = rods.PhysicsRodTable(start_cell=start_cell)
     env.reset()
-    log = {"time": [], "tilts": [], "frames": []}
+    log = {"time": [], "tilts": [], "frames": [], "frame_index": []}
 
     def recorder(physics):
         log["time"].append(physics.data.time)
         log["tilts"].append(np.rad2deg(physics.rod_tilts()))
         if camera is not None and len(log["time"]) % frame_every == 1:
             log["frames"].append(render(physics, camera, height, width))
+            log["frame_index"].append(len(log["time"]) - 1)
 
     toppled = env.move(action, recorder=recorder)
-    return {"time": np.array(log["time"]) - log["time"][0], "tilts": np.array(log["tilts"]),
-            "frames": log["frames"], "toppled": toppled}
+    time = np.array(log["time"]) - log["time"][0]
+    tilts = np.array(log["tilts"])
+    captions = [f"t = {time[i]:.2f} s\ntilt: red rod {tilts[i, 0]:.0f} deg, blue rod "
+                f"{tilts[i, 1]:.0f} deg" for i in log["frame_index"]]
+    return {"time": time, "tilts": tilts, "frames": log["frames"], "captions": captions,
+            "toppled": toppled}
 
 
 def press_trace_figure(record):
@@ -155,15 +163,33 @@ def press_trace_figure(record):
     return fig
 
 
-def animation_html(frames, fps=25):
-    """An HTML snippet that plays `frames` (RGB arrays) as an animated GIF, embedded in
-    the page (no external file, no video codec needed)."""
-    images = [Image.fromarray(frame) for frame in frames]
-    buffer = io.BytesIO()
-    images[0].save(buffer, format="GIF", save_all=True, append_images=images[1:],
-                   duration=int(1000 / fps), loop=0)
-    data = base64.b64encode(buffer.getvalue()).decode("ascii")
-    return f'<img src="data:image/gif;base64,{data}" alt="animation" style="max-width:100%"/>'
+def animation(frames, captions=None, fps=12):
+    """A matplotlib animation of rendered `frames`, each with its caption.
+
+    Args:
+      frames: RGB arrays of equal size.
+      captions: one line of text per frame (e.g. the time and what the sensors read).
+      fps: frames per second when played.
+
+    Returns:
+      A `matplotlib.animation.FuncAnimation`; in a notebook, show it with
+      `IPython.display.HTML(animation.to_jshtml())`, a player with play, pause and
+      step buttons that needs no video codec and no network.
+    """
+    height, width = frames[0].shape[:2]
+    fig, ax = new_figure(width=width / 80, height=height / 80 + 0.5)
+    ax.axis("off")
+    image = ax.imshow(frames[0])
+    title = ax.set_title(captions[0] if captions else "", fontsize=8, family="monospace")
+
+    def draw(i):
+        image.set_data(frames[i])
+        if captions:
+            title.set_text(captions[i])
+        return image, title
+
+    return matplotlib.animation.FuncAnimation(fig, draw, frames=len(frames),
+                                              interval=1000 / fps, blit=False)
 
 
 def topple_map_figure(topple_map=None):
@@ -216,3 +242,15 @@ def topple_map_figure(topple_map=None):
     ax.set_title(f"Moves that topple a rod, measured in physics: red {counts['red']}, "
                  f"blue {counts['blue']}", fontsize=10)
     return fig
+
+
+def animation_html(frames, captions=None, fps=12):
+    """`animation(frames, captions, fps)` as an HTML player (JPEG frames embedded in the
+    page, play/pause/step buttons, no video codec or network needed).
+
+    Matplotlib's player links its button icons (Font Awesome) from a CDN; the link is
+    dropped, so that the page needs no network: the book's theme ships Font Awesome.
+    """
+    with matplotlib.rc_context({"animation.frame_format": "jpeg"}):
+        html = animation(frames, captions, fps).to_jshtml()
+    return re.sub(r"<link[^>]*font-awesome[^>]*>", "", html)

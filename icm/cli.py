@@ -1,0 +1,176 @@
+"""The command line: rebuild the paper's figures without Jupyter.
+
+    python -m icm figure5 --seeds 200 --out fig5.png
+    python -m icm --help
+"""
+
+import argparse
+import pathlib
+import sys
+
+from icm import experiments, figures
+from icm.experiments import rod_toppling
+from icm.learners import actor_critic, goal_oriented, interest, predictors, q_learning
+
+
+def _figure1(args):
+    return figures.figure1(seed=args.seed)
+
+
+def _figure5(args):
+    result = experiments.run_goal_oriented(
+        n_seeds=args.seeds, n_trials=args.trials, epsilon=args.epsilon, window=args.window,
+        new_task_factor=args.new_task_factor, reading=args.reading, seed=args.seed)
+    return figures.figure5(result)
+
+
+def _positive_int(text):
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be an integer >= 1, got {text}")
+    return value
+
+
+def _seed(text):
+    value = int(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be an integer >= 0, got {text}")
+    return value
+
+
+def _no_options(parser):
+    """Figure 1 has no options beyond --seed, --out and --dpi."""
+
+
+def _figure5_options(parser):
+    parser.add_argument("--seeds", type=_positive_int, default=200,
+                        help="number of independent runs (default 200)")
+    parser.add_argument("--trials", type=_positive_int, default=60,
+                        help="trials per run (default 60)")
+    parser.add_argument("--epsilon", type=float, default=goal_oriented.DEFAULT_EPSILON,
+                        help="probability of a random press, in [0, 1] "
+                             f"(default {goal_oriented.DEFAULT_EPSILON})")
+    parser.add_argument("--window", type=int, default=interest.DEFAULT_WINDOW,
+                        help="errors in the learning-progress slope, >= 2 "
+                             f"(default {interest.DEFAULT_WINDOW})")
+    parser.add_argument("--new-task-factor", type=float,
+                        default=interest.DEFAULT_NEW_TASK_FACTOR,
+                        help="share of the mean interest given to a task seen once, in "
+                             f"[0, 1] (default {interest.DEFAULT_NEW_TASK_FACTOR})")
+    parser.add_argument("--reading", choices=interest.READINGS, default="progress",
+                        help="how the slope becomes interest (default progress)")
+
+
+def _figure6(args):
+    result = experiments.run_actor_critic(
+        n_seeds=args.seeds, n_trials=args.trials, temperature=args.temperature,
+        lr_actor=args.lr_actor, lr_critic=args.lr_critic, gamma=args.gamma,
+        reward=args.reward, variant=args.variant, seed=args.seed)
+    return figures.figure6(result)
+
+
+def _figure6_options(parser):
+    parser.add_argument("--seeds", type=_positive_int, default=200,
+                        help="number of independent runs (default 200)")
+    parser.add_argument("--trials", type=_positive_int, default=100,
+                        help="trials per run (default 100)")
+    parser.add_argument("--temperature", type=float, default=actor_critic.DEFAULT_TEMPERATURE,
+                        help="softmax temperature, > 0 "
+                             f"(default {actor_critic.DEFAULT_TEMPERATURE})")
+    parser.add_argument("--lr-actor", type=float, default=actor_critic.DEFAULT_LR_ACTOR,
+                        help="actor learning rate in (0, 1] "
+                             f"(default {actor_critic.DEFAULT_LR_ACTOR})")
+    parser.add_argument("--lr-critic", type=float, default=actor_critic.DEFAULT_LR_CRITIC,
+                        help="critic learning rate in (0, 1] "
+                             f"(default {actor_critic.DEFAULT_LR_CRITIC})")
+    parser.add_argument("--gamma", type=float, default=actor_critic.DEFAULT_GAMMA,
+                        help=f"discount in [0, 1] (default {actor_critic.DEFAULT_GAMMA})")
+    parser.add_argument("--reward", choices=actor_critic.REWARDS, default="intrinsic",
+                        help="where the reward comes from (default intrinsic)")
+    parser.add_argument("--variant", choices=actor_critic.VARIANTS, default="standard",
+                        help="reading of the paper's TD error and reward (default standard)")
+
+
+def _figure7(args):
+    result = experiments.run_rod_toppling(
+        n_seeds=args.run + 1, n_episodes=args.episodes, epsilon=args.epsilon,
+        alpha=args.alpha, gamma=args.gamma, predictor_lr=args.predictor_lr,
+        initial_q=args.initial_q, seed=args.seed)
+    return figures.figure7(result, seed=args.run, reading=args.reading)
+
+
+def _figure7_options(parser):
+    parser.add_argument("--run", type=_seed, default=0,
+                        help="which run of the root seed to draw (>= 0, default 0)")
+    parser.add_argument("--episodes", type=_positive_int, default=300,
+                        help="episodes per run (default 300)")
+    parser.add_argument("--epsilon", type=float, default=q_learning.DEFAULT_EPSILON,
+                        help=f"probability of a random move, in [0, 1] "
+                             f"(default {q_learning.DEFAULT_EPSILON})")
+    parser.add_argument("--alpha", type=float, default=q_learning.DEFAULT_ALPHA,
+                        help=f"Q-learning rate in (0, 1] (default {q_learning.DEFAULT_ALPHA})")
+    parser.add_argument("--gamma", type=float, default=q_learning.DEFAULT_GAMMA,
+                        help=f"discount in [0, 1] (default {q_learning.DEFAULT_GAMMA})")
+    parser.add_argument("--predictor-lr", type=float, default=predictors.DEFAULT_LINEAR_LR,
+                        help="learning rate of the linear predictor in (0, 1] "
+                             f"(default {predictors.DEFAULT_LINEAR_LR}, the paper's)")
+    parser.add_argument("--initial-q", type=float, default=q_learning.DEFAULT_INITIAL_Q,
+                        help="value of a move never tried "
+                             f"(default {q_learning.DEFAULT_INITIAL_Q})")
+    parser.add_argument("--reading", choices=rod_toppling.READINGS, default="toppled",
+                        help="when red counts as predicted well: on the pairs the robot "
+                             "has toppled it from, or on all (default toppled)")
+
+
+COMMANDS = {
+    "figure1": ("Figure 1: the two scenes, rendered from the simulated iCub",
+                _figure1, _no_options),
+    "figure5": ("Figure 5: interest of the goal-oriented learner, many seeds",
+                _figure5, _figure5_options),
+    "figure6": ("Figure 6: prediction errors of the intrinsic actor-critic, many seeds",
+                _figure6, _figure6_options),
+    "figure7": ("Figure 7: Q-learning on the rods, the paper's three moments in one run",
+                _figure7, _figure7_options),
+}
+"""name -> (help text, function(args) -> Figure, function(subparser) adding options)."""
+
+
+def build_parser():
+    """The argument parser of `python -m icm` (one subcommand per figure)."""
+    parser = argparse.ArgumentParser(
+        prog="python -m icm",
+        description="Rebuild the paper's figures from the icm package and save them as "
+                    "images.")
+    subparsers = parser.add_subparsers(dest="figure", required=True, metavar="FIGURE")
+    for name, (help_text, _, add_options) in COMMANDS.items():
+        sub = subparsers.add_parser(name, help=help_text, description=help_text)
+        add_options(sub)
+        sub.add_argument("--seed", type=_seed, default=0,
+                         help="root random seed, an integer >= 0 (default 0)")
+        sub.add_argument("--out", type=pathlib.Path, default=pathlib.Path(f"{name}.png"),
+                         help=f"image file to write, .png, .pdf or .svg (default {name}.png)")
+        sub.add_argument("--dpi", type=_positive_int, default=150,
+                         help="resolution of a .png (default 150)")
+    return parser
+
+
+def main(argv=None):
+    """Runs the command line; returns the exit status (0 on success)."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.out.suffix.lower() not in (".png", ".pdf", ".svg"):
+        parser.error(f"--out must end in .png, .pdf or .svg, got {args.out}")
+    if not args.out.parent.exists():
+        parser.error(f"--out: the folder {args.out.parent} does not exist")
+    _, make_figure, _ = COMMANDS[args.figure]
+    try:
+        figure = make_figure(args)
+    except ValueError as error:
+        parser.exit(2, f"{parser.prog} {args.figure}: error: {error}\n")
+    figure.savefig(args.out, dpi=args.dpi)
+    print(f"wrote {args.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,76 @@
+"""The command line: figures without Jupyter, clear errors for bad options."""
+
+import subprocess
+import sys
+
+import matplotlib.image
+import pytest
+
+from icm import cli
+
+
+def run(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "icm", *args], capture_output=True,
+                          text=True, cwd=cwd)
+
+
+def in_process(args, capsys):
+    """Runs the command line in this process: (exit status, stdout, stderr)."""
+    try:
+        status = cli.main(args)
+    except SystemExit as exit_:
+        status = exit_.code
+    captured = capsys.readouterr()
+    return status, captured.out, captured.err
+
+
+def test_help_documents_every_figure_and_option(capsys):
+    top = run("--help")  # once through `python -m icm`, as users call it
+    assert top.returncode == 0
+    for name in cli.COMMANDS:
+        assert name in top.stdout
+        status, out, _ = in_process([name, "--help"], capsys)
+        assert status == 0
+        for option in ("--seed", "--out", "--dpi"):
+            assert option in out
+    assert "--epsilon" in in_process(["figure5", "--help"], capsys)[1]
+    assert "--temperature" in in_process(["figure6", "--help"], capsys)[1]
+    assert "--predictor-lr" in in_process(["figure7", "--help"], capsys)[1]
+
+
+@pytest.mark.parametrize("args", [["figure6", "--seeds", "3", "--trials", "10"],
+                                  ["figure7", "--episodes", "20"]])
+def test_figures_6_and_7_are_written(args, tmp_path, capsys):
+    out = tmp_path / "fig.png"
+    status, stdout, _ = in_process(args + ["--out", str(out)], capsys)
+    assert status == 0 and out.exists() and "wrote" in stdout
+
+
+def test_figure5_is_written_as_an_image(tmp_path):
+    out = tmp_path / "fig5.png"
+    completed = run("figure5", "--seeds", "5", "--trials", "10", "--out", str(out))
+    assert completed.returncode == 0, completed.stderr
+    image = matplotlib.image.imread(out)
+    assert image.shape[0] > 100 and image.std() > 0.01
+
+
+@pytest.mark.parametrize("args, message", [
+    (["figure9"], "invalid choice"),
+    (["figure5", "--seeds", "0"], "--seeds"),
+    (["figure5", "--seeds", "many"], "--seeds"),
+    (["figure5", "--epsilon", "2"], "epsilon must be"),
+    (["figure5", "--window", "1"], "window must be"),
+    (["figure5", "--reading", "sideways"], "--reading"),
+    (["figure5", "--out", "fig.gif"], "--out must end in"),
+    (["figure5", "--out", "/no/such/folder/fig.png"], "does not exist"),
+    (["figure5", "--seed", "-1"], "--seed"),
+    (["figure6", "--lr-actor", "0"], "lr_actor must be"),
+    (["figure6", "--variant", "backwards"], "--variant"),
+    (["figure7", "--predictor-lr", "1.5"], "predictor_lr"),
+])
+def test_bad_options_fail_with_a_clear_message(args, message, tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    status, _, err = in_process(args, capsys)
+    assert status == 2
+    assert message in err
+    assert not list(tmp_path.iterdir())  # nothing written
