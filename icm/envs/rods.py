@@ -455,10 +455,11 @@ class PhysicsRodTable(RodEpisodes):
         """
         physics, target = self.physics, next_cell(self._cell, action)
 
-        def watch():
-            if recorder is not None:
-                recorder(physics)
+        def record():
+            recorder(physics)
             return False
+
+        watch = None if recorder is None else record  # no per-update call unless asked
 
         if target != self._cell:
             self.arm.move(self.motions.midpoints[(self._cell, target)], self.SEGMENT_TIME, watch)
@@ -468,7 +469,8 @@ class PhysicsRodTable(RodEpisodes):
         if np.any(physics.rod_tilts() > np.deg2rad(5.0)):
             # A rod is tipping: let it fall and come to rest before looking.
             speed = lambda: np.abs(physics.named.data.qvel[_RODS]).max()
-            self.arm.hold(self.FALL_TIME, monitor=lambda: watch() or speed() < 0.05)
+            self.arm.hold(self.FALL_TIME,
+                          monitor=lambda: (watch is not None and watch()) or speed() < 0.05)
         return physics.rods_toppled()
 
 
