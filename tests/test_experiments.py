@@ -114,3 +114,35 @@ def test_summary_holds_the_numbers_the_book_quotes(default_run):
     assert s["red_mastery_mean"] < s["green_mastery_mean"]
     assert s["red_mastered_share"] == 1.0
     assert 0 < s["red_first"] <= 1
+
+
+def test_progress_bar_is_tqdm_when_on_and_absent_when_off():
+    from tqdm.auto import tqdm
+
+    from icm.experiments._progress import progress_bar
+
+    items = range(3)
+    assert isinstance(progress_bar(items, 3, "runs", True), tqdm)
+    assert progress_bar(items, 3, "runs", False) is items
+    with pytest.raises(ValueError, match="progress"):
+        progress_bar(items, 3, "runs", "yes")
+
+
+@pytest.mark.parametrize("run, kwargs", [
+    (icm.experiments.run_goal_oriented, dict(n_trials=2)),
+    (icm.experiments.run_actor_critic, dict(n_trials=2)),
+    (icm.experiments.run_rod_toppling, dict(n_episodes=2)),
+])
+def test_every_run_reports_progress_unless_told_not_to(run, kwargs, monkeypatch):
+    import importlib
+
+    module = importlib.import_module(run.__module__)
+    calls = []
+    real = module.progress_bar
+    monkeypatch.setattr(module, "progress_bar",
+                        lambda *args, **kw: calls.append(args[3]) or real(*args, **kw))
+    run(n_seeds=2, seed=0, **kwargs)
+    run(n_seeds=2, seed=0, progress=False, **kwargs)
+    assert calls == [True, False]
+    with pytest.raises(ValueError, match="progress"):
+        run(n_seeds=2, seed=0, progress="yes", **kwargs)
