@@ -71,3 +71,11 @@ def seed(name, value):
     if not _is_integer(value) or value < 0:
         raise ValueError(f"{name} must be None or an integer >= 0, got {value!r}")
     return int(value)
+
+
+def generator(name, value):
+    """A `numpy.random.Generator` from None, an integer seed >= 0, or a Generator
+    (returned as it is); anything else raises ValueError."""
+    if isinstance(value, np.random.Generator):
+        return value
+    return np.random.default_rng(seed(name, value))

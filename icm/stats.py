@@ -48,3 +48,11 @@ def first_below(curve, fraction, after=None):
     peak = int(np.argmax(curve)) if after is None else int(after)
     below = np.flatnonzero(curve[peak:] < fraction * curve.max())
     return int(peak + below[0]) if below.size else -1
+
+
+def comes_first(first, second):
+    """Where an event numbered `first` (a trial or an episode, from 1; -1 for never)
+    comes strictly before one numbered `second`: it happened, and the other never did
+    or did later. Works on numbers and on arrays (element-wise)."""
+    first, second = np.asarray(first), np.asarray(second)
+    return (first >= 1) & ((second == -1) | (first < second))

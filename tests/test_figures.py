@@ -64,3 +64,10 @@ def test_figure5_panel_has_the_library_sliders_and_reruns_on_change(monkeypatch)
     epsilon = next(s for s in sliders if s.description == "epsilon")
     epsilon.value = 0.5
     assert len(calls) == 2 and calls[1]["epsilon"] == 0.5
+
+
+def test_comes_first_handles_never():
+    first = np.array([2, 5, -1, 3, 4])
+    second = np.array([4, 5, 3, -1, -1])
+    assert icm.stats.comes_first(first, second).tolist() == [True, False, False, True, True]
+    assert not icm.stats.comes_first(-1, -1)

@@ -10,7 +10,7 @@ from icm.envs import buttons
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import run_seeds
 from icm.learners import actor_critic, predictors
-from icm.stats import first_from_which
+from icm.stats import comes_first, first_from_which
 
 TASKS = ("red", "green")
 """Order of the task axis in the result arrays."""
@@ -92,7 +92,7 @@ class ActorCriticResult:
         """Share of seeds in which the red error reaches 0 (for good) strictly before
         the green one (a seed where only red reaches 0 counts as red first)."""
         red, green = self.zero_trial[:, 0], self.zero_trial[:, 1]
-        return float(((red >= 1) & ((green == -1) | (red < green))).mean())
+        return float(comes_first(red, green).mean())
 
     def seed_summaries(self):
         """One dict per seed of the numbers a sweep compares: the trial from which each
@@ -102,7 +102,7 @@ class ActorCriticResult:
         for red, green in self.zero_trial.tolist():
             gap = float(green - red) if red >= 1 and green >= 1 else float("nan")
             rows.append({"red_zero_trial": red, "green_zero_trial": green, "zero_gap": gap,
-                         "red_first": bool(red >= 1 and (green == -1 or red < green))})
+                         "red_first": bool(comes_first(red, green))})
         return rows
 
     def green_below_red(self):

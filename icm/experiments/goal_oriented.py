@@ -9,7 +9,7 @@ from icm.envs import buttons
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import run_seeds
 from icm.learners import goal_oriented, interest, predictors
-from icm.stats import first_below, first_from_which
+from icm.stats import comes_first, first_below, first_from_which
 
 TASKS = ("red", "green")
 """Order of the task axis in the result arrays."""
@@ -54,8 +54,7 @@ class GoalOrientedResult:
         """Share of seeds in which red is mastered strictly before green (a seed where
         green is never mastered but red is counts as red first)."""
         red, green = self.mastery_trial[:, 0], self.mastery_trial[:, 1]
-        red_first = (red >= 1) & ((green == -1) | (red < green))
-        return float(red_first.mean())
+        return float(comes_first(red, green).mean())
 
     def mean_interest(self):
         """Mean interest over seeds, [trial, task]."""
@@ -107,7 +106,7 @@ class GoalOrientedResult:
             gap = float(green - red) if red >= 1 and green >= 1 else float("nan")
             rows.append({"red_mastery_trial": red, "green_mastery_trial": green,
                          "mastery_gap": gap,
-                         "red_first": bool(red >= 1 and (green == -1 or red < green))})
+                         "red_first": bool(comes_first(red, green))})
         return rows
 
     def mean_mastery_trial(self):

@@ -10,7 +10,7 @@ from icm.envs import rods
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import run_seeds
 from icm.learners import predictors, q_learning
-from icm.stats import first_from_which
+from icm.stats import comes_first, first_from_which
 
 RODS = rods.ROD_NAMES
 """Order of the rod axis in the result arrays: red, blue."""
@@ -163,14 +163,14 @@ class RodTopplingResult:
         in which only red is ever predicted well counts as red first)."""
         well = self.well_predicted(reading)
         red, blue = well[:, 0], well[:, 1]
-        return float(np.mean((red >= 1) & ((blue == -1) | (red < blue))))
+        return float(np.mean(comes_first(red, blue)))
 
     def red_before_blue_begins(self, reading="all"):
         """Share of seeds in which red is predicted well before the first blue topple
         (or blue is never toppled): Figure 7's order, (b) before (c)."""
         red = self.well_predicted(reading)[:, 0]
         blue = self.first_topple("blue")
-        return float(np.mean((red >= 1) & ((blue == -1) | (red < blue))))
+        return float(np.mean(comes_first(red, blue)))
 
     def seed_summaries(self):
         """One dict per seed of the numbers a sweep compares: the episode from which
@@ -183,7 +183,7 @@ class RodTopplingResult:
             gap = float(blue - red) if red >= 1 and blue >= 1 else float("nan")
             rows.append({"red_well_episode": red, "blue_well_episode": blue,
                          "well_gap": gap,
-                         "red_first": bool(red >= 1 and (blue == -1 or red < blue)),
+                         "red_first": bool(comes_first(red, blue)),
                          "first_blue_topple": int(blue_topple)})
         return rows
 
@@ -204,8 +204,7 @@ class RodTopplingResult:
             out[f"{rod}_share_second_half"] = self.topple_share(
                 rod, slice(self.n_episodes // 2, None))
         first_red, first_blue = self.first_topple("red"), self.first_topple("blue")
-        out["red_toppled_first"] = float(np.mean(
-            (first_red >= 1) & ((first_blue == -1) | (first_red < first_blue))))
+        out["red_toppled_first"] = float(np.mean(comes_first(first_red, first_blue)))
         out["none_share"] = float(np.mean(self.toppled == -1))
         out["mean_episode_length"] = float(self.episode_length.mean())
         return out

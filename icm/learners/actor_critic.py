@@ -147,10 +147,7 @@ class ActorCritic:
         self.state_keys = tuple(state_keys)
         self.effect_key = effect_key
         self.effect_at_rest = None if effect_at_rest is None else tuple(effect_at_rest)
-        if isinstance(seed, np.random.Generator):
-            self._random = seed
-        else:
-            self._random = np.random.default_rng(_validate.seed("seed", seed))
+        self._random = _validate.generator("seed", seed)
         self.critic = {}  # state -> V(state)
         self.actor = {}  # state -> list of preferences, one per action
 

@@ -50,10 +50,7 @@ class GoalOrientedAgent:
         self.context_keys = tuple(context_keys)
         self.goal_key = goal_key
         self.goal_at_rest = None if goal_at_rest is None else tuple(goal_at_rest)
-        if isinstance(seed, np.random.Generator):
-            self._random = seed
-        else:
-            self._random = np.random.default_rng(_validate.seed("seed", seed))
+        self._random = _validate.generator("seed", seed)
 
     def context(self, observation):
         """The predictor's context for an observation: its context entries as a tuple."""

@@ -88,10 +88,7 @@ class QLearner:
         self.epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
         self.initial_q = _validate.non_negative("initial_q", initial_q)
         self.predictor = LinearPredictor(n_actions, 1) if predictor is None else predictor
-        if isinstance(seed, np.random.Generator):
-            self._random = seed
-        else:
-            self._random = np.random.default_rng(_validate.seed("seed", seed))
+        self._random = _validate.generator("seed", seed)
         # Lists of floats: the learner's inner loop reads and writes single entries.
         self._q = [[self.initial_q] * self.n_actions for _ in range(self.n_states)]
 
