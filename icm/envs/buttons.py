@@ -21,7 +21,6 @@ import collections
 
 import dm_env
 import numpy as np
-from dm_control.rl import control
 from dm_env import specs
 
 from icm import _validate
@@ -252,8 +251,6 @@ BOX_OPEN_ANGLE = np.deg2rad(30.0)
 """A box counts as open in the observations when its lid is open at least this much."""
 LID_OPEN_TIME = 2.0
 """Seconds a lid stays open in the continuous task before the task shuts it again."""
-CONTROL_TIMESTEP = 0.02
-"""Seconds between two actions of the continuous task (10 physics steps)."""
 _LIGHT_MATERIALS = {OFF: "light_off", RED: "red", GREEN: "green"}
 _BUTTON_JOINTS = [f"button{b}" for b in range(N_BUTTONS)]
 _LIDS = [f"{name}_lid" for name in BOX_NAMES]
@@ -447,9 +444,8 @@ def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
       time_limit: seconds per episode.
       **task_kwargs: `ButtonsTask` arguments (red_button, rewarded_box, lid_open_time).
     """
-    task = ButtonsTask(random=seed, **task_kwargs)
-    return control.Environment(load_physics(), task, time_limit=time_limit,
-                               control_timestep=CONTROL_TIMESTEP)
+    return icub.continuous_environment(load_physics(), ButtonsTask(random=seed, **task_kwargs),
+                                       time_limit)
 
 
 class PhysicsButtonConsole(ButtonTrials):

@@ -6,18 +6,14 @@ and lets the physics track them, so the hand moves as the simulated arm moves, n
 by setting its position.
 """
 
-import os
 import pathlib
-import sys
 
 import mujoco
 import numpy as np
 from dm_control import mujoco as dm_mujoco
+from dm_control.rl import control
 from dm_control.suite import base
 from dm_env import specs
-
-if sys.platform.startswith("linux"):
-    os.environ.setdefault("MUJOCO_GL", "egl")  # headless rendering, unless the user chose
 
 ASSETS = pathlib.Path(__file__).resolve().parents[2] / "assets"
 """The folder of MJCF models and data (resolved from the package, not the working dir)."""
@@ -29,6 +25,9 @@ ARM_JOINTS = ("r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw", "r_elbow"
 POSTURE = np.deg2rad([-25.0, 20.0, 0.0, 95.0, 0.0, -15.0, 0.0])
 """A comfortable arm posture (radians) that inverse kinematics is drawn towards, so
 that it picks natural solutions well inside the joint ranges."""
+
+CONTROL_TIMESTEP = 0.02
+"""Seconds between two actions of a continuous task (10 physics steps)."""
 
 SUBSTEPS = 10
 """Physics steps between two updates of the actuator targets during a motion."""
@@ -232,3 +231,10 @@ class ArmTask(base.Task):
         """Specs of the arm's observations: joint angles and fingertip position."""
         return {"arm_joints": specs.Array((len(ARM_JOINTS),), np.float64, name="arm_joints"),
                 "fingertip": specs.Array((3,), np.float64, name="fingertip")}
+
+
+def continuous_environment(physics, task, time_limit):
+    """A dm_control `control.Environment` for an arm task: one action every
+    `CONTROL_TIMESTEP` seconds, episodes of `time_limit` seconds."""
+    return control.Environment(physics, task, time_limit=time_limit,
+                               control_timestep=CONTROL_TIMESTEP)

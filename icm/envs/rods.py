@@ -22,7 +22,6 @@ import json
 
 import dm_env
 import numpy as np
-from dm_control.rl import control
 from dm_env import specs
 
 from icm import _validate
@@ -377,9 +376,6 @@ class RodsTask(icub.ArmTask):
         return None
 
 
-CONTROL_TIMESTEP = 0.02
-
-
 def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
     """The continuous rod task: a dm_control `control.Environment`.
 
@@ -388,9 +384,8 @@ def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
       time_limit: seconds per episode.
       **task_kwargs: `RodsTask` arguments (start_cell).
     """
-    task = RodsTask(random=seed, **task_kwargs)
-    return control.Environment(load_physics(), task, time_limit=time_limit,
-                               control_timestep=CONTROL_TIMESTEP)
+    return icub.continuous_environment(load_physics(), RodsTask(random=seed, **task_kwargs),
+                                       time_limit)
 
 
 class PhysicsRodTable(RodEpisodes):
