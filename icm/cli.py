@@ -24,18 +24,32 @@ def _figure5(args):
     return figures.figure5(result)
 
 
-def _positive_int(text):
-    value = int(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be an integer >= 1, got {text}")
+def _integer_at_least(minimum):
+    """An argparse type: an integer >= minimum. Its errors say what is allowed (argparse
+    shows an ArgumentTypeError's message as it is)."""
+    def parse(text):
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"must be an integer >= {minimum}, got {text!r}") from None
+        if value < minimum:
+            raise argparse.ArgumentTypeError(f"must be an integer >= {minimum}, got {text!r}")
+        return value
+    return parse
+
+
+def _number(text):
+    """An argparse type: a finite number (the run functions check its range)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
     return value
 
 
-def _seed(text):
-    value = int(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be an integer >= 0, got {text}")
-    return value
+_positive_int = _integer_at_least(1)
+_seed = _integer_at_least(0)
 
 
 def _no_options(parser):
@@ -47,13 +61,13 @@ def _figure5_options(parser):
                         help="number of independent runs (default 200)")
     parser.add_argument("--trials", type=_positive_int, default=60,
                         help="trials per run (default 60)")
-    parser.add_argument("--epsilon", type=float, default=goal_oriented.DEFAULT_EPSILON,
+    parser.add_argument("--epsilon", type=_number, default=goal_oriented.DEFAULT_EPSILON,
                         help="probability of a random press, in [0, 1] "
                              f"(default {goal_oriented.DEFAULT_EPSILON})")
-    parser.add_argument("--window", type=int, default=interest.DEFAULT_WINDOW,
+    parser.add_argument("--window", type=_integer_at_least(2), default=interest.DEFAULT_WINDOW,
                         help="errors in the learning-progress slope, >= 2 "
                              f"(default {interest.DEFAULT_WINDOW})")
-    parser.add_argument("--new-task-factor", type=float,
+    parser.add_argument("--new-task-factor", type=_number,
                         default=interest.DEFAULT_NEW_TASK_FACTOR,
                         help="share of the mean interest given to a task seen once, in "
                              f"[0, 1] (default {interest.DEFAULT_NEW_TASK_FACTOR})")
@@ -74,16 +88,16 @@ def _figure6_options(parser):
                         help="number of independent runs (default 200)")
     parser.add_argument("--trials", type=_positive_int, default=100,
                         help="trials per run (default 100)")
-    parser.add_argument("--temperature", type=float, default=actor_critic.DEFAULT_TEMPERATURE,
+    parser.add_argument("--temperature", type=_number, default=actor_critic.DEFAULT_TEMPERATURE,
                         help="softmax temperature, > 0 "
                              f"(default {actor_critic.DEFAULT_TEMPERATURE})")
-    parser.add_argument("--lr-actor", type=float, default=actor_critic.DEFAULT_LR_ACTOR,
+    parser.add_argument("--lr-actor", type=_number, default=actor_critic.DEFAULT_LR_ACTOR,
                         help="actor learning rate in (0, 1] "
                              f"(default {actor_critic.DEFAULT_LR_ACTOR})")
-    parser.add_argument("--lr-critic", type=float, default=actor_critic.DEFAULT_LR_CRITIC,
+    parser.add_argument("--lr-critic", type=_number, default=actor_critic.DEFAULT_LR_CRITIC,
                         help="critic learning rate in (0, 1] "
                              f"(default {actor_critic.DEFAULT_LR_CRITIC})")
-    parser.add_argument("--gamma", type=float, default=actor_critic.DEFAULT_GAMMA,
+    parser.add_argument("--gamma", type=_number, default=actor_critic.DEFAULT_GAMMA,
                         help=f"discount in [0, 1] (default {actor_critic.DEFAULT_GAMMA})")
     parser.add_argument("--reward", choices=actor_critic.REWARDS, default="intrinsic",
                         help="where the reward comes from (default intrinsic)")
@@ -93,10 +107,13 @@ def _figure6_options(parser):
 
 def _figure7(args):
     result = experiments.run_rod_toppling(
-        n_seeds=args.run + 1, n_episodes=args.episodes, epsilon=args.epsilon,
+        n_seeds=1, first_run=args.run, n_episodes=args.episodes, epsilon=args.epsilon,
         alpha=args.alpha, gamma=args.gamma, predictor_lr=args.predictor_lr,
         initial_q=args.initial_q, seed=args.seed)
-    return figures.figure7(result, seed=args.run, reading=args.reading)
+    figure = figures.figure7(result, seed=0, reading=args.reading)
+    figure.suptitle(f"Run {args.run} of root seed {args.seed}, red predicted well read as "
+                    f"\"{args.reading}\"", fontsize=10)
+    return figure
 
 
 def _figure7_options(parser):
@@ -104,17 +121,17 @@ def _figure7_options(parser):
                         help="which run of the root seed to draw (>= 0, default 0)")
     parser.add_argument("--episodes", type=_positive_int, default=300,
                         help="episodes per run (default 300)")
-    parser.add_argument("--epsilon", type=float, default=q_learning.DEFAULT_EPSILON,
+    parser.add_argument("--epsilon", type=_number, default=q_learning.DEFAULT_EPSILON,
                         help=f"probability of a random move, in [0, 1] "
                              f"(default {q_learning.DEFAULT_EPSILON})")
-    parser.add_argument("--alpha", type=float, default=q_learning.DEFAULT_ALPHA,
+    parser.add_argument("--alpha", type=_number, default=q_learning.DEFAULT_ALPHA,
                         help=f"Q-learning rate in (0, 1] (default {q_learning.DEFAULT_ALPHA})")
-    parser.add_argument("--gamma", type=float, default=q_learning.DEFAULT_GAMMA,
+    parser.add_argument("--gamma", type=_number, default=q_learning.DEFAULT_GAMMA,
                         help=f"discount in [0, 1] (default {q_learning.DEFAULT_GAMMA})")
-    parser.add_argument("--predictor-lr", type=float, default=predictors.DEFAULT_LINEAR_LR,
+    parser.add_argument("--predictor-lr", type=_number, default=predictors.DEFAULT_LINEAR_LR,
                         help="learning rate of the linear predictor in (0, 1] "
                              f"(default {predictors.DEFAULT_LINEAR_LR}, the paper's)")
-    parser.add_argument("--initial-q", type=float, default=q_learning.DEFAULT_INITIAL_Q,
+    parser.add_argument("--initial-q", type=_number, default=q_learning.DEFAULT_INITIAL_Q,
                         help="value of a move never tried "
                              f"(default {q_learning.DEFAULT_INITIAL_Q})")
     parser.add_argument("--reading", choices=rod_toppling.READINGS, default="toppled",

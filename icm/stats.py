@@ -1,7 +1,8 @@
 """Summaries over seeds: means with confidence bands, and "from when on" trial numbers."""
 
 import numpy as np
-from scipy import stats as _scipy_stats
+
+from icm import _validate
 
 
 def mean_band(values, level=0.95):
@@ -17,10 +18,18 @@ def mean_band(values, level=0.95):
     Returns:
       (mean, low, high), arrays of shape values.shape[1:]. With one seed the band is
       the mean itself.
+
+    Raises:
+      ValueError: for values that are not a non-empty array of finite numbers with a
+        seed axis, or a level outside (0, 1).
     """
-    values = np.asarray(values, dtype=float)
-    if not 0 < level < 1:
-        raise ValueError(f"level must be in (0, 1), got {level!r}")
+    from scipy import stats as _scipy_stats  # here: scipy is slow to import
+
+    values = _validate.finite_array("values", values)
+    if values.ndim < 1 or values.shape[0] < 1:
+        raise ValueError(f"values must have a seed axis with at least one seed, got shape "
+                         f"{values.shape}")
+    level = _validate.real("level", level, 0.0, 1.0, low_open=True, high_open=True)
     n = values.shape[0]
     mean = values.mean(axis=0)
     if n < 2:
@@ -32,7 +41,11 @@ def mean_band(values, level=0.95):
 def first_from_which(condition):
     """For a boolean array [..., time], the first index from which `condition` holds
     until the end, or -1 where it does not hold at the last index."""
-    condition = np.asarray(condition, dtype=bool)
+    raw = np.asarray(condition)
+    if raw.dtype != bool or raw.ndim < 1 or raw.shape[-1] < 1:
+        raise _validate.ArgumentTypeError(f"condition must be a boolean array with a time "
+                                          f"axis, got {_validate.show(condition)}")
+    condition = raw
     # Index of the last False, + 1; where everything holds, 0.
     reversed_false = ~condition[..., ::-1]
     has_false = reversed_false.any(axis=-1)
@@ -44,8 +57,12 @@ def first_from_which(condition):
 def first_below(curve, fraction, after=None):
     """The first index, at or after the curve's peak (or `after`), where `curve` falls
     below `fraction` of its peak; -1 if it never does."""
-    curve = np.asarray(curve, dtype=float)
-    peak = int(np.argmax(curve)) if after is None else int(after)
+    curve = _validate.finite_array("curve", curve, ndim=1)
+    if len(curve) == 0:
+        raise ValueError("curve must hold at least one value, got none")
+    fraction = _validate.real("fraction", fraction, 0.0, 1.0)
+    peak = int(np.argmax(curve)) if after is None else \
+        _validate.integer("after", after, 0, len(curve) - 1)
     below = np.flatnonzero(curve[peak:] < fraction * curve.max())
     return int(peak + below[0]) if below.size else -1
 
@@ -55,4 +72,9 @@ def comes_first(first, second):
     comes strictly before one numbered `second`: it happened, and the other never did
     or did later. Works on numbers and on arrays (element-wise)."""
     first, second = np.asarray(first), np.asarray(second)
+    for name, value in (("first", first), ("second", second)):
+        if value.dtype.kind not in "iu":
+            raise _validate.ArgumentTypeError(f"{name} must hold integers (event numbers "
+                                              f"from 1, -1 for never), got "
+                                              f"{_validate.show(value)}")
     return (first >= 1) & ((second == -1) | (first < second))

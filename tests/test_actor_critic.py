@@ -286,7 +286,8 @@ def test_printed_reward_avoids_the_green_task(default_run):
     (dict(presses_per_trial=0), "presses_per_trial"),
     (dict(red_button=5), "red_button"),
     (dict(seed=-1), "seed"),
-    (dict(seed=None), "seed"),
+    (dict(seed="zero"), "seed"),
+    (dict(seed=2**63), "seed"),
 ])
 def test_bad_run_arguments_raise_value_error(kwargs, message):
     with pytest.raises(ValueError, match=message):

@@ -59,7 +59,7 @@ def test_figure5_is_written_as_an_image(tmp_path):
     (["figure5", "--seeds", "0"], "--seeds"),
     (["figure5", "--seeds", "many"], "--seeds"),
     (["figure5", "--epsilon", "2"], "epsilon must be"),
-    (["figure5", "--window", "1"], "window must be"),
+    (["figure5", "--window", "1"], "--window: must be an integer >= 2"),
     (["figure5", "--reading", "sideways"], "--reading"),
     (["figure5", "--out", "fig.gif"], "--out must end in"),
     (["figure5", "--out", "/no/such/folder/fig.png"], "does not exist"),
@@ -74,3 +74,28 @@ def test_bad_options_fail_with_a_clear_message(args, message, tmp_path, monkeypa
     assert status == 2
     assert message in err
     assert not list(tmp_path.iterdir())  # nothing written
+
+
+@pytest.mark.parametrize("args", [["figure5", "--seeds", "many"], ["figure5", "--seed", "x"],
+                                  ["figure5", "--window", "1.5"], ["figure6", "--gamma", "y"],
+                                  ["figure7", "--run", "-2"], ["figure5", "--dpi", "0"]])
+def test_error_messages_name_the_option_and_leak_no_internal_names(args, tmp_path,
+                                                                    monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    status, _, err = in_process(args, capsys)
+    assert status == 2 and args[1] in err
+    assert "_positive_int" not in err and "_seed" not in err and "parse" not in err
+    assert "_number" not in err and "invalid" not in err
+
+
+def test_figure7_of_run_n_computes_that_run_alone(tmp_path, monkeypatch, capsys):
+    from icm import experiments
+
+    calls = []
+    real = experiments.run_rod_toppling
+    monkeypatch.setattr(experiments, "run_rod_toppling",
+                        lambda **kwargs: calls.append(kwargs) or real(**kwargs))
+    status, _, _ = in_process(["figure7", "--run", "3", "--episodes", "6", "--out",
+                               str(tmp_path / "f.png")], capsys)
+    assert status == 0
+    assert len(calls) == 1 and calls[0]["n_seeds"] == 1 and calls[0]["first_run"] == 3

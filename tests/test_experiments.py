@@ -102,7 +102,8 @@ def test_practice_follows_interest_red_first_then_green(default_run):
     (dict(presses_per_trial=0), "presses_per_trial"),
     (dict(red_button=7), "red_button"),
     (dict(seed=-5), "seed"),
-    (dict(seed=None), "seed"),
+    (dict(seed="zero"), "seed"),
+    (dict(seed=2**63), "seed"),
 ])
 def test_bad_run_arguments_raise_value_error(kwargs, message):
     with pytest.raises(ValueError, match=message):

@@ -348,7 +348,8 @@ def test_summary_holds_the_numbers_the_book_quotes(default_run):
     (dict(snapshot_episodes=(3,)), "snapshot_episodes"),  # beyond n_episodes=2
     (dict(snapshot_episodes=5), "snapshot_episodes"),
     (dict(seed=-5), "seed"),
-    (dict(seed=None), "seed"),
+    (dict(seed="zero"), "seed"),
+    (dict(seed=2**63), "seed"),
     (dict(progress="yes"), "progress"),
 ])
 def test_bad_run_arguments_raise_value_error(kwargs, message):
@@ -467,3 +468,10 @@ def test_figure7_panel_has_the_library_sliders_and_reruns_on_change(monkeypatch)
 def test_figure7_for_runs_one_seed_and_draws_it():
     fig = figures.figure7_for(episode=10, n_episodes=30, epsilon=0.2)
     assert len([ax for ax in fig.axes if ax.get_label() != "<colorbar>"]) == 16
+
+
+def test_first_run_gives_run_k_of_a_larger_batch_alone():
+    batch = run_rod_toppling(n_seeds=4, n_episodes=30, seed=6, progress=False)
+    alone = run_rod_toppling(n_seeds=1, n_episodes=30, seed=6, first_run=3, progress=False)
+    for name in ("toppled", "episode_length", "prediction_error", "q_table"):
+        np.testing.assert_array_equal(getattr(alone, name)[0], getattr(batch, name)[3])

@@ -13,6 +13,7 @@ import sys
 if sys.platform.startswith("linux"):
     os.environ.setdefault("MUJOCO_GL", "egl")  # headless rendering, unless the user chose
 
+from icm import _validate  # noqa: E402
 from icm.envs import buttons, rods  # noqa: E402  (after MUJOCO_GL)
 from icm.envs.gym import as_gymnasium  # noqa: E402
 from icm.envs.twins import compare_twins  # noqa: E402
@@ -28,6 +29,9 @@ NAMES = tuple(sorted(_DISCRETE))
 
 
 def _check_name(name):
+    if not isinstance(name, str):
+        raise _validate.ArgumentTypeError(
+            f"name must be an environment name ({', '.join(NAMES)}), got {name!r}")
     if name not in _DISCRETE:
         raise ValueError(f"unknown environment {name!r}; known: {', '.join(NAMES)}")
 
@@ -46,8 +50,8 @@ def load(name, physics=False, seed=None, **kwargs):
     Args:
       name: "buttons" (section 2.1) or "rods" (section 2.2).
       physics: False for the fast tabular twin (default), True for the simulated iCub.
-      seed: None, an int or a `numpy.random.RandomState`; the same seed gives the same
-        episodes, in both versions.
+      seed: None, an integer >= 0 or a `numpy.random.Generator`; the same seed gives
+        the same episodes, in both versions.
       **kwargs: passed to the environment's constructor (see its docstring): for the
         buttons red_button, presses_per_trial, rewarded_box; for the rods start_cell,
         max_moves.
@@ -59,8 +63,7 @@ def load(name, physics=False, seed=None, **kwargs):
       ValueError: for an unknown name, a bad `physics` flag or a bad keyword argument.
     """
     _check_name(name)
-    if not isinstance(physics, bool):
-        raise ValueError(f"physics must be True or False, got {physics!r}")
+    physics = _validate.boolean("physics", physics)
     factory = _DISCRETE[name][physics]
     _check_kwargs(name, factory, kwargs)
     return factory(seed=seed, **kwargs)
@@ -71,12 +74,15 @@ def load_continuous(name, seed=None, **kwargs):
 
     Args:
       name: "buttons" or "rods".
-      seed: None, an int or a `numpy.random.RandomState`.
-      **kwargs: passed to the scenario's `load_continuous` (time_limit and task
-        arguments).
+      seed: None, an integer >= 0 or a `numpy.random.Generator`.
+      **kwargs: passed to the scenario's `load_continuous` (time_limit, in seconds,
+        > 0; and task arguments).
 
     Returns:
       A `dm_control.rl.control.Environment`.
+
+    Raises:
+      ValueError: for an unknown name or a bad argument.
     """
     _check_name(name)
     task_kwargs = {k: v for k, v in kwargs.items() if k != "time_limit"}

@@ -1,37 +1,40 @@
-"""Helpers shared by the environments: action checking and seeded generators."""
+"""Helpers shared by the environments: action, seed and time-limit checks."""
 
-import numbers
+import math
 
 import numpy as np
 
+from icm import _validate
 
-def check_discrete_action(action, num_values):
+
+def check_discrete_action(action, num_values, name="action"):
     """Returns `action` as a Python int if it names one of `num_values` choices.
 
     Accepts Python and numpy integers and 0-d integer arrays (what dm_env agents
-    usually pass). Anything else raises ValueError saying what is allowed.
+    usually pass); refuses bools, floats (even 2.0), strings and arrays with an
+    `ArgumentTypeError`, and integers outside 0..num_values-1 with a ValueError.
     """
-    value = action
-    if isinstance(value, np.ndarray) and value.shape == ():
-        value = value.item()
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise ValueError(
-            f"action must be an integer in 0..{num_values - 1}, got {action!r}")
-    if not 0 <= value < num_values:
-        raise ValueError(
-            f"action must be an integer in 0..{num_values - 1}, got {action!r}")
-    return int(value)
+    return _validate.integer(name, action, 0, num_values - 1)
 
 
-def random_state(seed):
-    """Returns a `numpy.random.RandomState` for `seed` (None, an int or a RandomState).
+def check_seed(seed, name="seed"):
+    """A `numpy.random.Generator` from `seed`: None, an integer >= 0 or a Generator
+    (the one rule for seeds everywhere in the package)."""
+    return _validate.generator(name, seed)
 
-    The environments use RandomState, as dm_control's tasks do, so that a tabular
-    twin and its physics version draw the same episode from the same seed.
-    """
-    if isinstance(seed, np.random.RandomState):
-        return seed
-    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, numbers.Integral)
-                             or seed < 0):
-        raise ValueError(f"seed must be None, an integer >= 0 or a RandomState, got {seed!r}")
-    return np.random.RandomState(seed)
+
+def dm_control_random(generator):
+    """A `numpy.random.RandomState` for dm_control's `Task.random`, derived from
+    `generator` without drawing from it (the episode rules draw from `generator`
+    itself, so that the tabular twin and the physics draw the same numbers)."""
+    child = generator.spawn(1)[0]
+    return np.random.RandomState(int(child.integers(2**32)))
+
+
+def check_time_limit(time_limit):
+    """Returns `time_limit` (seconds) if it is a number > 0; infinity means no limit."""
+    if _validate.is_real(time_limit) and math.isinf(float(_validate.scalar(time_limit))) \
+            and float(_validate.scalar(time_limit)) > 0:
+        return float("inf")
+    return _validate.real("time_limit", time_limit, 0.0, low_open=True,
+                          allowed="a number of seconds > 0 (float('inf') for no limit)")

@@ -25,7 +25,7 @@ from dm_env import specs
 
 from icm import _validate
 from icm.envs import icub
-from icm.envs._common import check_discrete_action, random_state
+from icm.envs._common import check_discrete_action, check_seed, dm_control_random
 
 N_BUTTONS = 5
 OFF, RED, GREEN = 0, 1, 2
@@ -49,26 +49,36 @@ def check_red_button(red_button):
 
 def green_candidates(red_button):
     """The four buttons that the green light may take, in increasing order."""
+    red_button = check_red_button(red_button)
     return [b for b in range(N_BUTTONS) if b != red_button]
 
 
 def draw_green(random, red_button):
     """Draws the green button uniformly among the 4 that are not red.
 
+    One uniform number u from `random` picks candidate floor(4 u): a trial always
+    draws exactly one number, so the tabular twin and the physics, given the same
+    seed, draw the same layouts.
+
     Args:
-      random: a `numpy.random.RandomState`; the physics task passes its own, so the
-        same seed gives the same sequence of layouts in both versions.
+      random: a `numpy.random.Generator` (the environment's).
       red_button: index of the red button.
 
     Returns:
       The index of the green button.
     """
+    _validate.instance("random", random, np.random.Generator)
     candidates = green_candidates(red_button)
-    return candidates[random.randint(len(candidates))]
+    return candidates[int(random.random() * len(candidates))]
 
 
 def lights_for(red_button, green_button):
     """The `lights` observation (shape (5,), int64) of a layout."""
+    red_button = check_red_button(red_button)
+    green_button = _validate.integer("green_button", green_button, 0, N_BUTTONS - 1)
+    if green_button == red_button:
+        raise ValueError(f"green_button must differ from red_button ({red_button}), "
+                         f"got {green_button}")
     lights = np.full(N_BUTTONS, OFF, dtype=np.int64)
     lights[red_button] = RED
     lights[green_button] = GREEN
@@ -81,8 +91,19 @@ def layouts(red_button=DEFAULT_RED_BUTTON):
     return [lights_for(red_button, g) for g in green_candidates(red_button)]
 
 
+def check_lights(lights, name="lights"):
+    """`lights` as an int64 array of 5 values in {0 off, 1 red, 2 green}, else raises."""
+    array = _validate.finite_array(name, lights, shape=(N_BUTTONS,))
+    if not np.all(np.isin(array, (OFF, RED, GREEN))):
+        raise ValueError(f"{name} must hold 5 values, each 0 (off), 1 (red) or 2 (green), "
+                         f"got {_validate.show(lights)}")
+    return array.astype(np.int64)
+
+
 def press_outcome(lights, button):
     """The `boxes` observation (red, green; 1 open) after pressing `button` under `lights`."""
+    lights = check_lights(lights)
+    button = _validate.integer("button", button, 0, N_BUTTONS - 1)
     boxes = np.zeros(len(BOX_NAMES), dtype=np.int64)
     light = lights[button]
     if light == RED:
@@ -100,6 +121,8 @@ def check_rewarded_box(rewarded_box):
 def extrinsic_reward(boxes, rewarded_box):
     """1.0 if the `rewarded_box` ("red" or "green") is open in `boxes`, else 0.0 (always
     0.0 when `rewarded_box` is None: the paper's intrinsic setting)."""
+    rewarded_box = check_rewarded_box(rewarded_box)
+    boxes = _validate.finite_array("boxes", boxes, shape=(len(BOX_NAMES),))
     if rewarded_box is None:
         return 0.0
     return float(boxes[BOX_NAMES.index(rewarded_box)] == 1)
@@ -214,7 +237,8 @@ class ButtonConsole(ButtonTrials):
       presses_per_trial: presses in one trial (>= 1). Default 3.
       rewarded_box: None (default, no reward), "red" or "green": the box whose
         opening pays 1.0.
-      seed: None, an int or a `numpy.random.RandomState`; draws the green buttons.
+      seed: None, an integer >= 0 or a `numpy.random.Generator`; draws the green
+        buttons (one number per trial).
 
     Raises:
       ValueError: for a red button outside 0..4, presses_per_trial < 1, an unknown
@@ -225,12 +249,12 @@ class ButtonConsole(ButtonTrials):
                  presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, rewarded_box=None, seed=None):
         self.red_button = check_red_button(red_button)
         super().__init__(presses_per_trial, rewarded_box)
-        self._random = random_state(seed)
+        self._random = check_seed(seed)
 
     def reseed(self, seed):
-        """Restarts the layouts' random generator from `seed`; the next step starts a
-        new trial."""
-        self._random = random_state(seed)
+        """Restarts the layouts' random generator from `seed` (None, an integer >= 0 or
+        a Generator); the next step starts a new trial."""
+        self._random = check_seed(seed)
         self._reset_next_step = True
 
     def _new_trial(self):
@@ -280,6 +304,7 @@ class ButtonsPhysics(icub.ArmPhysics):
 
     def button_depth(self, button):
         """How far button `button` (0-4) is pushed in, in metres."""
+        button = _validate.integer("button", button, 0, N_BUTTONS - 1)
         return -float(self.named.data.qpos[_BUTTON_JOINTS[button]][0])
 
     def lid_angles(self):
@@ -292,13 +317,15 @@ class ButtonsPhysics(icub.ArmPhysics):
 
     def set_lid_targets(self, red, green):
         """Commands the lid actuators (radians)."""
+        red = _validate.real("red", red)
+        green = _validate.real("green", green)
         ctrl = self.data.ctrl
         index = self._indices()._lid_ctrl
         ctrl[index[0]], ctrl[index[1]] = red, green
 
     def set_lights(self, lights):
         """Lights the button caps: 0 off, 1 red, 2 green (changes their material)."""
-        for b, light in enumerate(lights):
+        for b, light in enumerate(check_lights(lights)):
             self.named.model.geom_matid[f"button{b}_cap"] = self.model.name2id(
                 _LIGHT_MATERIALS[int(light)], "material")
 
@@ -347,12 +374,14 @@ class ButtonsTask(icub.ArmTask):
       red_button: index of the red button (default 2).
       rewarded_box: None, "red" or "green".
       lid_open_time: seconds a lid stays open (> 0).
-      random: None, an int seed or a `numpy.random.RandomState`.
+      random: None, an integer >= 0 or a `numpy.random.Generator`: draws the layouts,
+        one number per episode, as `ButtonConsole` does.
     """
 
     def __init__(self, red_button=DEFAULT_RED_BUTTON, rewarded_box=None,
                  lid_open_time=LID_OPEN_TIME, random=None):
-        super().__init__(random=random_state(random))
+        self.generator = check_seed(random, "random")
+        super().__init__(random=dm_control_random(self.generator))
         self.red_button = check_red_button(red_button)
         self.rewarded_box = check_rewarded_box(rewarded_box)
         self.lid_open_time = _validate.positive("lid_open_time", lid_open_time)
@@ -370,7 +399,7 @@ class ButtonsTask(icub.ArmTask):
         return self._motions
 
     def initialize_episode(self, physics):
-        green = draw_green(self.random, self.red_button)
+        green = draw_green(self.generator, self.red_button)
         self.lights = lights_for(self.red_button, green)
         physics.set_lights(self.lights)
         physics.named.data.qpos[_BUTTON_JOINTS] = 0.0
@@ -440,8 +469,8 @@ def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
     """The continuous button task: a dm_control `control.Environment`.
 
     Args:
-      seed: None, an int or a `RandomState` (the layouts).
-      time_limit: seconds per episode.
+      seed: None, an integer >= 0 or a `numpy.random.Generator` (the layouts).
+      time_limit: seconds per episode (> 0; float('inf') for no limit).
       **task_kwargs: `ButtonsTask` arguments (red_button, rewarded_box, lid_open_time).
     """
     return icub.continuous_environment(load_physics(), ButtonsTask(random=seed, **task_kwargs),
@@ -483,9 +512,9 @@ class PhysicsButtonConsole(ButtonTrials):
         self.motions = self.task.motions(self.physics)
 
     def reseed(self, seed):
-        """Restarts the layouts' random generator from `seed`; the next step starts a
-        new trial."""
-        self.task._random = random_state(seed)
+        """Restarts the layouts' random generator from `seed` (None, an integer >= 0 or
+        a Generator); the next step starts a new trial."""
+        self.task.generator = check_seed(seed)
         self._reset_next_step = True
 
     def _new_trial(self):
@@ -511,7 +540,12 @@ class PhysicsButtonConsole(ButtonTrials):
           recorder: optional function of the physics, called after every update of
             the actuators' targets (every 20 ms of simulated time), e.g. to record a
             time series or render frames.
+
+        Raises:
+          ValueError: if `button` is not a button index or `recorder` not a function.
         """
+        button = check_discrete_action(button, N_BUTTONS, "button")
+        _validate.function("recorder", recorder)
         physics, task, motions = self.physics, self.task, self.motions
         task.shut_lids(physics)
         self._wait(lambda: np.all(physics.lid_angles() < np.deg2rad(3.0)))

@@ -10,6 +10,9 @@ import gymnasium
 import numpy as np
 from gymnasium import spaces
 
+from icm import _validate
+from icm.envs._common import check_discrete_action
+
 
 def _box(spec):
     low = np.broadcast_to(np.asarray(spec.minimum, dtype=spec.dtype), spec.shape)
@@ -26,15 +29,20 @@ class GymnasiumEnv(gymnasium.Env):
         over the robot's shoulder, 480 x 640).
 
     Raises:
-      ValueError: for a render mode other than None or "rgb_array", or "rgb_array" on
+      ValueError: for an `env` that is not one of the package's discrete
+        environments, a render mode other than None or "rgb_array", or "rgb_array" on
         a tabular environment (it has nothing to render).
     """
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 25}
 
     def __init__(self, env, render_mode=None):
-        if render_mode not in (None, "rgb_array"):
-            raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")
+        from icm.envs.buttons import ButtonTrials
+        from icm.envs.rods import RodEpisodes
+
+        _validate.instance("env", env, (ButtonTrials, RodEpisodes),
+                           "a discrete environment from icm.envs.load")
+        render_mode = _validate.one_of("render_mode", render_mode, (None, "rgb_array"))
         if render_mode is not None and not hasattr(env, "physics"):
             raise ValueError("render_mode 'rgb_array' needs a physics environment "
                              "(icm.envs.load(..., physics=True))")
@@ -49,7 +57,12 @@ class GymnasiumEnv(gymnasium.Env):
                 for name, value in step.observation.items()}
 
     def reset(self, *, seed=None, options=None):
-        """Starts a new episode; with a `seed`, first reseeds the environment."""
+        """Starts a new episode; with a `seed` (an integer >= 0), first reseeds the
+        environment. `options` must be None or empty: the environments take none."""
+        seed = _validate.seed("seed", seed)
+        if options:
+            raise ValueError(f"options must be None or empty (the environments take no "
+                             f"reset options), got {_validate.show(options)}")
         super().reset(seed=seed)
         if seed is not None:
             self.env.reseed(seed)
@@ -58,8 +71,15 @@ class GymnasiumEnv(gymnasium.Env):
 
     def step(self, action):
         """One discrete action: returns (observation, reward, terminated, truncated,
-        info)."""
-        step = self.env.step(int(action) if np.ndim(action) == 0 else action)
+        info).
+
+        Raises:
+          ValueError: for an action that is not an integer in 0..n-1 (floats such as
+            2.0, bools and arrays of several values are refused, not converted).
+          RuntimeError: after the end of an episode, until `reset()`.
+        """
+        action = check_discrete_action(action, int(self.action_space.n))
+        step = self.env.step(action)
         if step.first():
             raise RuntimeError("the episode is over: call reset() before step()")
         terminated = bool(step.last() and step.discount == 0.0)
@@ -73,5 +93,6 @@ class GymnasiumEnv(gymnasium.Env):
 
 
 def as_gymnasium(env, render_mode=None):
-    """Wraps a discrete environment of `icm.envs.load` as a `gymnasium.Env`."""
+    """Wraps a discrete environment of `icm.envs.load` as a `gymnasium.Env` (see
+    `GymnasiumEnv`)."""
     return GymnasiumEnv(env, render_mode=render_mode)

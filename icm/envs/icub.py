@@ -15,6 +15,9 @@ from dm_control.rl import control
 from dm_control.suite import base
 from dm_env import specs
 
+from icm import _validate
+from icm.envs._common import check_time_limit
+
 ASSETS = pathlib.Path(__file__).resolve().parents[2] / "assets"
 """The folder of MJCF models and data (resolved from the package, not the working dir)."""
 
@@ -35,7 +38,7 @@ SUBSTEPS = 10
 
 def asset_path(name):
     """The path of a file in `assets/`, checked to exist."""
-    path = ASSETS / name
+    path = ASSETS / _validate.text("name", name)
     if not path.exists():
         raise FileNotFoundError(f"missing asset {path}")
     return path
@@ -43,7 +46,7 @@ def asset_path(name):
 
 def minimum_jerk(fraction):
     """The minimum-jerk profile 10 s^3 - 15 s^4 + 6 s^5, from 0 at s=0 to 1 at s=1."""
-    s = np.clip(fraction, 0.0, 1.0)
+    s = np.clip(_validate.finite_array("fraction", fraction), 0.0, 1.0)
     return s * s * s * (10.0 + s * (-15.0 + 6.0 * s))
 
 
@@ -55,7 +58,8 @@ class Arm:
     """
 
     def __init__(self, physics):
-        self.physics = physics
+        self.physics = _validate.instance("physics", physics, dm_mujoco.Physics,
+                                          "a dm_control Physics of an icm scene")
         model = physics.model
         self.model_ptr, self.data_ptr = model.ptr, physics.data.ptr
         joint_ids = [model.name2id(j, "joint") for j in ARM_JOINTS]
@@ -98,14 +102,20 @@ class Arm:
         Raises:
           RuntimeError: if the target is out of reach within the joint ranges.
         """
+        target = _validate.finite_array("target", target, shape=(3,))
+        posture = self.check_joints("posture", posture)
+        start = posture if start is None else self.check_joints("start", start)
+        tolerance = _validate.positive("tolerance", tolerance)
+        iterations = _validate.integer_at_least("iterations", iterations, 2)
+        if pointing is not None:
+            pointing = _validate.finite_array("pointing", pointing, shape=(3,))
+            if not np.linalg.norm(pointing) > 0:
+                raise ValueError(f"pointing must be a non-zero direction, got {pointing!r}")
+            pointing = pointing / np.linalg.norm(pointing)
         model, data = self.physics.model, self.physics.data
         saved_qpos = data.qpos.copy()
-        q = np.clip(np.array(posture if start is None else start, dtype=float),
-                    self.lower, self.upper)
+        q = np.clip(start, self.lower, self.upper)
         jac_pos, jac_rot = np.zeros((3, model.nv)), np.zeros((3, model.nv))
-        target = np.asarray(target, dtype=float)
-        if pointing is not None:
-            pointing = np.asarray(pointing, dtype=float) / np.linalg.norm(pointing)
         damping = 1e-4
         try:
             for iteration in range(iterations):
@@ -136,8 +146,13 @@ class Arm:
             data.qpos[:] = saved_qpos
             mujoco.mj_kinematics(model.ptr, data.ptr)
 
+    def check_joints(self, name, q):
+        """`q` as 7 finite joint angles (radians), else raises ValueError naming `name`."""
+        return _validate.finite_array(name, q, shape=(len(ARM_JOINTS),))
+
     def finger_direction(self, q):
         """The unit vector from the wrist towards the fingertip at joint angles `q`."""
+        q = self.check_joints("q", q)
         model, data = self.physics.model, self.physics.data
         saved_qpos = data.qpos.copy()
         data.qpos[self.qpos_index] = q
@@ -150,6 +165,7 @@ class Arm:
     def place(self, q):
         """Puts the arm at rest at joint angles `q` with its actuators holding them (for
         the initial state of an episode only; motions go through `move`)."""
+        q = self.check_joints("q", q)
         data = self.physics.data
         data.qpos[self.qpos_index] = q
         data.qvel[self.dof_index] = 0.0
@@ -170,10 +186,12 @@ class Arm:
         Returns:
           True if `monitor` stopped the motion, else False.
         """
+        goal = np.clip(self.check_joints("q_target", q_target), self.lower, self.upper)
+        duration = _validate.positive("duration", duration)
+        _validate.function("monitor", monitor)
         data = self.physics.data
         ctrl, index = data.ctrl, self.actuator_index
         start = ctrl[index].copy()
-        goal = np.clip(q_target, self.lower, self.upper)
         dt = self.physics.model.opt.timestep * SUBSTEPS
         n_updates = max(1, int(round(duration / dt)))
         profile = minimum_jerk(np.arange(1, n_updates + 1) / n_updates)
@@ -219,7 +237,8 @@ class ArmTask(base.Task):
     tracked by the arm's position actuators."""
 
     def before_step(self, action, physics):
-        physics.named.data.ctrl[list(ARM_JOINTS)] = action
+        lower, upper = physics.named.model.actuator_ctrlrange[list(ARM_JOINTS)].T
+        physics.named.data.ctrl[list(ARM_JOINTS)] = check_arm_action(action, lower, upper)
 
     def action_spec(self, physics):
         lower, upper = physics.named.model.actuator_ctrlrange[list(ARM_JOINTS)].T
@@ -233,8 +252,32 @@ class ArmTask(base.Task):
                 "fingertip": specs.Array((3,), np.float64, name="fingertip")}
 
 
+ACTION_TOLERANCE = 1e-6
+"""How far (radians) an arm action may stray outside the action spec and still be
+accepted (and clipped): rounding, not a different command."""
+
+
+def check_arm_action(action, lower, upper):
+    """The 7 joint targets of a continuous action, checked and clipped to [lower, upper].
+
+    Raises:
+      ValueError: for an action that is not 7 finite numbers, or a target outside its
+        joint's range (by more than `ACTION_TOLERANCE`), naming the joint.
+    """
+    targets = _validate.finite_array("action", action, shape=(len(ARM_JOINTS),))
+    outside = (targets < lower - ACTION_TOLERANCE) | (targets > upper + ACTION_TOLERANCE)
+    if outside.any():
+        j = int(np.flatnonzero(outside)[0])
+        raise ValueError(f"action[{j}], the {ARM_JOINTS[j]} target, must be within the "
+                         f"action spec [{lower[j]:.4f}, {upper[j]:.4f}] rad, got "
+                         f"{targets[j]!r}")
+    return np.clip(targets, lower, upper)
+
+
 def continuous_environment(physics, task, time_limit):
     """A dm_control `control.Environment` for an arm task: one action every
-    `CONTROL_TIMESTEP` seconds, episodes of `time_limit` seconds."""
+    `CONTROL_TIMESTEP` seconds, episodes of `time_limit` seconds (> 0; infinity for
+    no limit)."""
+    time_limit = check_time_limit(time_limit)
     return control.Environment(physics, task, time_limit=time_limit,
                                control_timestep=CONTROL_TIMESTEP)

@@ -26,7 +26,7 @@ from dm_env import specs
 
 from icm import _validate
 from icm.envs import icub
-from icm.envs._common import check_discrete_action, random_state
+from icm.envs._common import check_discrete_action, check_seed, dm_control_random
 
 N_COLUMNS, N_ROWS = 5, 3
 """Grid size: columns 0-4 from the robot's left to its right, rows 0-2 from the robot
@@ -52,12 +52,13 @@ Where the cells are is read from the model: the marker geoms cell_<column>_<row>
 
 def check_cell(name, cell):
     """Returns `cell` as a (column, row) tuple of ints if it is on the grid."""
-    try:
-        column, row = (int(v) for v in cell)
-        if (column, row) != tuple(cell):
-            raise ValueError
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a (column, row) pair of integers, got {cell!r}")
+    allowed = "a (column, row) pair of integers"
+    if isinstance(cell, (str, bytes)) or not hasattr(cell, "__len__") or \
+            np.ndim(cell) != 1 or len(cell) != 2 or \
+            not all(_validate.is_integer(v) for v in cell):
+        raise _validate.ArgumentTypeError(f"{name} must be {allowed}, got "
+                                          f"{_validate.show(cell)}")
+    column, row = (int(v) for v in cell)
     if not (0 <= column < N_COLUMNS and 0 <= row < N_ROWS):
         raise ValueError(f"{name} must be on the {N_COLUMNS} x {N_ROWS} grid (column 0-4, "
                          f"row 0-2), got {cell!r}")
@@ -66,7 +67,8 @@ def check_cell(name, cell):
 
 def next_cell(cell, action):
     """The cell the hand ends in after `action` from `cell` (off the grid: stays)."""
-    dc, dr = _MOVES[action]
+    cell = check_cell("cell", cell)
+    dc, dr = _MOVES[check_discrete_action(action, len(ACTIONS))]
     column, row = cell[0] + dc, cell[1] + dr
     if 0 <= column < N_COLUMNS and 0 <= row < N_ROWS:
         return column, row
@@ -200,8 +202,8 @@ class RodTable(RodEpisodes):
       start_cell: (column, row) where each episode starts; must be a standable cell of
         the map. Default (0, 0), the cell nearest the robot on its left.
       max_moves: moves before an episode without a topple ends (>= 1, default 30).
-      seed: accepted for symmetry with the other environments (the rules use no
-        randomness).
+      seed: None, an integer >= 0 or a `numpy.random.Generator`; accepted for
+        symmetry with the other environments (the rules use no randomness).
 
     Raises:
       ValueError: for a start cell off the grid or where a rod stands, max_moves < 1,
@@ -211,13 +213,13 @@ class RodTable(RodEpisodes):
     def __init__(self, start_cell=DEFAULT_START_CELL, max_moves=DEFAULT_MAX_MOVES, seed=None):
         super().__init__(start_cell, max_moves)
         self._map = load_topple_map()
-        random_state(seed)  # validates it
+        self._random = check_seed(seed)
         self._cell = self.start_cell
 
     def reseed(self, seed):
         """Checks `seed` (the rules use no randomness); the next step starts a new
         episode."""
-        random_state(seed)
+        self._random = check_seed(seed)
         self._reset_next_step = True
 
     @property
@@ -254,6 +256,7 @@ class RodsPhysics(icub.ArmPhysics):
 
     def rod_tilt(self, name):
         """How far rod `name` ("red" or "blue") leans from upright, in radians."""
+        name = _validate.one_of("name", name, ROD_NAMES)
         return float(np.arccos(np.clip(self.named.data.xmat[f"{name}_rod"][8], -1.0, 1.0)))
 
     def rod_tilts(self):
@@ -271,6 +274,7 @@ class RodsPhysics(icub.ArmPhysics):
 
     def cell_centre(self, cell):
         """World position (metres) of the centre of grid cell (column, row), on the table."""
+        cell = check_cell("cell", cell)
         return self.named.data.geom_xpos[f"cell_{cell[0]}_{cell[1]}"].copy()
 
     def hand_cell(self):
@@ -330,14 +334,16 @@ class RodsTask(icub.ArmTask):
     when a rod tilts past 45 degrees. Reward 0.0: the paper's learner pays itself.
 
     Args:
-      start_cell: (column, row) where the hand starts (default (0, 0)).
-      random: None, an int seed or a `RandomState` (unused by the rules, kept for
-        dm_control's conventions).
+      start_cell: (column, row) where the hand starts (default (0, 0)); a cell where
+        the hand can rest with both rods standing.
+      random: None, an integer >= 0 or a `numpy.random.Generator` (unused by the
+        rules, kept for dm_control's conventions).
     """
 
     def __init__(self, start_cell=DEFAULT_START_CELL, random=None):
-        super().__init__(random=random_state(random))
-        self.start_cell = check_cell("start_cell", start_cell)
+        self.generator = check_seed(random, "random")
+        super().__init__(random=dm_control_random(self.generator))
+        self.start_cell = check_start_cell(start_cell, _standable_cells())
         self._motions = None
 
     def motions(self, physics):
@@ -380,8 +386,8 @@ def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
     """The continuous rod task: a dm_control `control.Environment`.
 
     Args:
-      seed: None, an int or a `RandomState`.
-      time_limit: seconds per episode.
+      seed: None, an integer >= 0 or a `numpy.random.Generator`.
+      time_limit: seconds per episode (> 0; float('inf') for no limit).
       **task_kwargs: `RodsTask` arguments (start_cell).
     """
     return icub.continuous_environment(load_physics(), RodsTask(random=seed, **task_kwargs),
@@ -402,7 +408,8 @@ class PhysicsRodTable(RodEpisodes):
     Args:
       start_cell: (column, row) where each episode starts (default (0, 0)).
       max_moves: moves before an episode without a topple ends (>= 1, default 30).
-      seed: None, an int or a `RandomState` (the rules use no randomness).
+      seed: None, an integer >= 0 or a `numpy.random.Generator` (the rules use no
+        randomness).
 
     Attributes:
       physics: the `RodsPhysics`, to inspect or render.
@@ -426,7 +433,7 @@ class PhysicsRodTable(RodEpisodes):
     def reseed(self, seed):
         """Restarts the task's random generator from `seed` (the rules use none); the
         next step starts a new episode."""
-        self.task._random = random_state(seed)
+        self.task.generator = check_seed(seed)
         self._reset_next_step = True
 
     def _start(self):
@@ -447,7 +454,12 @@ class PhysicsRodTable(RodEpisodes):
           action: 0 forward, 1 backward, 2 left, 3 right.
           recorder: optional function of the physics, called after every update of the
             actuators' targets (every 20 ms of simulated time).
+
+        Raises:
+          ValueError: if `action` is not 0-3 or `recorder` not a function.
         """
+        action = check_discrete_action(action, len(ACTIONS))
+        _validate.function("recorder", recorder)
         physics, target = self.physics, next_cell(self._cell, action)
 
         def record():
@@ -471,6 +483,7 @@ class PhysicsRodTable(RodEpisodes):
 
 def arm_touches_a_rod(physics):
     """True if any part of the arm is in contact with a rod."""
+    _validate.instance("physics", physics, RodsPhysics)
     rods = {physics.model.name2id(name, "geom") for name in _RODS}
     robot = {physics.model.name2id(name, "body")
              for name in ("r_upper_arm", "r_forearm", "r_hand")}
@@ -489,6 +502,9 @@ def measure_pair(env, cell, action):
       "disturbance" (the largest displacement, in metres, of a rod that did not topple:
       a nudge that would make later moves depend on history).
     """
+    _validate.instance("env", env, PhysicsRodTable)
+    cell = check_cell("cell", cell)
+    action = check_discrete_action(action, len(ACTIONS))
     env.start_cell = cell  # any cell: the map is what is being measured
     env.reset()
     before = env.physics.rod_positions()
@@ -514,6 +530,11 @@ def measure_topple_map(cells=None):
       {"standable": sorted list of cells, "pairs": [{"cell", "action", "topples",
       "hand", "disturbance"}, ...]}.
     """
+    if cells is not None:
+        if isinstance(cells, (str, bytes)) or not hasattr(cells, "__iter__"):
+            raise _validate.ArgumentTypeError(
+                f"cells must be None or a list of (column, row) cells, got {cells!r}")
+        cells = [check_cell("cells[i]", cell) for cell in cells]
     env = PhysicsRodTable(max_moves=1)
     standable = []
     for row in range(N_ROWS):

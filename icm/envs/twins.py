@@ -11,10 +11,11 @@ def compare_twins(name, n_steps=200, seed=0, action_seed=0, twin_seed=None, **kw
     Args:
       name: "buttons" or "rods".
       n_steps: number of steps (actions) to play (>= 1).
-      seed: the seed of both environments.
-      action_seed: the seed of the random actions.
-      twin_seed: a different seed for the tabular twin only (to see the comparison
-        fail); default `seed`.
+      seed: the seed of both environments (an integer >= 0).
+      action_seed: the seed of the random actions (None, an integer >= 0 or a
+        Generator).
+      twin_seed: a different seed (integer >= 0) for the tabular twin only (to see
+        the comparison fail); default `seed`.
       **kwargs: environment arguments, given to both.
 
     Returns:
@@ -25,11 +26,14 @@ def compare_twins(name, n_steps=200, seed=0, action_seed=0, twin_seed=None, **kw
     from icm import envs  # here: envs imports this module's package
 
     _validate.integer_at_least("n_steps", n_steps, 1)
+    _validate.integer("seed", seed, 0, _validate.MAX_SEED)
+    if twin_seed is not None:
+        _validate.integer("twin_seed", twin_seed, 0, _validate.MAX_SEED)
+    action_random = _validate.generator("action_seed", action_seed)
     physics_env = envs.load(name, physics=True, seed=seed, **kwargs)
     tabular_env = envs.load(name, physics=False,
                             seed=seed if twin_seed is None else twin_seed, **kwargs)
-    actions = np.random.RandomState(action_seed).randint(
-        physics_env.action_spec().num_values, size=n_steps)
+    actions = action_random.integers(physics_env.action_spec().num_values, size=n_steps)
     physics_env.reset(), tabular_env.reset()
     counts = {"steps": 0, "mismatches": 0, "episodes": 1, "terminations": 0}
     for action in actions:

@@ -2,11 +2,24 @@
 
 import numpy as np
 
+from icm import _validate
 
-def run_seeds(seed, n_runs, streams):
-    """Integer seeds [run, stream] from one root seed (numpy SeedSequence.spawn).
 
-    Run i gets the same seeds whatever n_runs is, so 20 seeds are the first 20 of 100.
+def run_seeds(seed, n_runs, streams, first=0):
+    """Integer seeds [run, stream] for runs first..first+n_runs-1 of a root seed.
+
+    Run i's seeds are those of child i of `numpy.random.SeedSequence(seed)` (as
+    `SeedSequence.spawn` numbers them), so they depend only on the root seed and i:
+    20 seeds are the first 20 of 100, and run 7 alone (first=7, n_runs=1) is run 7 of
+    any larger batch.
     """
-    children = np.random.SeedSequence(seed).spawn(n_runs)
+    children = [np.random.SeedSequence(seed, spawn_key=(i,)) for i in range(first, first + n_runs)]
     return [[int(s) for s in child.generate_state(streams)] for child in children]
+
+
+def check_run_size(function, n_seeds, steps, bytes_per_seed_step, bytes_per_seed=0):
+    """Raises ValueError if a run of `function` with `n_seeds` seeds of `steps` trials
+    or episodes would need more memory than the machine has (see
+    `icm._validate.fits_in_memory`)."""
+    needed = n_seeds * (steps * bytes_per_seed_step + bytes_per_seed)
+    _validate.fits_in_memory(f"{function} with {n_seeds} seeds of {steps} steps", needed)

@@ -8,7 +8,8 @@ import numpy as np
 from icm import _validate
 from icm.envs import buttons
 from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import run_seeds
+from icm.experiments._seeding import check_run_size, run_seeds
+from icm.experiments.goal_oriented import check_results
 from icm.learners import actor_critic, predictors
 from icm.stats import comes_first, first_from_which
 
@@ -161,20 +162,26 @@ class ActorCriticResult:
 
 def _check_run_arguments(n_seeds, n_trials, temperature, lr_actor, lr_critic, gamma,
                          reward, variant, rewarded_box, action_weight, presses_per_trial,
-                         red_button, seed):
-    _validate.integer_at_least("n_seeds", n_seeds, 1)
-    _validate.integer_at_least("n_trials", n_trials, 1)
-    _validate.positive("temperature", temperature)
-    _validate.learning_rate("lr_actor", lr_actor)
-    _validate.learning_rate("lr_critic", lr_critic)
-    _validate.in_closed_interval("gamma", gamma, 0.0, 1.0)
-    _validate.one_of("reward", reward, actor_critic.REWARDS)
-    _validate.one_of("variant", variant, tuple(actor_critic.VARIANTS))
-    _validate.one_of("rewarded_box", rewarded_box, buttons.BOX_NAMES)
-    _validate.positive("action_weight", action_weight)
-    _validate.integer_at_least("presses_per_trial", presses_per_trial, 1)
-    buttons.check_red_button(red_button)
-    _validate.integer_at_least("seed", seed, 0)
+                         red_button, seed, progress):
+    """The arguments of `run_actor_critic`, checked and normalised, as a dict."""
+    checked = dict(
+        n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
+        n_trials=_validate.integer_at_least("n_trials", n_trials, 1),
+        temperature=_validate.positive("temperature", temperature),
+        lr_actor=_validate.learning_rate("lr_actor", lr_actor),
+        lr_critic=_validate.learning_rate("lr_critic", lr_critic),
+        gamma=_validate.in_closed_interval("gamma", gamma, 0.0, 1.0),
+        reward=_validate.one_of("reward", reward, actor_critic.REWARDS),
+        variant=_validate.one_of("variant", variant, tuple(actor_critic.VARIANTS)),
+        rewarded_box=_validate.one_of("rewarded_box", rewarded_box, buttons.BOX_NAMES),
+        action_weight=_validate.positive("action_weight", action_weight),
+        presses_per_trial=_validate.integer_at_least("presses_per_trial",
+                                                     presses_per_trial, 1),
+        red_button=buttons.check_red_button(red_button),
+        seed=_validate.root_seed("seed", seed))
+    _validate.boolean("progress", progress)
+    check_run_size("run_actor_critic", checked["n_seeds"], checked["n_trials"], 64)
+    return checked
 
 
 def run_actor_critic(n_seeds=100, n_trials=100,
@@ -213,22 +220,22 @@ def run_actor_critic(n_seeds=100, n_trials=100,
       action_weight: the predictor's cost of a different button (> 0).
       presses_per_trial: presses per trial (>= 1).
       red_button: the button that is always red (0-4).
-      seed: root seed (int >= 0); run i's seeds depend only on it and i.
+      seed: the root seed: an integer >= 0, a `numpy.random.Generator` (one integer
+        is drawn from it) or None (fresh entropy); run i's seeds depend only on it
+        and i. The integer used is kept in `settings["seed"]`.
       progress: show a progress bar over the seeds when the run lasts over a second.
 
     Returns:
       An `ActorCriticResult`.
 
     Raises:
-      ValueError: for any argument outside its allowed range.
+      ValueError: for any argument outside its allowed range, or a run too large for
+        this machine's memory.
     """
-    _check_run_arguments(n_seeds, n_trials, temperature, lr_actor, lr_critic, gamma,
-                         reward, variant, rewarded_box, action_weight, presses_per_trial,
-                         red_button, seed)
-    settings = dict(n_seeds=n_seeds, n_trials=n_trials, temperature=temperature,
-                    lr_actor=lr_actor, lr_critic=lr_critic, gamma=gamma, reward=reward,
-                    variant=variant, rewarded_box=rewarded_box, action_weight=action_weight,
-                    presses_per_trial=presses_per_trial, red_button=red_button, seed=seed)
+    settings = _check_run_arguments(n_seeds, n_trials, temperature, lr_actor, lr_critic,
+                                    gamma, reward, variant, rewarded_box, action_weight,
+                                    presses_per_trial, red_button, seed, progress)
+    seed = settings["seed"]
     shape = (n_seeds, n_trials, len(TASKS))
     error_out = np.zeros(shape)
     practice = np.zeros(shape, dtype=np.int64)
@@ -290,6 +297,7 @@ def comparison_table(results):
       A Markdown string (display it with `IPython.display.Markdown`); the trials
       marked † are means over the seeds whose error does reach 0.
     """
+    check_results("results", results, ActorCriticResult)
     header = ("| run | seeds | red error 0 from trial (mean†) | green error 0 from trial "
               "(mean†) | green learned | red first | green below red at some trial "
               f"| presses opening red / green, last {LATE_TRIALS} trials | largest abs(V) |")

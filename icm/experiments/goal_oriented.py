@@ -7,7 +7,7 @@ import numpy as np
 from icm import _validate
 from icm.envs import buttons
 from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import run_seeds
+from icm.experiments._seeding import check_run_size, run_seeds
 from icm.learners import goal_oriented, interest, predictors
 from icm.stats import comes_first, first_below, first_from_which
 
@@ -61,18 +61,23 @@ class GoalOrientedResult:
         return self.interest.mean(axis=0)
 
     def peak_trial(self, task):
-        """The trial (from 1) at which the mean interest in `task` is highest."""
+        """The trial (from 1) at which the mean interest in `task` ("red" or "green")
+        is highest."""
+        task = _validate.one_of("task", task, TASKS)
         return int(np.argmax(self.mean_interest()[:, TASKS.index(task)])) + 1
 
     def fade_trial(self, task, fraction=0.1):
         """The first trial after its peak at which the mean interest in `task` falls
-        below `fraction` of that peak; -1 if it never does."""
+        below `fraction` (in (0, 1]) of that peak; -1 if it never does."""
+        task = _validate.one_of("task", task, TASKS)
+        fraction = _validate.real("fraction", fraction, 0.0, 1.0, low_open=True)
         index = first_below(self.mean_interest()[:, TASKS.index(task)], fraction)
         return index + 1 if index >= 0 else -1
 
     def interest_centre(self, task):
         """The interest-weighted mean trial of `task`: when, on average, the interest in
         it is spent (a robust "when", unlike the peak of a flat curve)."""
+        task = _validate.one_of("task", task, TASKS)
         curve = self.mean_interest()[:, TASKS.index(task)]
         if curve.sum() == 0:
             return float("nan")
@@ -121,17 +126,26 @@ class GoalOrientedResult:
 
 
 def _check_run_arguments(n_seeds, n_trials, epsilon, window, new_task_factor, reading,
-                         action_weight, presses_per_trial, red_button, seed):
-    _validate.integer_at_least("n_seeds", n_seeds, 1)
-    _validate.integer_at_least("n_trials", n_trials, 1)
-    _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
-    _validate.integer_at_least("window", window, 2)
-    _validate.in_closed_interval("new_task_factor", new_task_factor, 0.0, 1.0)
-    _validate.one_of("reading", reading, interest.READINGS)
-    _validate.positive("action_weight", action_weight)
-    _validate.integer_at_least("presses_per_trial", presses_per_trial, 1)
-    buttons.check_red_button(red_button)
-    _validate.integer_at_least("seed", seed, 0)
+                         action_weight, presses_per_trial, red_button, physics, seed,
+                         progress):
+    """The arguments of `run_goal_oriented`, checked and normalised, as a dict."""
+    checked = dict(
+        n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
+        n_trials=_validate.integer_at_least("n_trials", n_trials, 1),
+        epsilon=_validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0),
+        window=_validate.integer_at_least("window", window, 2),
+        new_task_factor=_validate.in_closed_interval("new_task_factor", new_task_factor,
+                                                     0.0, 1.0),
+        reading=_validate.one_of("reading", reading, interest.READINGS),
+        action_weight=_validate.positive("action_weight", action_weight),
+        presses_per_trial=_validate.integer_at_least("presses_per_trial",
+                                                     presses_per_trial, 1),
+        red_button=buttons.check_red_button(red_button),
+        physics=_validate.boolean("physics", physics),
+        seed=_validate.root_seed("seed", seed))
+    _validate.boolean("progress", progress)
+    check_run_size("run_goal_oriented", checked["n_seeds"], checked["n_trials"], 48)
+    return checked
 
 
 def run_goal_oriented(n_seeds=100, n_trials=100,
@@ -166,23 +180,22 @@ def run_goal_oriented(n_seeds=100, n_trials=100,
       physics: False for the tabular console (default), True for the simulated iCub
         (about 11 ms of computing per press). The same seeds give the same layouts
         and, the physics agreeing with its twin, the same results.
-      seed: root seed (int >= 0); run i's seeds depend only on it and i.
+      seed: the root seed: an integer >= 0, a `numpy.random.Generator` (one integer
+        is drawn from it) or None (fresh entropy); run i's seeds depend only on it
+        and i. The integer used is kept in `settings["seed"]`.
       progress: show a progress bar over the seeds when the run lasts over a second.
 
     Returns:
       A `GoalOrientedResult`.
 
     Raises:
-      ValueError: for any argument outside its allowed range.
+      ValueError: for any argument outside its allowed range, or a run too large for
+        this machine's memory.
     """
-    _check_run_arguments(n_seeds, n_trials, epsilon, window, new_task_factor, reading,
-                         action_weight, presses_per_trial, red_button, seed)
-    if not isinstance(physics, bool):
-        raise ValueError(f"physics must be True or False, got {physics!r}")
-    settings = dict(n_seeds=n_seeds, n_trials=n_trials, epsilon=epsilon, window=window,
-                    new_task_factor=new_task_factor, reading=reading,
-                    action_weight=action_weight, presses_per_trial=presses_per_trial,
-                    red_button=red_button, physics=physics, seed=seed)
+    settings = _check_run_arguments(n_seeds, n_trials, epsilon, window, new_task_factor,
+                                    reading, action_weight, presses_per_trial, red_button,
+                                    physics, seed, progress)
+    seed = settings["seed"]
     console = buttons.PhysicsButtonConsole if physics else buttons.ButtonConsole
     shape = (n_seeds, n_trials, len(TASKS))
     interest_out = np.zeros(shape)
@@ -225,6 +238,18 @@ def run_goal_oriented(n_seeds=100, n_trials=100,
     return GoalOrientedResult(settings, interest_out, error_out, mastery, practice)
 
 
+def check_results(name, results, cls):
+    """Returns `results` if it is a non-empty dict {label: `cls` instance}, else raises
+    (an ArgumentTypeError naming the label of a wrong entry)."""
+    if not isinstance(results, dict) or not results:
+        raise _validate.ArgumentTypeError(
+            f"{name} must be a non-empty dict {{label: {cls.__name__}}}, got "
+            f"{_validate.show(results)}")
+    for label, result in results.items():
+        _validate.instance(f"{name}[{label!r}]", result, cls)
+    return results
+
+
 def comparison_table(results):
     """A Markdown table of the numbers that tell runs apart, one row per run.
 
@@ -234,6 +259,7 @@ def comparison_table(results):
     Returns:
       A Markdown string (display it with `IPython.display.Markdown`).
     """
+    check_results("results", results, GoalOrientedResult)
     header = ("| run | seeds | red mastered (mean trial) | green mastered (mean trial) "
               "| red first | peak interest red / green | centre of interest, trial red / green "
               "| interest < 10% of peak, trial red / green "

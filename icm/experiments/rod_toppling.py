@@ -8,7 +8,7 @@ import numpy as np
 from icm import _validate, envs
 from icm.envs import rods
 from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import run_seeds
+from icm.experiments._seeding import check_run_size, run_seeds
 from icm.learners import predictors, q_learning
 from icm.stats import comes_first, first_from_which
 
@@ -46,7 +46,8 @@ _CELLS = [(column, row) for row in range(rods.N_ROWS) for column in range(rods.N
 
 def cell_state(cell):
     """The Q-learner's state number of a (column, row) cell: column + 5 * row."""
-    return int(cell[0]) + rods.N_COLUMNS * int(cell[1])
+    column, row = rods.check_cell("cell", cell)
+    return column + rods.N_COLUMNS * row
 
 
 def true_outcomes():
@@ -126,7 +127,7 @@ class RodTopplingResult:
     def snapshot(self, seed, name):
         """One snapshot of one run, as a dict with keys episode, q_table, predictions,
         confidence (None if that moment never came in that run)."""
-        _validate.integer_in_range("seed", seed, 0, self.n_seeds - 1)
+        seed = _validate.integer_in_range("seed", seed, 0, self.n_seeds - 1)
         k = self.snapshot_names.index(_validate.one_of("name", name, self.snapshot_names))
         episode = int(self.snapshot_episode[seed, k])
         if episode < 1:
@@ -144,6 +145,10 @@ class RodTopplingResult:
         """The share of episodes (in `episodes`, a slice of the episode axis) that
         ended with `rod` toppled, over all seeds."""
         index = RODS.index(_validate.one_of("rod", rod, RODS))
+        _validate.instance("episodes", episodes, slice, "a slice of episodes, e.g. slice(0, 10)")
+        if not np.any(np.ones(self.n_episodes, dtype=bool)[episodes]):
+            raise ValueError(f"episodes must select at least one of the {self.n_episodes} "
+                             f"episodes, got {episodes!r}")
         return float(np.mean(self.toppled[:, episodes] == index))
 
     def rod_errors(self, reading="all"):
@@ -216,27 +221,38 @@ def _median_of_found(episodes):
 
 
 def _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma, predictor_lr,
-                         initial_q, physics, start_cell, max_moves, snapshot_episodes, seed):
-    _validate.integer_at_least("n_seeds", n_seeds, 1)
-    _validate.integer_at_least("n_episodes", n_episodes, 1)
-    _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
-    _validate.learning_rate("alpha", alpha)
-    _validate.in_closed_interval("gamma", gamma, 0.0, 1.0)
-    _validate.learning_rate("predictor_lr", predictor_lr)
-    _validate.non_negative("initial_q", initial_q)
-    if not isinstance(physics, bool):
-        raise ValueError(f"physics must be True or False, got {physics!r}")
-    rods.check_start_cell(start_cell, rods.load_topple_map()["standable"])
-    _validate.integer_at_least("max_moves", max_moves, 1)
-    try:
-        episodes = tuple(snapshot_episodes)
-    except TypeError:
-        raise ValueError(f"snapshot_episodes must be a sequence of episode numbers, "
-                         f"got {snapshot_episodes!r}") from None
-    for episode in episodes:
-        _validate.integer_in_range("snapshot_episodes", episode, 1, n_episodes)
-    _validate.integer_at_least("seed", seed, 0)
-    return episodes
+                         initial_q, physics, start_cell, max_moves, snapshot_episodes, seed,
+                         first_run, progress):
+    """The arguments of `run_rod_toppling`, checked and normalised, as a dict."""
+    n_episodes = _validate.integer_at_least("n_episodes", n_episodes, 1)
+    if isinstance(snapshot_episodes, (str, bytes)) or \
+            not hasattr(snapshot_episodes, "__iter__"):
+        raise _validate.ArgumentTypeError(
+            f"snapshot_episodes must be a sequence of episode numbers, got "
+            f"{_validate.show(snapshot_episodes)}")
+    episodes = tuple(_validate.integer_in_range("snapshot_episodes[i]", e, 1, n_episodes)
+                     for e in snapshot_episodes)
+    checked = dict(
+        n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
+        n_episodes=n_episodes,
+        epsilon=_validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0),
+        alpha=_validate.learning_rate("alpha", alpha),
+        gamma=_validate.in_closed_interval("gamma", gamma, 0.0, 1.0),
+        predictor_lr=_validate.learning_rate("predictor_lr", predictor_lr),
+        initial_q=_validate.non_negative("initial_q", initial_q),
+        physics=_validate.boolean("physics", physics),
+        start_cell=rods.check_start_cell(start_cell, rods.load_topple_map()["standable"]),
+        max_moves=_validate.integer_at_least("max_moves", max_moves, 1),
+        snapshot_episodes=episodes,
+        seed=_validate.root_seed("seed", seed),
+        first_run=_validate.integer("first_run", first_run, 0, _validate.MAX_SEED))
+    _validate.boolean("progress", progress)
+    n_moments = len(MOMENTS) + len(episodes)
+    per_seed = n_moments * (N_STATES * N_ACTIONS * (1 + len(RODS)) + N_STATES) * 8
+    history = n_episodes * N_STATES * (N_ACTIONS * (1 + len(RODS)) + 1) * 8  # one run's
+    check_run_size("run_rod_toppling", checked["n_seeds"], n_episodes, 64,
+                   per_seed + history / checked["n_seeds"])
+    return checked
 
 
 def run_rod_toppling(n_seeds=100, n_episodes=300,
@@ -250,6 +266,7 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
                      max_moves=rods.DEFAULT_MAX_MOVES,
                      snapshot_episodes=(),
                      seed=0,
+                     first_run=0,
                      progress=True):
     """Runs the curious Q-learner on the rods, once per seed.
 
@@ -274,22 +291,26 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
       max_moves: moves after which an episode without a topple ends (>= 1).
       snapshot_episodes: episodes (1..n_episodes) after which to keep a snapshot, in
         addition to the `MOMENTS`.
-      seed: root seed (int >= 0); run i's seeds depend only on it and i.
+      seed: the root seed: an integer >= 0, a `numpy.random.Generator` (one integer
+        is drawn from it) or None (fresh entropy); run i's seeds depend only on it
+        and i. The integer used is kept in `settings["seed"]`.
+      first_run: the number of the first run (>= 0): the result holds runs
+        first_run..first_run+n_seeds-1 of the root seed, so that one run of a large
+        batch can be rerun alone (`n_seeds=1, first_run=i`).
       progress: show a progress bar over the seeds when the run lasts over a second.
 
     Returns:
       A `RodTopplingResult`.
 
     Raises:
-      ValueError: for any argument outside its allowed range.
+      ValueError: for any argument outside its allowed range, or a run too large for
+        this machine's memory.
     """
-    extra = _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma, predictor_lr,
-                                 initial_q, physics, start_cell, max_moves,
-                                 snapshot_episodes, seed)
-    settings = dict(n_seeds=n_seeds, n_episodes=n_episodes, epsilon=epsilon, alpha=alpha,
-                    gamma=gamma, predictor_lr=predictor_lr, initial_q=initial_q,
-                    physics=physics, start_cell=tuple(start_cell), max_moves=max_moves,
-                    snapshot_episodes=extra, seed=seed)
+    settings = _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma,
+                                    predictor_lr, initial_q, physics, start_cell, max_moves,
+                                    snapshot_episodes, seed, first_run, progress)
+    extra, seed, start_cell = (settings["snapshot_episodes"], settings["seed"],
+                               settings["start_cell"])
     names = MOMENTS + tuple(f"episode {e}" for e in extra)
     truth = true_outcomes()
     grid = (rods.N_COLUMNS, rods.N_ROWS)
@@ -309,7 +330,7 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
     p_out = np.full((n_seeds, len(names)) + grid + (N_ACTIONS, len(RODS)), np.nan)
     c_out = np.full((n_seeds, len(names)) + grid, np.nan)
 
-    seeds = progress_bar(enumerate(run_seeds(seed, n_seeds, 2)), n_seeds,
+    seeds = progress_bar(enumerate(run_seeds(seed, n_seeds, 2, first=first_run)), n_seeds,
                          "Q-learner on the rods", progress)
     for run, (env_seed, agent_seed) in seeds:
         env = envs.load("rods", physics=physics, seed=env_seed, start_cell=tuple(start_cell),

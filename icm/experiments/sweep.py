@@ -23,22 +23,43 @@ def _run_point(run_fn, n_seeds, seed, fixed, point):
 def grid_points(grid):
     """All combinations of a grid {name: [values]}, as a list of dicts (first name
     varies slowest)."""
+    if not isinstance(grid, dict):
+        raise _validate.ArgumentTypeError(f"grid must be a dict {{argument: [values]}}, got "
+                                          f"{_validate.show(grid)}")
     names = list(grid)
     return [dict(zip(names, values)) for values in itertools.product(*grid.values())]
 
 
+_RESERVED = ("n_seeds", "seed", "progress")
+
+
 def _check_grid(run_fn, grid, fixed):
+    """The grid with every list of values read once into a list (an iterator given as
+    values is consumed here, and its values kept)."""
+    if not callable(run_fn) or not hasattr(run_fn, "__name__"):
+        raise _validate.ArgumentTypeError(f"run_fn must be an experiment function such as "
+                                          f"icm.experiments.run_goal_oriented, got "
+                                          f"{_validate.show(run_fn)}")
     if not isinstance(grid, dict) or not grid:
-        raise ValueError(f"grid must be a non-empty dict {{argument: [values]}}, got {grid!r}")
+        raise _validate.ArgumentTypeError(
+            f"grid must be a non-empty dict {{argument: [values]}}, got {_validate.show(grid)}")
     parameters = inspect.signature(run_fn).parameters
+    allowed = [p for p in parameters if p not in _RESERVED]
+    checked = {}
     for name, values in {**grid, **{k: [v] for k, v in fixed.items()}}.items():
-        if name not in parameters or name in ("n_seeds", "seed", "progress"):
-            allowed = [p for p in parameters if p not in ("n_seeds", "seed", "progress")]
+        if name not in allowed:
             raise ValueError(f"{name!r} is not an argument a sweep can set for "
                              f"{run_fn.__name__}; allowed: {', '.join(allowed)}")
-        if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__") or \
-                len(list(values)) == 0:
-            raise ValueError(f"grid[{name!r}] must be a non-empty list of values, got {values!r}")
+        if isinstance(values, (str, bytes, dict)) or not hasattr(values, "__iter__"):
+            raise _validate.ArgumentTypeError(f"grid[{name!r}] must be a non-empty list of "
+                                              f"values, got {_validate.show(values)}")
+        values = list(values)
+        if not values:
+            raise ValueError(f"grid[{name!r}] must be a non-empty list of values, got an "
+                             f"empty one")
+        if name in grid:
+            checked[name] = values
+    return checked
 
 
 def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=None,
@@ -51,7 +72,7 @@ def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=N
         result must have `seed_summaries()`.
       grid: {argument name: [values]}, e.g. {"epsilon": [0.05, 0.1], "window": [3, 5]}.
       n_seeds: seeds per grid point (>= 1); every point uses the same seeds.
-      seed: root seed (>= 0).
+      seed: root seed (an integer >= 0, a Generator or None; see the run functions).
       n_jobs: parallel jobs for joblib (>= 1, or -1 for one per core).
       backend: "joblib" (processes on this machine) or "dask" (the cluster of a
         `dask.distributed.Client` you created; pass it as `client`, or it is found
@@ -70,11 +91,17 @@ def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=N
         refuses.
     """
     _validate.integer_at_least("n_seeds", n_seeds, 1)
-    _validate.integer_at_least("seed", seed, 0)
+    seed = _validate.root_seed("seed", seed)
     _validate.one_of("backend", backend, BACKENDS)
-    if n_jobs != -1:
-        _validate.integer_at_least("n_jobs", n_jobs, 1)
-    _check_grid(run_fn, grid, fixed)
+    _validate.boolean("progress", progress)
+    if not _validate.is_integer(n_jobs) or (int(n_jobs) < 1 and int(n_jobs) != -1):
+        allowed = "an integer >= 1, or -1 for one job per core"
+        if not _validate.is_integer(n_jobs):
+            raise _validate.ArgumentTypeError(f"n_jobs must be {allowed}, got {n_jobs!r}")
+        raise ValueError(f"n_jobs must be {allowed}, got {n_jobs!r}")
+    if client is not None and backend != "dask":
+        raise ValueError(f"client is used only with backend 'dask', got backend {backend!r}")
+    grid = _check_grid(run_fn, grid, fixed)
     points = grid_points(grid)
     job = functools.partial(_run_point, run_fn, n_seeds, seed, fixed)
     if backend == "joblib":
@@ -88,7 +115,13 @@ def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=N
     else:
         from dask import distributed
 
-        client = distributed.get_client() if client is None else client
+        if client is None:
+            try:
+                client = distributed.get_client()
+            except ValueError:
+                raise ValueError("backend 'dask' needs a dask.distributed.Client: create one "
+                                 "and pass it as client (none is running)") from None
+        _validate.instance("client", client, distributed.Client)
         futures = client.map(job, points, pure=False)
         rows = [row for future in progress_bar(futures, len(points), "sweep", progress,
                                                 unit="point")

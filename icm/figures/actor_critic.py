@@ -7,8 +7,12 @@ import textwrap
 import matplotlib.patches
 import numpy as np
 
+from icm import _validate
 from icm.experiments import actor_critic as _actor_critic
-from icm.figures._common import TASK_COLOURS, new_figure, plot_mean_band
+from icm.experiments.actor_critic import ActorCriticResult
+from icm.experiments.goal_oriented import check_results
+from icm.figures._common import (TASK_COLOURS, check_axes, check_result, check_title,
+                                 new_figure, plot_mean_band)
 from icm.learners.actor_critic import ActorCritic
 
 _AGENT_COLOUR = "#777777"
@@ -138,6 +142,13 @@ def figure4(methods=FIGURE4_METHODS):
     Returns:
       The `Figure`: the source in a monospaced font, comments in grey.
     """
+    if isinstance(methods, str) or not isinstance(methods, (tuple, list)) or not methods:
+        raise _validate.ArgumentTypeError(f"methods must be a non-empty tuple of ActorCritic "
+                                          f"method names, got {_validate.show(methods)}")
+    for name in methods:
+        if not isinstance(name, str) or not callable(getattr(ActorCritic, name, None)):
+            raise ValueError(f"methods must name methods of ActorCritic (e.g. "
+                             f"{', '.join(FIGURE4_METHODS)}), got {name!r}")
     blocks = [_method_source(name) for name in methods]
     lines = "\n\n".join(blocks).splitlines()
     fig, ax = new_figure(width=8.6, height=0.4 + 0.165 * len(lines))
@@ -170,6 +181,9 @@ def figure6(result, ax=None, title=None):
     Returns:
       The `Figure`.
     """
+    check_result("result", result, ActorCriticResult, "icm.experiments.run_actor_critic")
+    check_axes(ax)
+    check_title(title)
     if ax is None:
         fig, ax = new_figure()
     else:
@@ -202,6 +216,8 @@ def figure6_grid(results, ncols=2):
       results: a dict {panel title: ActorCriticResult}.
       ncols: panels per row.
     """
+    check_results("results", results, ActorCriticResult)
+    ncols = _validate.integer("ncols", ncols, 1, 10)
     nrows = -(-len(results) // ncols)
     fig, axes = new_figure(width=4.8 * ncols, height=3.5 * nrows, ncols=ncols, nrows=nrows,
                            sharex=True, sharey=True, squeeze=False)
@@ -228,6 +244,7 @@ def practice_figure(results):
     Args:
       results: a dict {panel title: ActorCriticResult}.
     """
+    check_results("results", results, ActorCriticResult)
     fig, axes = new_figure(width=4.2 * len(results), height=3.4, ncols=len(results),
                            sharey=True, squeeze=False)
     for ax, (title, result) in zip(axes.ravel(), results.items()):

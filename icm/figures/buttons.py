@@ -3,8 +3,12 @@
 import matplotlib.patches
 import numpy as np
 
+import dm_env
+import matplotlib.axes
+
+from icm import _validate
 from icm.envs import buttons
-from icm.figures._common import TASK_COLOURS, new_figure
+from icm.figures._common import TASK_COLOURS, check_title, new_figure
 
 
 LIGHT_COLOURS = {0: "#d9d9d9", 1: TASK_COLOURS["red"], 2: TASK_COLOURS["green"]}
@@ -20,6 +24,12 @@ def draw_console(ax, lights, boxes=(0, 0), pressed=None, title=None):
       pressed: index of the button being pressed, drawn with a hand marker.
       title: axes title.
     """
+    _validate.instance("ax", ax, matplotlib.axes.Axes, "a matplotlib Axes")
+    lights = buttons.check_lights(lights)
+    boxes = _validate.finite_array("boxes", boxes, shape=(len(buttons.BOX_NAMES),))
+    if pressed is not None:
+        pressed = _validate.integer("pressed", pressed, 0, buttons.N_BUTTONS - 1)
+    check_title(title)
     ax.set_xlim(-0.6, 4.6)
     ax.set_ylim(-0.9, 2.0)
     ax.set_aspect("equal")
@@ -54,6 +64,13 @@ def trial_figure(steps, actions):
       steps: the trial's dm_env time steps, from the FIRST one on.
       actions: the buttons pressed (one fewer than steps).
     """
+    if not isinstance(steps, (list, tuple)) or not steps or \
+            not all(isinstance(s, dm_env.TimeStep) for s in steps):
+        raise _validate.ArgumentTypeError(f"steps must be a non-empty list of dm_env time "
+                                          f"steps, got {_validate.show(steps)}")
+    if not isinstance(actions, (list, tuple, np.ndarray)) or len(actions) != len(steps) - 1:
+        raise ValueError(f"actions must list the {len(steps) - 1} buttons pressed between "
+                         f"the steps, got {_validate.show(actions)}")
     fig, axes = new_figure(width=2.3 * len(steps), height=1.9, ncols=len(steps))
     for i, (ax, step) in enumerate(zip(np.atleast_1d(axes), steps)):
         obs = step.observation
@@ -69,7 +86,8 @@ def trial_figure(steps, actions):
 def outcome_table_figure(red_button=None):
     """The rules as a table: for each of the 4 light layouts (rows) and each button
     pressed (columns), the box that opens. Red's column never changes; green's moves."""
-    red_button = buttons.DEFAULT_RED_BUTTON if red_button is None else red_button
+    red_button = buttons.DEFAULT_RED_BUTTON if red_button is None else \
+        buttons.check_red_button(red_button)
     layouts = buttons.layouts(red_button)
     fig, ax = new_figure(width=6.4, height=3.4)
     for row, lights in enumerate(layouts):

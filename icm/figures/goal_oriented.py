@@ -3,7 +3,11 @@
 import numpy as np
 
 from icm.experiments import goal_oriented as _goal_oriented
-from icm.figures._common import TASK_COLOURS, new_figure, plot_mean_band
+from icm.experiments.goal_oriented import GoalOrientedResult, check_results
+from icm.figures._common import (TASK_COLOURS, check_axes, check_result, check_title,
+                                 new_figure, plot_mean_band)
+
+_MADE_BY = "icm.experiments.run_goal_oriented"
 
 
 def figure5(result, ax=None, title=None):
@@ -17,6 +21,9 @@ def figure5(result, ax=None, title=None):
     Returns:
       The `Figure`.
     """
+    check_result("result", result, GoalOrientedResult, _MADE_BY)
+    check_axes(ax)
+    check_title(title)
     if ax is None:
         fig, ax = new_figure()
     else:
@@ -44,6 +51,7 @@ def figure5_for(**settings):
 def mastery_figure(result):
     """Two panels: the share of seeds that have mastered each task, and how often the
     agent opened each box per trial (mean, 95% band), against trial."""
+    check_result("result", result, GoalOrientedResult, _MADE_BY)
     fig, (left, right) = new_figure(width=9.6, height=3.6, ncols=2)
     trials = np.arange(1, result.n_trials + 1)
     for i, task in enumerate(_goal_oriented.TASKS):
@@ -69,6 +77,7 @@ def figure5_grid(results):
     Args:
       results: a dict {panel title: GoalOrientedResult}.
     """
+    check_results("results", results, GoalOrientedResult)
     fig, axes = new_figure(width=4.6 * len(results), height=3.6, ncols=len(results),
                             sharey=True)
     for ax, (title, result) in zip(np.atleast_1d(axes), results.items()):

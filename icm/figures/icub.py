@@ -6,14 +6,35 @@ import re
 import matplotlib.animation
 import matplotlib.patches
 import numpy as np
+
+from icm import _validate
 from icm.envs import buttons, rods
 from icm.figures._common import TASK_COLOURS, new_figure
 
 ROD_COLOURS = {"red": TASK_COLOURS["red"], "blue": "#1f5fcc"}
 
 
+def check_camera(physics, camera):
+    """Returns `camera` if it names a camera of the scene of `physics`, else raises
+    ValueError listing the scene's cameras."""
+    from dm_control import mujoco as dm_mujoco
+
+    _validate.instance("physics", physics, dm_mujoco.Physics, "a dm_control Physics")
+    names = tuple(physics.model.id2name(i, "camera") for i in range(physics.model.ncam))
+    return _validate.one_of("camera", camera, names)
+
+
+def check_image_size(height, width):
+    """(height, width) in pixels, each an integer in 16..the model's offscreen buffer
+    (960 x 1280)."""
+    return (_validate.integer("height", height, 16, 960),
+            _validate.integer("width", width, 16, 1280))
+
+
 def render(physics, camera, height=480, width=640):
     """An RGB image (height, width, 3) of `physics` seen from the named `camera`."""
+    camera = check_camera(physics, camera)
+    height, width = check_image_size(height, width)
     return physics.render(height, width, camera_id=camera)
 
 
@@ -25,6 +46,8 @@ def pressing_green(seed=0, camera="front", height=480, width=640):
     """
     env = buttons.PhysicsButtonConsole(seed=seed)
     env.reset()
+    check_camera(env.physics, camera)
+    check_image_size(height, width)
     green = env.green_button
     physics, task, motions = env.physics, env.task, env.motions
     watch = lambda: task.update(physics) or False
@@ -38,6 +61,9 @@ def toppling_rod(camera="front", height=480, width=640, start_cell=(2, 0), actio
     """Renders the iCub's hand toppling the red rod, caught while the rod falls."""
     env = rods.PhysicsRodTable(start_cell=start_cell)
     env.reset()
+    check_camera(env.physics, camera)
+    check_image_size(height, width)
+    action = _validate.integer("action", action, 0, len(rods.ACTIONS) - 1)
     frames = []
 
     def catch(physics):
@@ -64,6 +90,11 @@ def figure1(seed=0, camera="front"):
 
 def cameras_figure(physics, cameras, height=240, width=320):
     """The scene of `physics` from each of `cameras`, side by side."""
+    if isinstance(cameras, str) or not isinstance(cameras, (list, tuple)) or not cameras:
+        raise _validate.ArgumentTypeError(f"cameras must be a non-empty list of camera "
+                                          f"names, got {_validate.show(cameras)}")
+    for camera in cameras:
+        check_camera(physics, camera)
     fig, axes = new_figure(width=3.2 * len(cameras), height=2.7, ncols=len(cameras))
     for ax, camera in zip(np.atleast_1d(axes), cameras):
         ax.imshow(render(physics, camera, height, width))
@@ -87,9 +118,14 @@ def record_press(seed=0, button=None, camera=None, frame_every=2, height=240, wi
       "fingertip" (m), "frames" (list of images), and "button", "boxes" (the
       observation after the press), "lights".
     """
+    frame_every = _validate.integer("frame_every", frame_every, 1)
     env = buttons.PhysicsButtonConsole(seed=seed)
     env.reset()
-    button = env.green_button if button is None else button
+    if camera is not None:
+        check_camera(env.physics, camera)
+        check_image_size(height, width)
+    button = env.green_button if button is None else \
+        _validate.integer("button", button, 0, buttons.N_BUTTONS - 1)
     log = {"time": [], "depth": [], "other": [], "lids": [], "fingertip": [], "frames": []}
 
     def recorder(physics):
@@ -119,8 +155,12 @@ def record_move(start_cell=(2, 0), action=0, camera=None, frame_every=2, height=
                 width=320):
     """Runs one move of the hand on the rod table and records the rods' tilts (degrees)
     and, if `camera` is given, frames. Returns a dict like `record_press`."""
+    frame_every = _validate.integer("frame_every", frame_every, 1)
     env = rods.PhysicsRodTable(start_cell=start_cell)
     env.reset()
+    if camera is not None:
+        check_camera(env.physics, camera)
+        check_image_size(height, width)
     log = {"time": [], "tilts": [], "frames": [], "frame_index": []}
 
     def recorder(physics):
@@ -140,7 +180,12 @@ def record_move(start_cell=(2, 0), action=0, camera=None, frame_every=2, height=
 
 
 def press_trace_figure(record):
-    """The pressed button's depth and the lids' angles against time during one press."""
+    """The pressed button's depth and the lids' angles against time during one press
+    (`record`: as returned by `record_press`)."""
+    needed = ("time", "depth", "other", "lids", "button")
+    if not isinstance(record, dict) or not all(k in record for k in needed):
+        raise _validate.ArgumentTypeError(f"record must be the dict of record_press (with "
+                                          f"{', '.join(needed)}), got {_validate.show(record)}")
     fig, (top, bottom) = new_figure(width=7.5, height=4.6, nrows=2, sharex=True)
     top.plot(record["time"], record["depth"], color="black", linewidth=2,
              label=f"button {record['button']} (pressed)")
@@ -176,6 +221,16 @@ def animation(frames, captions=None, fps=12):
       `IPython.display.HTML(animation.to_jshtml())`, a player with play, pause and
       step buttons that needs no video codec and no network.
     """
+    if not isinstance(frames, (list, tuple)) or not frames or not all(
+            isinstance(f, np.ndarray) and f.ndim == 3 and f.shape == frames[0].shape
+            for f in frames):
+        raise _validate.ArgumentTypeError(f"frames must be a non-empty list of RGB images of "
+                                          f"one size, got {_validate.show(frames)}")
+    if captions is not None and (not isinstance(captions, (list, tuple))
+                                 or len(captions) != len(frames)):
+        raise ValueError(f"captions must be None or one caption per frame "
+                         f"({len(frames)}), got {_validate.show(captions)}")
+    fps = _validate.real("fps", fps, 0.0, 120.0, low_open=True)
     height, width = frames[0].shape[:2]
     fig, ax = new_figure(width=width / 80, height=height / 80 + 0.5)
     ax.axis("off")
@@ -200,6 +255,11 @@ def topple_map_figure(topple_map=None):
     Args:
       topple_map: as returned by `icm.envs.rods.load_topple_map()` (default: that).
     """
+    if topple_map is not None and (not isinstance(topple_map, dict)
+                                   or not {"standable", "topples"} <= set(topple_map)):
+        raise _validate.ArgumentTypeError(f"topple_map must be None or a map as "
+                                          f"icm.envs.rods.load_topple_map returns it, got "
+                                          f"{_validate.show(topple_map)}")
     topple_map = rods.load_topple_map() if topple_map is None else topple_map
     fig, ax = new_figure(width=6.4, height=4.4)
     physics = rods.load_physics()

@@ -13,7 +13,11 @@ import numpy as np
 from icm import _validate
 from icm.envs import rods
 from icm.experiments import rod_toppling as _rod_toppling
-from icm.figures._common import new_figure, plot_mean_band
+from icm.experiments.goal_oriented import check_results
+from icm.experiments.rod_toppling import RodTopplingResult
+from icm.figures._common import check_result, new_figure, plot_mean_band
+
+_MADE_BY = "icm.experiments.run_rod_toppling"
 from icm.figures.icub import ROD_COLOURS
 
 NONE_COLOUR = "#9a9a9a"
@@ -85,6 +89,7 @@ def draw_q_table(ax, q_table):
     Returns:
       The collection of triangles (a mappable for a colour bar).
     """
+    q_table = _check_grid_values("q_table", q_table, (len(rods.ACTIONS),))
     _grid_axes(ax)
     patches, values = [], []
     for (column, row), q in _standable_cells(q_table):
@@ -102,6 +107,22 @@ def draw_q_table(ax, q_table):
     collection.set_array(np.array(values))
     ax.add_collection(collection)
     return collection
+
+
+def _check_grid_values(name, values, tail):
+    """`values` as a float array [column, row, *tail]; NaN is allowed (cells where the
+    hand never rests), infinity is not."""
+    shape = (rods.N_COLUMNS, rods.N_ROWS) + tail
+    try:
+        array = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise _validate.ArgumentTypeError(f"{name} must be an array of shape {shape}, got "
+                                          f"{_validate.show(values)}") from None
+    if array.shape != shape:
+        raise ValueError(f"{name} must have shape {shape}, got {array.shape}")
+    if np.any(np.isinf(array)):
+        raise ValueError(f"{name} must not hold infinities, got {_validate.show(values)}")
+    return array
 
 
 def _standable_cells(grid):
@@ -126,6 +147,8 @@ def draw_predictor(ax, predictions):
     """Draws the linear predictor [column, row, action, rod] on the grid: each cell's
     four triangles (the side each move goes to) coloured from white (predicts both
     rods stay up) to a rod's colour (predicts that rod topples)."""
+    predictions = _check_grid_values("predictions", predictions,
+                                     (len(rods.ACTIONS), len(rods.ROD_NAMES)))
     _grid_axes(ax)
     for (column, row), p in _standable_cells(predictions):
         for action in range(len(rods.ACTIONS)):
@@ -141,6 +164,7 @@ def draw_confidence(ax, confidence):
     Returns:
       The collection of cells (a mappable for a colour bar).
     """
+    confidence = _check_grid_values("confidence", confidence, ())
     _grid_axes(ax)
     patches, values = [], []
     for (column, row), c in _standable_cells(confidence):
@@ -161,6 +185,10 @@ def draw_prediction_errors(ax, result, seed, episode, last_episode, reading="all
     in each episode (dots, one colour per rod) and the largest error left on the
     rod's pairs in the given reading (lines: every pair that topples it, or those it
     has been toppled from), with the 0.1 line of "predicted well"."""
+    check_result("result", result, RodTopplingResult, _MADE_BY)
+    seed = _validate.integer("seed", seed, 0, result.n_seeds - 1)
+    episode = _validate.integer("episode", episode, 1, result.n_episodes)
+    last_episode = _validate.integer("last_episode", last_episode, 1)
     x = np.arange(1, episode + 1)
     for i, rod in enumerate(_rod_toppling.RODS):
         colour = ROD_COLOURS[rod]
@@ -200,13 +228,15 @@ def figure7(result, seed=0, reading="all", episode=None):
       ValueError: for a seed outside the result, an unknown reading, or an episode
         without a snapshot.
     """
-    _validate.integer_in_range("seed", seed, 0, result.n_seeds - 1)
+    check_result("result", result, RodTopplingResult, _MADE_BY)
+    seed = _validate.integer_in_range("seed", seed, 0, result.n_seeds - 1)
     _validate.one_of("reading", reading, _rod_toppling.READINGS)
     red_well = "red predicted well" if reading == "all" else "red predicted well (toppled)"
     columns = [("(a) after the first episode", "first episode"),
                ("(b) red predicted well", red_well),
                ("(c) first blue topple", "blue begins")]
     if episode is not None:
+        episode = _validate.integer("episode", episode, 1, result.n_episodes)
         name = f"episode {episode}"
         if name not in result.snapshot_names:
             raise ValueError(f"episode must be one of the run's snapshot_episodes "
@@ -277,6 +307,7 @@ def topple_share_figure(result):
     toppled (or none) against episode, mean over seeds with 95% bands; right, the
     share of seeds whose predictor has learned each rod by each episode (both
     readings), and the share that have toppled blue at least once."""
+    check_result("result", result, RodTopplingResult, _MADE_BY)
     fig, (left, right) = new_figure(width=9.0, height=3.8, ncols=2)
     for i, rod in enumerate(_rod_toppling.RODS):
         plot_mean_band(left, _shares(result, i), ROD_COLOURS[rod], f"{rod} rod toppled")
@@ -311,6 +342,7 @@ def physics_comparison_figure(runs):
     Args:
       runs: a dict {row label: RodTopplingResult}; the first seed of each is drawn.
     """
+    check_results("runs", runs, RodTopplingResult)
     fig, axes = new_figure(width=9.0, height=1.1 + 1.4 * len(runs), nrows=len(runs),
                            sharex=True, squeeze=False)
     colours = {0: ROD_COLOURS["red"], 1: ROD_COLOURS["blue"], -1: NONE_COLOUR}

@@ -2,7 +2,8 @@
 
 import numpy as np
 
-from icm.figures._common import new_figure
+from icm import _validate
+from icm.figures._common import check_title, new_figure
 
 
 def sweep_heatmap(frame, x, y, value, title=None, colour_label=None):
@@ -17,7 +18,24 @@ def sweep_heatmap(frame, x, y, value, title=None, colour_label=None):
 
     Returns:
       The `Figure`; every cell is annotated with its mean.
+
+    Raises:
+      ValueError: if `frame` is not a sweep's DataFrame or lacks one of the columns.
     """
+    import pandas as pd
+
+    _validate.instance("frame", frame, pd.DataFrame,
+                       "a pandas DataFrame (from icm.experiments.sweep)")
+    for name, column in (("x", x), ("y", y), ("value", value)):
+        _validate.text(name, column)
+        if column not in frame.columns:
+            raise ValueError(f"{name} must be a column of frame ({', '.join(map(str, frame.columns))}), "
+                             f"got {column!r}")
+    if "seed_index" not in frame.columns:
+        raise ValueError("frame must be a sweep's DataFrame, with a seed_index column")
+    check_title(title)
+    if colour_label is not None:
+        _validate.text("colour_label", colour_label)
     table = frame.pivot_table(index=y, columns=x, values=value, aggfunc="mean")
     fig, ax = new_figure(width=6.4, height=4.2)
     image = ax.imshow(table.to_numpy(), origin="lower", cmap="viridis", aspect="auto")

@@ -6,6 +6,7 @@ import math
 import numpy as np
 
 from icm import _validate
+from icm.learners._common import check_keys, check_state, check_values, read_observation
 from icm.learners.predictors import NearestNeighbourPredictor
 
 DEFAULT_TEMPERATURE = 0.2
@@ -144,27 +145,28 @@ class ActorCritic:
         self.variant = _validate.one_of("variant", variant, tuple(VARIANTS))
         self.td_form, self.reward_on = VARIANTS[variant]
         self.predictor = NearestNeighbourPredictor() if predictor is None else predictor
-        self.state_keys = tuple(state_keys)
-        self.effect_key = effect_key
-        self.effect_at_rest = None if effect_at_rest is None else tuple(effect_at_rest)
+        if not all(callable(getattr(self.predictor, m, None)) for m in ("predict", "update")):
+            raise _validate.ArgumentTypeError(f"predictor must have the methods predict and "
+                                              f"update, got {_validate.show(predictor)}")
+        self.state_keys = check_keys("state_keys", state_keys)
+        self.effect_key = _validate.text("effect_key", effect_key)
+        self.effect_at_rest = None if effect_at_rest is None else check_values(
+            "effect_at_rest", effect_at_rest)
         self._random = _validate.generator("seed", seed)
         self.critic = {}  # state -> V(state)
         self.actor = {}  # state -> list of preferences, one per action
 
     def state(self, observation):
         """The state of an observation: its `state_keys` entries as one flat tuple."""
-        values = []
-        for key in self.state_keys:
-            values.extend(np.asarray(observation[key]).ravel().tolist())
-        return tuple(values)
+        return read_observation("observation", observation, self.state_keys)
 
     def value(self, state):
         """The critic's V(state) (0.0 for a state never updated)."""
-        return self.critic.get(state, 0.0)
+        return self.critic.get(check_state("state", state), 0.0)
 
     def preferences(self, state):
         """A copy of the actor's preferences in `state`, one per action."""
-        return list(self.actor.get(state, [0.0] * self.n_actions))
+        return list(self.actor.get(check_state("state", state), [0.0] * self.n_actions))
 
     def policy(self, state):
         """The probability of each action in `state` (a numpy array): the softmax of
@@ -172,7 +174,7 @@ class ActorCritic:
         return np.array(self._policy(state))
 
     def _policy(self, state):
-        preferences = self.actor.get(state)
+        preferences = self.actor.get(check_state("state", state))
         if preferences is None:
             return [1.0 / self.n_actions] * self.n_actions
         return _softmax(preferences, self.temperature)
@@ -191,7 +193,7 @@ class ActorCritic:
     def effect(self, observation):
         """The `effect_key` entry of an observation (for the buttons, the boxes) as a
         tuple; the first one seen also sets `effect_at_rest` if it was not given."""
-        effect = tuple(np.asarray(observation[self.effect_key]).ravel().tolist())
+        effect = read_observation("observation", observation, (self.effect_key,))
         if self.effect_at_rest is None:
             self.effect_at_rest = (0,) * len(effect)
         return effect
@@ -199,6 +201,7 @@ class ActorCritic:
     def predict(self, state, action):
         """The predictor's guess of the effect entry after `action` in `state`; with
         nothing stored yet, `effect_at_rest` (no change: for the buttons, boxes shut)."""
+        action = _validate.integer("action", action, 0, self.n_actions - 1)
         return self.predictor.predict(state, action, default=self.effect_at_rest)
 
     def internal_reward(self, state, action, effect):
@@ -208,7 +211,8 @@ class ActorCritic:
           With `reward_on` "error": 1.0 if the prediction is wrong, else 0.0; with
           "correct" (as printed): 1.0 if it is right, else 0.0.
         """
-        right = tuple(self.predict(state, action)) == tuple(effect)
+        effect = check_values("effect", effect)
+        right = tuple(self.predict(state, action)) == effect
         if self.reward_on == "correct":
             return 1.0 if right else 0.0
         return 0.0 if right else 1.0
@@ -227,14 +231,23 @@ class ActorCritic:
           The TD error, a float.
 
         Raises:
-          FloatingPointError: if it is not finite (a diverged critic).
+          ValueError: for a reward that is not a finite number or a discount outside
+            [0, 1].
+          FloatingPointError: if the TD error is not finite (a diverged critic).
         """
+        reward = _validate.real("reward", reward)
+        discount = _validate.in_closed_interval("discount", discount, 0.0, 1.0)
         gamma = self.gamma * discount
         if self.td_form == "printed":  # equation 2 as printed: r + gamma * (V(s) - V(s'))
             td_error = reward + gamma * (self.value(state) - self.value(next_state))
         else:  # the standard TD error: r + gamma * V(s') - V(s)
             td_error = reward + gamma * self.value(next_state) - self.value(state)
         return _check_finite(td_error)
+
+    def _check_step(self, action, external_reward, discount):
+        return (_validate.integer("action", action, 0, self.n_actions - 1),
+                _validate.real("external_reward", external_reward),
+                _validate.in_closed_interval("discount", discount, 0.0, 1.0))
 
     def learn(self, observation, action, next_observation, external_reward=0.0,
               discount=1.0):
@@ -249,8 +262,15 @@ class ActorCritic:
 
         Returns:
           (reward, td_error): the reward used and the TD error of the step.
+
+        Raises:
+          ValueError: for observations without the learner's entries, an action that
+            is not an integer in 0..n_actions-1, an external reward that is not a
+            finite number, or a discount outside [0, 1].
         """
-        state, next_state = self.state(observation), self.state(next_observation)
+        action, external_reward, discount = self._check_step(action, external_reward, discount)
+        state = self.state(observation)
+        next_state = read_observation("next_observation", next_observation, self.state_keys)
         effect = self.effect(next_observation)
         if self.reward == "intrinsic":  # Figure 3b: the agent pays itself
             reward = self.internal_reward(state, action, effect)

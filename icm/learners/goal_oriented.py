@@ -8,9 +8,9 @@ interesting the task is; it then picks an action epsilon-greedily on interest.
 
 import math
 
-import numpy as np
 
 from icm import _validate
+from icm.learners._common import check_keys, check_values, read_observation
 from icm.learners.interest import LearningProgressInterest
 from icm.learners.predictors import NearestNeighbourPredictor
 
@@ -38,7 +38,9 @@ class GoalOrientedAgent:
       seed: None, an int, or a `numpy.random.Generator`, for epsilon and ties.
 
     Raises:
-      ValueError: for n_actions < 1 or epsilon outside [0, 1].
+      ValueError: for n_actions < 1, epsilon outside [0, 1], a predictor or interest
+        module without the methods above, keys that are not entry names, or a bad
+        seed.
     """
 
     def __init__(self, n_actions, predictor=None, interest=None, epsilon=DEFAULT_EPSILON,
@@ -47,21 +49,29 @@ class GoalOrientedAgent:
         self.epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
         self.predictor = NearestNeighbourPredictor() if predictor is None else predictor
         self.interest = LearningProgressInterest() if interest is None else interest
-        self.context_keys = tuple(context_keys)
-        self.goal_key = goal_key
-        self.goal_at_rest = None if goal_at_rest is None else tuple(goal_at_rest)
+        for name, part, methods in (("predictor", self.predictor, ("predict", "update")),
+                                    ("interest", self.interest, ("record", "interest"))):
+            if not all(callable(getattr(part, m, None)) for m in methods):
+                raise _validate.ArgumentTypeError(
+                    f"{name} must have the methods {' and '.join(methods)}, got "
+                    f"{_validate.show(part)}")
+        self.context_keys = check_keys("context_keys", context_keys)
+        self.goal_key = _validate.text("goal_key", goal_key)
+        self.goal_at_rest = None if goal_at_rest is None else check_values(
+            "goal_at_rest", goal_at_rest)
         self._random = _validate.generator("seed", seed)
 
     def context(self, observation):
         """The predictor's context for an observation: its context entries as a tuple."""
-        values = []
-        for key in self.context_keys:
-            values.extend(np.asarray(observation[key]).ravel().tolist())
-        return tuple(values)
+        return read_observation("observation", observation, self.context_keys)
+
+    def goal_state(self, observation, name="observation"):
+        """The goal state of an observation (its `goal_key` entry) as a tuple."""
+        return read_observation(name, observation, (self.goal_key,))
 
     def _rest(self, observation):
         if self.goal_at_rest is None:
-            self.goal_at_rest = (0,) * np.asarray(observation[self.goal_key]).size
+            self.goal_at_rest = (0,) * len(self.goal_state(observation))
         return self.goal_at_rest
 
     def predicted_effects(self, observation):
@@ -97,10 +107,15 @@ class GoalOrientedAgent:
 
         Returns:
           (task, error): the task witnessed and the Euclidean prediction error.
+
+        Raises:
+          ValueError: for an observation without the agent's entries, or an action
+            that is not an integer in 0..n_actions-1.
         """
+        action = _validate.integer("action", action, 0, self.n_actions - 1)
         context, rest = self.context(observation), self._rest(observation)
+        observed = self.goal_state(next_observation, "next_observation")
         predicted = self.predictor.predict(context, action, default=rest)
-        observed = tuple(np.asarray(next_observation[self.goal_key]).ravel().tolist())
         error = math.dist(predicted, observed)
         task = (rest, observed)
         self.interest.record(task, error)

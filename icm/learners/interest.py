@@ -9,6 +9,7 @@ import operator
 import numpy as np
 
 from icm import _validate
+from icm.learners._common import check_state
 
 DEFAULT_WINDOW = 5
 DEFAULT_NEW_TASK_FACTOR = 0.5
@@ -23,11 +24,12 @@ def least_squares_slope(values):
     (0, values[0]), (1, values[1]), ...
 
     Raises:
-      ValueError: with fewer than 2 values.
+      ValueError: with fewer than 2 values, values that are not a 1-d sequence of
+        numbers, or NaN or infinite values.
     """
-    y = np.asarray(values, dtype=float)
-    if y.ndim != 1 or len(y) < 2:
-        raise ValueError(f"a slope needs at least 2 values, got {len(y)}")
+    y = _validate.finite_array("values", values, ndim=1)
+    if len(y) < 2:
+        raise ValueError(f"values must hold at least 2 numbers for a slope, got {len(y)}")
     x = np.arange(len(y)) - (len(y) - 1) / 2.0
     return float(x @ (y - y.mean()) / (x @ x))
 
@@ -81,13 +83,17 @@ class LearningProgressInterest:
 
     def history(self, task):
         """A copy of the error history H_t of `task` (empty if never witnessed)."""
-        return list(self._history.get(task, ()))
+        return list(self._history.get(check_state("task", task), ()))
 
     def record(self, task, error):
-        """Appends the prediction error made when `task` was witnessed."""
-        error = float(error)
-        if not error >= 0 or error == float("inf"):
-            raise ValueError(f"error must be a finite number >= 0, got {error!r}")
+        """Appends the prediction error made when `task` was witnessed.
+
+        Raises:
+          ValueError: for an unhashable task, or an error that is not a finite
+            number >= 0.
+        """
+        task = check_state("task", task)
+        error = _validate.non_negative("error", error)
         history = self._history.setdefault(task, [])
         history.append(error)
         if len(history) >= 2:
@@ -109,4 +115,4 @@ class LearningProgressInterest:
 
     def interest(self, task):
         """The current interest of `task` (0.0 for a task never witnessed)."""
-        return self._interest.get(task, 0.0)
+        return self._interest.get(check_state("task", task), 0.0)

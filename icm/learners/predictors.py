@@ -5,6 +5,7 @@ import operator
 import numpy as np
 
 from icm import _validate
+from icm.learners._common import check_state, check_values
 
 DEFAULT_ACTION_WEIGHT = 10.0
 """Larger than any distance between two button-console contexts (7 entries), so the
@@ -59,6 +60,10 @@ class NearestNeighbourPredictor:
 
     def distance(self, context, action, other_context, other_action):
         """The distance between two (context, action) pairs (see the class docstring)."""
+        context = check_values("context", context, allow_text=True)
+        other_context = check_values("other_context", other_context, allow_text=True)
+        action = _validate.integer("action", action, 0)
+        other_action = _validate.integer("other_action", other_action, 0)
         if len(context) != len(other_context):
             raise ValueError(f"contexts must have the same length, got {len(context)} "
                              f"and {len(other_context)}")
@@ -77,13 +82,19 @@ class NearestNeighbourPredictor:
         """The effect of the nearest stored experience, or `default` if none is stored.
 
         Args:
-          context: a tuple of categorical values.
-          action: an integer.
+          context: a tuple of categorical values (finite numbers or strings).
+          action: an integer >= 0.
           default: returned when nothing is stored yet.
+
+        Raises:
+          ValueError: for a context that is not a sequence of finite numbers or
+            strings, or an action that is not an integer >= 0.
         """
+        context = check_values("context", context, allow_text=True)
+        action = _validate.integer("action", action, 0)
         if not self._experiences:
             return default
-        key = (tuple(context), action)
+        key = (context, action)
         entry = self._cache.get(key)
         if entry is None:
             entry = list(self._nearest(*key))
@@ -91,8 +102,16 @@ class NearestNeighbourPredictor:
         return entry[1]
 
     def update(self, context, action, effect):
-        """Stores the experience (context, action) -> effect."""
-        context, effect = tuple(context), tuple(effect)
+        """Stores the experience (context, action) -> effect.
+
+        Raises:
+          ValueError: for a context that is not a sequence of finite numbers or strings
+            (or not as long as the stored ones), an action that is not an integer >= 0,
+            or an effect that is not a sequence of finite numbers.
+        """
+        context = check_values("context", context, allow_text=True)
+        action = _validate.integer("action", action, 0)
+        effect = check_values("effect", effect)
         if self._experiences and len(context) != len(self._experiences[0][0]):
             raise ValueError(f"context must have {len(self._experiences[0][0])} entries "
                              f"like the stored ones, got {len(context)}")
@@ -166,14 +185,12 @@ class LinearPredictor:
         return row
 
     def _check_action(self, action):
-        if not (isinstance(action, (int, np.integer)) and 0 <= action < self.n_actions):
-            raise ValueError(f"action must be an integer in 0..{self.n_actions - 1}, "
-                             f"got {action!r}")
+        return _validate.integer("action", action, 0, self.n_actions - 1)
 
     def predict(self, state, action):
         """The predicted outcome of `action` in `state`, a float array [n_outputs]."""
-        self._check_action(action)
-        row = self._predictions.get(state)
+        action = self._check_action(action)
+        row = self._predictions.get(check_state("state", state))
         if row is None:
             return np.full(self.n_outputs, self.initial_prediction)
         return np.array(row[action])
@@ -185,13 +202,11 @@ class LinearPredictor:
         return float(sum(abs(o - p) for o, p in zip(observed, predicted)))
 
     def _check_outcome(self, observed):
-        if type(observed) is list:  # the learner's inner loop passes lists: no numpy
-            observed = [float(v) for v in observed]
-        else:
-            observed = np.asarray(observed, dtype=float).ravel().tolist()
+        observed = check_values("observed", observed)
         if len(observed) != self.n_outputs:
-            raise ValueError(f"observed must have {self.n_outputs} entries, got {len(observed)}")
-        return observed
+            raise ValueError(f"observed must have {self.n_outputs} entries, got "
+                             f"{len(observed)}: {_validate.show(observed)}")
+        return [float(v) for v in observed]
 
     def update(self, state, action, observed):
         """Moves the prediction of (state, action) towards `observed`.
@@ -209,9 +224,9 @@ class LinearPredictor:
     def update_per_output(self, state, action, observed):
         """`update`, returning the absolute error of each entry of the prediction
         before the update (a list of n_outputs floats) instead of their sum."""
-        self._check_action(action)
+        action = self._check_action(action)
         observed = self._check_outcome(observed)
-        predicted = self._row(state)[action]
+        predicted = self._row(check_state("state", state))[action]
         errors = []
         for i, o in enumerate(observed):
             difference = o - predicted[i]
@@ -222,8 +237,8 @@ class LinearPredictor:
 
     def last_error(self, state, action):
         """The error of the latest prediction for (state, action); None if never tried."""
-        self._check_action(action)
-        errors = self._last_errors.get(state)
+        action = self._check_action(action)
+        errors = self._last_errors.get(check_state("state", state))
         return None if errors is None else errors[action]
 
     def confidence(self, state):
@@ -238,7 +253,7 @@ class LinearPredictor:
         topples a rod that was predicted with error e (the other moves known) has
         confidence 1 - e / 4.
         """
-        errors = self._last_errors.get(state, [None] * self.n_actions)
+        errors = self._last_errors.get(check_state("state", state), [None] * self.n_actions)
         capped = [UNTRIED_ERROR if e is None else min(e, 1.0) for e in errors]
         return 1.0 - sum(capped) / self.n_actions
 
@@ -246,8 +261,13 @@ class LinearPredictor:
         """The predictions for every action in each of `states`, a float array
         [len(states), n_actions, n_outputs] (states never updated: the initial
         prediction)."""
+        if isinstance(states, (str, bytes)) or not hasattr(states, "__iter__"):
+            raise _validate.ArgumentTypeError(f"states must be a list of states, got "
+                                              f"{_validate.show(states)}")
         fresh = [[self.initial_prediction] * self.n_outputs] * self.n_actions
-        return np.array([self._predictions.get(s, fresh) for s in states], dtype=float)
+        return np.array([self._predictions.get(check_state("states[i]", s), fresh)
+                         for s in states], dtype=float).reshape(
+            -1, self.n_actions, self.n_outputs)
 
     def states(self):
         """The states seen so far (by `update`), in the order first seen."""

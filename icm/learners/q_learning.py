@@ -1,7 +1,6 @@
 """Tabular one-step Q-learning (paper section 3.3, equation 3), paid by a predictor's
 errors: the learner of the rod-toppling experiment (section 4.2, Figure 7)."""
 
-import math
 
 import numpy as np
 
@@ -26,17 +25,6 @@ errors there have fallen to about that level, and goes looking elsewhere; with 0
 smallest leftover error would keep it at the first rod it found (the errors shrink by
 a factor 0.8 per topple and never reach 0)."""
 
-
-def _number_in(name, value, low, high):
-    """Returns `value` as a float if it is a finite number with low <= value <= high,
-    else raises ValueError. Cheap: it runs on every step of the learner."""
-    try:
-        ok = low <= value <= high and math.isfinite(value) and not isinstance(value, bool)
-    except TypeError:
-        ok = False
-    if not ok:
-        raise ValueError(f"{name} must be a number in [{low}, {high}], got {value!r}")
-    return float(value)
 
 
 class QLearner:
@@ -88,6 +76,9 @@ class QLearner:
         self.epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
         self.initial_q = _validate.non_negative("initial_q", initial_q)
         self.predictor = LinearPredictor(n_actions, 1) if predictor is None else predictor
+        if not callable(getattr(self.predictor, "update", None)):
+            raise _validate.ArgumentTypeError(f"predictor must have a method update, got "
+                                              f"{_validate.show(predictor)}")
         self._random = _validate.generator("seed", seed)
         # Lists of floats: the learner's inner loop reads and writes single entries.
         self._q = [[self.initial_q] * self.n_actions for _ in range(self.n_states)]
@@ -98,25 +89,21 @@ class QLearner:
         return np.array(self._q)
 
     def _check(self, state, action=None, name="state"):
-        if not (isinstance(state, (int, np.integer)) and 0 <= state < self.n_states):
-            raise ValueError(f"{name} must be an integer in 0..{self.n_states - 1}, "
-                             f"got {state!r}")
-        if action is not None and not (isinstance(action, (int, np.integer))
-                                       and 0 <= action < self.n_actions):
-            raise ValueError(f"action must be an integer in 0..{self.n_actions - 1}, "
-                             f"got {action!r}")
+        state = _validate.integer(name, state, 0, self.n_states - 1)
+        if action is None:
+            return state
+        return state, _validate.integer("action", action, 0, self.n_actions - 1)
 
     def greedy_actions(self, state):
         """The actions with the largest Q(state, .), in increasing order."""
-        self._check(state)
-        row = self._q[state]
+        row = self._q[self._check(state)]
         best = max(row)
         return [a for a, value in enumerate(row) if value == best]
 
     def select_action(self, state):
         """Epsilon-greedy: a random action with probability epsilon, else a greedy one
         (ties broken uniformly at random)."""
-        self._check(state)
+        state = self._check(state)
         uniform = self._random.random  # floor(u * n) is uniform on 0..n-1, and cheap
         if self.epsilon > 0 and uniform() < self.epsilon:
             return int(uniform() * self.n_actions)
@@ -140,11 +127,11 @@ class QLearner:
         Returns:
           The TD error r + gamma * d * max_a Q(s', a) - Q(s, a), before the update.
         """
-        self._check(state, action)
-        discount = _number_in("discount", discount, 0.0, 1.0)
-        target = _number_in("reward", reward, -math.inf, math.inf)
+        state, action = self._check(state, action)
+        discount = _validate.in_closed_interval("discount", discount, 0.0, 1.0)
+        target = _validate.real("reward", reward)
         if discount > 0:
-            self._check(next_state, name="next_state")
+            next_state = self._check(next_state, name="next_state")
             target += self.gamma * discount * max(self._q[next_state])
         td_error = target - self._q[state][action]
         self._q[state][action] += self.alpha * td_error
@@ -164,6 +151,7 @@ class QLearner:
           The intrinsic reward: the absolute error of the prediction for
           (state, action) before this observation.
         """
+        state, action = self._check(state, action)
         reward = self.predictor.update(state, action, observed)
         self.update(state, action, reward, next_state, discount)
         return reward

@@ -2,9 +2,10 @@
 
 import ipywidgets
 
-from icm import figures
+from icm import _validate, figures
+from icm.experiments import run_actor_critic
 from icm.learners import actor_critic
-from icm.widgets._common import panel, slider
+from icm.widgets._common import check_fixed, panel, slider
 
 FIGURE6_SLIDERS = {
     "temperature": dict(min=0.05, max=2.0, step=0.05, value=actor_critic.DEFAULT_TEMPERATURE),
@@ -34,7 +35,13 @@ def figure6_panel(n_trials=60, **fixed):
     Returns:
       An `ipywidgets.VBox`: sliders for temperature, the two learning rates, gamma and
       the number of seeds, and choices of reward and variant, above the figure.
+
+    Raises:
+      ValueError: for n_trials < 1 or a fixed argument the panel cannot hold.
     """
+    n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
+    check_fixed(run_actor_critic, fixed,
+                tuple(FIGURE6_SLIDERS) + tuple(FIGURE6_CHOICES) + ("n_trials",))
     controls = {name: slider(name, spec) for name, spec in FIGURE6_SLIDERS.items()}
     for name, options in FIGURE6_CHOICES.items():
         controls[name] = ipywidgets.Dropdown(description=name, options=options,

@@ -1,8 +1,9 @@
 """The Figure 5 panel: sliders that rerun the goal-oriented learner."""
 
-from icm import figures
+from icm import _validate, figures
+from icm.experiments import run_goal_oriented
 from icm.learners import goal_oriented, interest
-from icm.widgets._common import panel, slider
+from icm.widgets._common import check_fixed, panel, slider
 
 FIGURE5_SLIDERS = {
     "epsilon": dict(min=0.0, max=1.0, step=0.05, value=goal_oriented.DEFAULT_EPSILON),
@@ -25,7 +26,12 @@ def figure5_panel(n_trials=60, **fixed):
     Returns:
       An `ipywidgets.VBox` with sliders for epsilon, window, new-task factor and
       number of seeds above the figure.
+
+    Raises:
+      ValueError: for n_trials < 1 or a fixed argument the panel cannot hold.
     """
+    n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
+    check_fixed(run_goal_oriented, fixed, tuple(FIGURE5_SLIDERS) + ("n_trials",))
     sliders = {name: slider(name, spec) for name, spec in FIGURE5_SLIDERS.items()}
     return panel(sliders, lambda **values: figures.figure5_for(n_trials=n_trials, **fixed,
                                                                 **values))

@@ -5,7 +5,8 @@ import ipywidgets
 
 from icm import _validate, figures
 from icm.learners import predictors, q_learning
-from icm.widgets._common import panel, slider
+from icm.experiments import run_rod_toppling
+from icm.widgets._common import check_fixed, panel, slider
 
 DEFAULT_PANEL_EPISODES = 150
 """Episodes per run in `figure7_panel`: enough for both rods to be learned with the
@@ -46,6 +47,9 @@ def figure7_panel(n_episodes=DEFAULT_PANEL_EPISODES, seed=0, **fixed):
       ValueError: if n_episodes is not an integer >= 1.
     """
     n_episodes = _validate.integer_at_least("n_episodes", n_episodes, 1)
+    _validate.seed("seed", seed)
+    check_fixed(run_rod_toppling, fixed, tuple(FIGURE7_SLIDERS) + tuple(FIGURE7_CHOICES)
+                + ("n_episodes", "n_seeds", "snapshot_episodes"))
     specs = dict(FIGURE7_SLIDERS)
     specs["episode"] = dict(specs["episode"], max=n_episodes,
                             value=min(specs["episode"]["value"], n_episodes))
