@@ -13,7 +13,8 @@ $(STAMP): requirements.txt pyproject.toml
 	$(BIN)/python -m pip install --quiet --no-deps -e .
 	touch $(STAMP)
 
-book: $(STAMP)  ## build the book, executing every notebook, into _build/html
+book: $(STAMP)  ## execute the notebooks (unless cached and the library unchanged), build _build/html
+	$(BIN)/python book/_ext/execute_book.py
 	$(BIN)/jupyter-book build . --keep-going
 	@echo "Open the book: $(CURDIR)/_build/html/index.html"
 

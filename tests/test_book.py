@@ -38,9 +38,93 @@ def test_every_chapter_is_in_the_table_of_contents_and_exists():
 
 def test_build_configuration_makes_failures_fatal():
     config = yaml.safe_load((ROOT / "_config.yml").read_text())
-    assert config["execute"]["execute_notebooks"] == "force"
+    # Executed beforehand by execute_book.py (forced in the tests and CI), read from
+    # the cache by the build; a notebook the build had to execute itself still fails
+    # the build on an error, and within minutes if it hangs.
+    assert config["execute"]["execute_notebooks"] == "cache"
     assert config["execute"]["raise_on_error"] is True
     assert config["execute"]["allow_errors"] is False
+    assert config["execute"]["timeout"] <= 300
+
+
+def _execute_book_module():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("execute_book",
+                                                  ROOT / "book" / "_ext" / "execute_book.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_a_lost_wakeup_costs_a_second_not_the_whole_timeout():
+    # The mechanism of the silent stall: a zmq.asyncio poll whose wakeup is lost (the
+    # edge-triggered FD drained by someone reading zmq.EVENTS) waits for its whole
+    # timeout, then finds the message and returns it as if nothing had happened.
+    # jupyter_client's get_msg is such a poll; nbclient waits a cell's reply with one
+    # get_msg of the whole cell timeout. execute_book.py cuts every wait in 1 s polls.
+    import asyncio
+    import time
+    from queue import Empty
+
+    import zmq
+    import zmq.asyncio
+
+    execute_book = _execute_book_module()
+
+    async def reply_after_lost_wakeup(wrap, timeout):
+        ctx = zmq.asyncio.Context()
+        client = ctx.socket(zmq.DEALER)
+        server = zmq.Context.instance().socket(zmq.ROUTER)
+        port = server.bind_to_random_port("tcp://127.0.0.1")
+        client.connect(f"tcp://127.0.0.1:{port}")
+        await client.send(b"execute_request")
+        identity, _ = server.recv_multipart()
+
+        async def get_msg(timeout=None):  # as jupyter_client's AsyncZMQSocketChannel
+            ready = await client.poll(None if timeout is None else int(timeout * 1000))
+            if ready:
+                return await client.recv()
+            raise Empty
+
+        waiting = asyncio.ensure_future(wrap(get_msg)(timeout=timeout))
+        await asyncio.sleep(0.05)
+        start = time.monotonic()
+        server.send_multipart([identity, b"execute_reply"])
+        time.sleep(0.05)  # the reply is in, the event loop has not run yet
+        zmq.Socket.shadow(client.underlying).get(zmq.EVENTS)  # drains the wakeup
+        reply = await waiting
+        elapsed = time.monotonic() - start
+        client.close(linger=0), server.close(linger=0), ctx.term()
+        return reply, elapsed
+
+    reply, elapsed = asyncio.run(reply_after_lost_wakeup(lambda f: f, 4.0))
+    assert reply == b"execute_reply" and elapsed > 3.5  # silent: no error, just late
+    reply, elapsed = asyncio.run(reply_after_lost_wakeup(execute_book.sliced, 60.0))
+    assert reply == b"execute_reply" and elapsed < 1.5
+
+
+def test_a_hanging_cell_fails_quickly_naming_the_notebook_and_the_cell(tmp_path):
+    import subprocess
+    import sys
+    import time
+
+    nb = nbformat.v4.new_notebook()
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
+                                 "language": "python"}
+    nb.cells = [nbformat.v4.new_code_cell("x = 1"), nbformat.v4.new_markdown_cell("text"),
+                nbformat.v4.new_code_cell("import time\ntime.sleep(600)")]
+    path = tmp_path / "hangs.ipynb"
+    nbformat.write(nb, path)
+    start = time.monotonic()
+    completed = subprocess.run(
+        [sys.executable, str(ROOT / "book" / "_ext" / "execute_book.py"), "--timeout", "3",
+         "--path-output", str(tmp_path / "out"), str(path)],
+        capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert completed.returncode == 1
+    assert time.monotonic() - start < 60
+    assert "hangs.ipynb: cell 2 hung (more than 3 s)" in completed.stderr
+    assert "time.sleep(600)" in completed.stderr
 
 
 @pytest.mark.book

@@ -161,8 +161,8 @@ class ActorCriticResult:
 
 
 def _check_run_arguments(n_seeds, n_trials, temperature, lr_actor, lr_critic, gamma,
-                         reward, variant, rewarded_box, action_weight, presses_per_trial,
-                         red_button, seed, progress):
+                         reward, variant, rewarded_box, action_selection, epsilon,
+                         action_weight, presses_per_trial, red_button, seed, progress):
     """The arguments of `run_actor_critic`, checked and normalised, as a dict."""
     checked = dict(
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
@@ -174,6 +174,9 @@ def _check_run_arguments(n_seeds, n_trials, temperature, lr_actor, lr_critic, ga
         reward=_validate.one_of("reward", reward, actor_critic.REWARDS),
         variant=_validate.one_of("variant", variant, tuple(actor_critic.VARIANTS)),
         rewarded_box=_validate.one_of("rewarded_box", rewarded_box, buttons.BOX_NAMES),
+        action_selection=_validate.one_of("action_selection", action_selection,
+                                          actor_critic.ACTION_SELECTIONS),
+        epsilon=_validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0),
         action_weight=_validate.positive("action_weight", action_weight),
         presses_per_trial=_validate.integer_at_least("presses_per_trial",
                                                      presses_per_trial, 1),
@@ -192,6 +195,8 @@ def run_actor_critic(n_seeds=100, n_trials=100,
                      reward="intrinsic",
                      variant="standard",
                      rewarded_box="green",
+                     action_selection="softmax",
+                     epsilon=actor_critic.DEFAULT_EPSILON,
                      action_weight=predictors.DEFAULT_ACTION_WEIGHT,
                      presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
                      red_button=buttons.DEFAULT_RED_BUTTON,
@@ -217,6 +222,9 @@ def run_actor_critic(n_seeds=100, n_trials=100,
       variant: a reading of the formulas, one of `icm.learners.actor_critic.VARIANTS`.
       rewarded_box: "red" or "green", the box that pays 1.0 when the reward is
         extrinsic (ignored for an intrinsic reward).
+      action_selection: "softmax" (default, at `temperature`) or "epsilon_greedy"
+        (section 3.2's rule for the extrinsic learner; at `epsilon`).
+      epsilon: probability of a random press with epsilon-greedy selection, [0, 1].
       action_weight: the predictor's cost of a different button (> 0).
       presses_per_trial: presses per trial (>= 1).
       red_button: the button that is always red (0-4).
@@ -233,8 +241,9 @@ def run_actor_critic(n_seeds=100, n_trials=100,
         this machine's memory.
     """
     settings = _check_run_arguments(n_seeds, n_trials, temperature, lr_actor, lr_critic,
-                                    gamma, reward, variant, rewarded_box, action_weight,
-                                    presses_per_trial, red_button, seed, progress)
+                                    gamma, reward, variant, rewarded_box, action_selection,
+                                    epsilon, action_weight, presses_per_trial, red_button,
+                                    seed, progress)
     seed = settings["seed"]
     shape = (n_seeds, n_trials, len(TASKS))
     error_out = np.zeros(shape)
@@ -257,6 +266,7 @@ def run_actor_critic(n_seeds=100, n_trials=100,
         agent = actor_critic.ActorCritic(
             buttons.N_BUTTONS, temperature=temperature, lr_actor=lr_actor,
             lr_critic=lr_critic, gamma=gamma, reward=reward, variant=variant,
+            action_selection=action_selection, epsilon=epsilon,
             predictor=predictors.NearestNeighbourPredictor(action_weight), seed=agent_seed)
         for trial in range(n_trials):
             step = env.reset()

@@ -22,6 +22,15 @@ DEFAULT_GAMMA = 0.5
 """Discount (the paper's gamma; its value is not given). No press changes what the
 next one does (the console shuts the boxes before every press), so a short horizon."""
 
+ACTION_SELECTIONS = ("softmax", "epsilon_greedy")
+"""How the actor picks a press from its preferences. The paper's Figure 4 (the
+intrinsic learner) uses a softmax; its section 3.2 gives the extrinsic learner "an
+epsilon-greedy algorithm so that the agent explores". The default is the softmax for
+both; the chapter compares the two on the extrinsic learner."""
+DEFAULT_EPSILON = 0.1
+"""Probability of a uniformly random press with `action_selection="epsilon_greedy"`
+(the paper gives no value)."""
+
 REWARDS = ("intrinsic", "extrinsic")
 """Where the reward comes from: the predictor's errors (Figure 3b) or the environment
 (Figure 3a)."""
@@ -114,6 +123,9 @@ class ActorCritic:
     Args:
       n_actions: number of discrete actions (integer >= 1).
       temperature: softmax temperature, a finite number > 0.
+      action_selection: "softmax" (default) or "epsilon_greedy"; see
+        `ACTION_SELECTIONS`.
+      epsilon: probability of a random press with epsilon-greedy selection, in [0, 1].
       lr_actor: actor learning rate (lrA), in (0, 1].
       lr_critic: critic learning rate (lrC), in (0, 1].
       gamma: discount, in [0, 1].
@@ -135,9 +147,13 @@ class ActorCritic:
     def __init__(self, n_actions, temperature=DEFAULT_TEMPERATURE, lr_actor=DEFAULT_LR_ACTOR,
                  lr_critic=DEFAULT_LR_CRITIC, gamma=DEFAULT_GAMMA, reward="intrinsic",
                  variant="standard", predictor=None, state_keys=("lights", "boxes"),
-                 effect_key="boxes", effect_at_rest=None, seed=None):
+                 effect_key="boxes", effect_at_rest=None, action_selection="softmax",
+                 epsilon=DEFAULT_EPSILON, seed=None):
         self.n_actions = _validate.integer_at_least("n_actions", n_actions, 1)
         self.temperature = _validate.positive("temperature", temperature)
+        self.action_selection = _validate.one_of("action_selection", action_selection,
+                                                 ACTION_SELECTIONS)
+        self.epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
         self.lr_actor = _validate.learning_rate("lr_actor", lr_actor)
         self.lr_critic = _validate.learning_rate("lr_critic", lr_critic)
         self.gamma = _validate.in_closed_interval("gamma", gamma, 0.0, 1.0)
@@ -170,7 +186,12 @@ class ActorCritic:
 
     def policy(self, state):
         """The probability of each action in `state` (a numpy array): the softmax of
-        its preferences at the learner's temperature."""
+        its preferences at the learner's temperature, or with epsilon-greedy selection
+        epsilon / n for every action plus (1 - epsilon) shared by the most preferred."""
+        if self.action_selection == "epsilon_greedy":
+            preferences = np.array(self.preferences(state))
+            best = preferences == preferences.max()
+            return self.epsilon / self.n_actions + (1 - self.epsilon) * best / best.sum()
         return np.array(self._policy(state))
 
     def _policy(self, state):
@@ -180,7 +201,16 @@ class ActorCritic:
         return _softmax(preferences, self.temperature)
 
     def select_action(self, observation):
-        """Draws an action from the softmax policy in the observation's state."""
+        """Picks an action in the observation's state: drawn from the softmax policy,
+        or, with `action_selection="epsilon_greedy"`, uniformly at random with
+        probability epsilon and otherwise one of the most preferred (ties at random)."""
+        if self.action_selection == "epsilon_greedy":
+            preferences = self.preferences(self.state(observation))
+            if self._random.random() < self.epsilon:
+                return int(self._random.random() * self.n_actions)
+            best = max(preferences)
+            candidates = [a for a, p in enumerate(preferences) if p == best]
+            return candidates[int(self._random.random() * len(candidates))]
         probabilities = self._policy(self.state(observation))
         threshold = self._random.random()
         cumulative = 0.0
