@@ -1,102 +1,199 @@
-"""Benchmarks: prints how long the main computations take on this machine (`make bench`).
+"""Benchmarks: how long the main computations take on this machine (`make bench`).
 
-Timings are the best of several repeats, in seconds, on one core.
+This machine's speed varies from run to run (by up to two times, seen here), so every
+figure is printed with its ratio to a fixed reference workload timed in the same run,
+alternately with it: a ratio moves much less than a time. Each figure is the best of
+several repeats. The targets are those of the project's speed issue, in seconds on this
+machine; a figure is marked "ok" when it meets its target.
+
+    python benchmarks/bench.py [--quick]
 """
 
+import argparse
 import os
+import subprocess
+import sys
 import time
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 
-import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
 
-import icm  # noqa: E402
-from icm import widgets  # noqa: E402
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def reference_workload():
+    """The yardstick: 20,000 small numpy operations in a Python loop, the kind of work
+    the batched learners do (about 0.03 to 0.06 s here)."""
+    a, b = np.linspace(0, 1, 200), np.linspace(1, 2, 200)
+    total = 0.0
+    for _ in range(20000):
+        total += (a * b + a)[3]
+    return total
 
 
 def best_of(repeats, function):
+    """The best of `repeats` timings of `function`, each next to a timing of the
+    reference workload: (seconds, ratio to the reference at its best)."""
+    times, references = [], []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        reference_workload()
+        references.append(time.perf_counter() - start)
+        start = time.perf_counter()
+        function()
+        times.append(time.perf_counter() - start)
+    return min(times), min(times) / min(references)
+
+
+def subprocess_time(code, repeats=5):
+    """The best wall time of running `python -c code` (a fresh interpreter each time)."""
     times = []
     for _ in range(repeats):
         start = time.perf_counter()
-        function()
+        subprocess.run([sys.executable, "-c", code], check=True, capture_output=True)
         times.append(time.perf_counter() - start)
     return min(times)
 
 
-def widget_redraw():
-    # What one slider move costs: the runs, the figure and its PNG for the browser.
-    settings = {name: spec["value"] for name, spec in widgets.FIGURE5_SLIDERS.items()}
-    settings["n_seeds"] = 20
-    icm.figures.figure5_for(n_trials=60, **settings)._repr_png_()
+def redraw(run, draw, **settings):
+    """A panel redraw: the run at 100 seeds, the figure and its PNG."""
+    def go():
+        draw(run(n_seeds=100, progress=False, **settings))._repr_png_()
+    return go
 
 
-def primitive_against_raw_steps(env, actions):
-    """Wall time of the discrete actions `actions` on a physics env, the number of
-    physics steps they took, and the wall time of as many raw mujoco.mj_step calls on
-    the same model (from the same start state)."""
-    env.reset()
-    physics = env.physics
-    start_state = (physics.data.qpos.copy(), physics.data.qvel.copy(), physics.data.ctrl.copy())
-    t0 = physics.data.time
-    start = time.perf_counter()
-    for action in actions:
-        env.step(action)
-    primitive = time.perf_counter() - start
-    n_steps = int(round((physics.data.time - t0) / physics.model.opt.timestep))
-    model, data = physics.model.ptr, mujoco.MjData(physics.model.ptr)
-    data.qpos[:], data.qvel[:], data.ctrl[:] = start_state
-    start = time.perf_counter()
-    for _ in range(n_steps):
-        mujoco.mj_step(model, data)
-    raw = time.perf_counter() - start
-    return primitive / len(actions), n_steps / len(actions), raw / len(actions)
+def primitive_against_c(make_env, actions, repeats=5):
+    """A discrete action on the physics against the same physics steps in C.
+
+    Returns (wall ms per action, steps per action, C replay ms per action, raw nstep ms
+    per action). "C replay" rolls out, with mujoco.rollout from the same initial state,
+    the very controls the primitive applied at each step (recorded through
+    mujoco.set_mjcb_control in a twin environment): the same trajectory, with no Python
+    in between. "raw nstep" is mujoco.mj_step(model, data, nstep=n) from the same state
+    with the controls held: the same number of steps, but of an arm at rest.
+    """
+    import mujoco
+    from mujoco import rollout
+
+    # The controls of every step, from a twin environment (same seed, same actions).
+    twin = make_env()
+    twin.reset()
+    controls = []
+    mujoco.set_mjcb_control(lambda model, data: controls.append(data.ctrl.copy()))
+    try:
+        for action in actions:
+            twin.step(action)
+    finally:
+        mujoco.set_mjcb_control(None)
+    walls, replays, raws = [], [], []
+    for _ in range(repeats):
+        env = make_env()
+        env.reset()
+        model, data = env.physics.model.ptr, env.physics.data.ptr
+        spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
+        state = np.empty(mujoco.mj_stateSize(model, spec))
+        mujoco.mj_getState(model, data, state, spec)
+        start = time.perf_counter()
+        for action in actions:
+            env.step(action)
+        walls.append(time.perf_counter() - start)
+        n_steps = len(controls)
+        scratch = mujoco.MjData(model)
+        start = time.perf_counter()
+        rollout.rollout(model, scratch, state, np.array(controls)[None], nstep=n_steps)
+        replays.append(time.perf_counter() - start)
+        mujoco.mj_setState(model, scratch, state, spec)
+        scratch.ctrl[:] = controls[0]
+        start = time.perf_counter()
+        mujoco.mj_step(model, scratch, nstep=n_steps)
+        raws.append(time.perf_counter() - start)
+    n = len(actions)
+    return (min(walls) / n * 1e3, len(controls) / n, min(replays) / n * 1e3,
+            min(raws) / n * 1e3)
 
 
-def render_fps(env, frames=40):
-    env.reset()
-    env.physics.render(480, 640, camera_id="over_shoulder")  # warm up the context
-    start = time.perf_counter()
-    for _ in range(frames):
-        env.physics.render(480, 640, camera_id="over_shoulder")
-    return frames / (time.perf_counter() - start)
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--quick", action="store_true", help="fewer repeats")
+    args = parser.parse_args(argv)
+    repeats = 3 if args.quick else 9
 
+    import icm
+    from icm import figures
+    from icm.experiments import actor_critic, goal_oriented, rod_toppling
 
-def main():
+    rows = []
+
+    def row(name, seconds, ratio, target):
+        rows.append((name, f"{seconds:.3f} s", f"{ratio:6.2f}", f"<= {target:g} s",
+                     "ok" if seconds <= target else "MISSED"))
+
     experiments = icm.experiments
-    runs = [
-        ("run_goal_oriented, 100 seeds x 100 trials (target <= 1 s)",
-         lambda: experiments.run_goal_oriented(n_seeds=100, n_trials=100, progress=False)),
-        ("Figure 5 widget redraw, 20 seeds x 60 trials (target <= 0.3 s)", widget_redraw),
-        ("run_actor_critic, 100 seeds x 100 trials",
-         lambda: experiments.run_actor_critic(n_seeds=100, n_trials=100, progress=False)),
-        ("run_rod_toppling, 100 seeds x 300 episodes",
-         lambda: experiments.run_rod_toppling(n_seeds=100, n_episodes=300, progress=False)),
-    ]
-    rows = [(name, f"{best_of(3, run):.3f} s") for name, run in runs]
-    buttons_env = icm.envs.load("buttons", physics=True, seed=0, presses_per_trial=20)
-    rods_env = icm.envs.load("rods", physics=True, start_cell=(0, 0), max_moves=50)
+    for name, run, target in [
+            ("run_goal_oriented, 100 seeds x 100 trials",
+             lambda: experiments.run_goal_oriented(n_seeds=100, n_trials=100, progress=False),
+             0.05),
+            ("run_actor_critic, 100 seeds x 100 trials",
+             lambda: experiments.run_actor_critic(n_seeds=100, n_trials=100, progress=False),
+             0.05),
+            ("run_rod_toppling, 200 seeds x 300 episodes",
+             lambda: experiments.run_rod_toppling(n_seeds=200, n_episodes=300, progress=False),
+             1.0)]:
+        run()  # warm up (Numba's compiled loop is loaded from its cache)
+        row(name, *best_of(repeats, run), target)
+    for name, go in [
+            ("Figure 5 panel redraw, 100 seeds, PNG", redraw(
+                goal_oriented.run_goal_oriented, figures.figure5_panel_figure, n_trials=60)),
+            ("Figure 6 panel redraw, 100 seeds, PNG", redraw(
+                actor_critic.run_actor_critic, figures.figure6_panel_figure, n_trials=60)),
+            ("Figure 7 panel redraw, 100 seeds, PNG", redraw(
+                rod_toppling.run_rod_toppling, figures.figure7_panel_figure,
+                n_episodes=150))]:
+        go()
+        row(name, *best_of(repeats, go), 0.15)
+
+    reference, _ = best_of(repeats, reference_workload)
+    for name, code, target in [
+            ("python -m icm --help (fresh interpreter)",
+             "import runpy, sys; sys.argv = ['icm', '--help']\n"
+             "try:\n runpy.run_module('icm', run_name='__main__')\nexcept SystemExit: pass",
+             1.5),
+            ("import icm and its learners and experiments (fresh interpreter)",
+             "import icm; icm.envs; icm.learners; icm.experiments", 1.5)]:
+        seconds = subprocess_time(code)
+        row(name, seconds, seconds / reference, target)
+
+    print(f"reference workload: {reference:.4f} s (best of {repeats}); ratio = figure / "
+          "reference\n")
+    width = max(len(r[0]) for r in rows)
+    print(f"{'computation':<{width}}  {'figure':>9}  {'ratio':>6}  {'target':>10}")
+    for name, seconds, ratio, target, verdict in rows:
+        print(f"{name:<{width}}  {seconds:>9}  {ratio}  {target:>10}  {verdict}")
+
+    print("\nPhysics primitives against the same steps in C (target: <= 1.25 x the replay):")
     scenes = [
-        ("button press primitive", buttons_env, np.random.RandomState(0).randint(5, size=20)),
+        ("button press", lambda: icm.envs.load("buttons", physics=True, seed=0,
+                                               presses_per_trial=20),
+         np.random.RandomState(0).randint(5, size=20).tolist()),
         # forward, right, backward, left around cells (0,0)-(1,1): no rod topples
-        ("rod move", rods_env, [0, 3, 1, 2] * 5),
-    ]
-    for name, env, actions in scenes:
-        # Best of 5 for each side separately: this machine's timings vary by ~15%.
-        results = [primitive_against_raw_steps(env, actions) for _ in range(5)]
-        per_action = min(r[0] for r in results)
-        steps = results[0][1]
-        raw = min(r[2] for r in results)
-        rows += [
-            (f"{name}: wall time per action", f"{per_action * 1000:.2f} ms"),
-            (f"{name}: physics steps per action", f"{steps:.0f}"),
-            (f"{name}: as many raw mujoco.mj_step calls", f"{raw * 1000:.2f} ms"),
-            (f"{name}: ratio to raw stepping (target <= 1.25)", f"{per_action / raw:.2f}"),
-        ]
-    rows.append(("render 640x480, button scene", f"{render_fps(buttons_env):.1f} frames/s"))
-    width = max(len(name) for name, _ in rows)
-    for name, value in rows:
-        print(f"{name:<{width}}  {value:>12}")
+        ("rod move", lambda: icm.envs.load("rods", physics=True, max_moves=50),
+         [0, 3, 1, 2] * 5)]
+    for name, make, actions in scenes:
+        wall, steps, replay, raw = primitive_against_c(make, actions, 3 if args.quick else 5)
+        verdict = "ok" if wall <= 1.25 * replay else "MISSED"
+        print(f"  {name}: {wall:.2f} ms per action, {steps:.0f} physics steps; the same "
+              f"controls replayed in C (mujoco.rollout) {replay:.2f} ms: {wall / replay:.2f} x "
+              f"{verdict}; mj_step(nstep={steps:.0f}) with the arm at rest {raw:.2f} ms: "
+              f"{wall / raw:.2f} x")
+
+    env = icm.envs.load("buttons", physics=True, seed=0)
+    env.reset()
+    env.physics.render(480, 640, camera_id="over_shoulder")
+    start = time.perf_counter()
+    for _ in range(20):
+        env.physics.render(480, 640, camera_id="over_shoulder")
+    print(f"\nrender 640x480, button scene: {20 / (time.perf_counter() - start):.1f} frames/s")
 
 
 if __name__ == "__main__":

@@ -4,9 +4,22 @@ for Forming Actions and Producing Goal Directed Behaviour".
 Subpackages: `envs` (the button and rod tasks), `learners` (predictors, interest
 measures, agents), `experiments` (seeded multi-run experiments), `figures` (the paper's
 figures), `widgets` (interactive panels for the book), `stats` (bands over seeds).
+
+Each is imported on first use (`icm.figures` loads matplotlib, a physics environment
+loads MuJoCo), so `import icm` is quick.
 """
 
-from icm import envs, experiments, figures, learners, stats, widgets
+import importlib
 
 __version__ = "0.1.0"
 __all__ = ["envs", "experiments", "figures", "learners", "stats", "widgets"]
+
+
+def __getattr__(name):
+    if name in __all__:
+        return importlib.import_module(f"icm.{name}")
+    raise AttributeError(f"module 'icm' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(list(globals()) + __all__)

@@ -8,16 +8,25 @@ import argparse
 import pathlib
 import sys
 
-from icm import experiments, figures
+from icm import experiments
 from icm.experiments import rod_toppling
 from icm.learners import actor_critic, goal_oriented, interest, predictors, q_learning
 
 
+def _figures():
+    """icm.figures, imported when a figure is drawn (it loads matplotlib): `--help`
+    stays quick."""
+    from icm import figures
+
+    return figures
+
+
 def _figure1(args):
-    return figures.figure1(seed=args.seed)
+    return _figures().figure1(seed=args.seed)
 
 
 def _figure5(args):
+    figures = _figures()
     result = experiments.run_goal_oriented(
         n_seeds=args.seeds, n_trials=args.trials, epsilon=args.epsilon, window=args.window,
         new_task_factor=args.new_task_factor, reading=args.reading, seed=args.seed)
@@ -76,6 +85,7 @@ def _figure5_options(parser):
 
 
 def _figure6(args):
+    figures = _figures()
     result = experiments.run_actor_critic(
         n_seeds=args.seeds, n_trials=args.trials, temperature=args.temperature,
         lr_actor=args.lr_actor, lr_critic=args.lr_critic, gamma=args.gamma,
@@ -106,6 +116,7 @@ def _figure6_options(parser):
 
 
 def _figure7(args):
+    figures = _figures()
     result = experiments.run_rod_toppling(
         n_seeds=1, first_run=args.run, n_episodes=args.episodes, epsilon=args.epsilon,
         alpha=args.alpha, gamma=args.gamma, predictor_lr=args.predictor_lr,

@@ -78,3 +78,46 @@ def comes_first(first, second):
                                               f"from 1, -1 for never), got "
                                               f"{_validate.show(value)}")
     return (first >= 1) & ((second == -1) | (first < second))
+
+
+def bootstrap_band(values, level=0.95, resamples=1000, seed=0):
+    """Mean over the first axis (seeds) and a percentile-bootstrap band for it.
+
+    The band is the (1 - level) / 2 and (1 + level) / 2 quantiles of the means of
+    `resamples` resamples of the seeds (with replacement, drawn from `seed`, so the
+    same values give the same band). Unlike mean +/- t * standard error, it never
+    leaves the range the values can take: the band of an error that cannot be
+    negative stays at or above zero.
+
+    Args:
+      values: array [seed, ...] of finite numbers.
+      level: confidence level in (0, 1).
+      resamples: bootstrap resamples (integer >= 100).
+      seed: seed of the resampling (integer >= 0).
+
+    Returns:
+      (mean, low, high), arrays of shape values.shape[1:].
+    """
+    values = _validate.finite_array("values", values)
+    if values.ndim < 1 or values.shape[0] < 1:
+        raise ValueError(f"values must have a seed axis with at least one seed, got shape "
+                         f"{values.shape}")
+    level = _validate.real("level", level, 0.0, 1.0, low_open=True, high_open=True)
+    resamples = _validate.integer("resamples", resamples, 100)
+    seed = _validate.integer("seed", seed, 0)
+    n = values.shape[0]
+    mean = values.mean(axis=0)
+    # How many times each seed is drawn in each resample; a resample's mean is then a
+    # weighted mean, one matrix product for all of them.
+    counts = np.random.default_rng(seed).multinomial(n, np.full(n, 1.0 / n), size=resamples)
+    means = (counts @ values.reshape(n, -1) / n).reshape((resamples,) + values.shape[1:])
+    low, high = np.quantile(means, [(1 - level) / 2, (1 + level) / 2], axis=0)
+    # Rounding in the weighted means must not put the band outside the values' range.
+    low = np.clip(low, values.min(axis=0), mean)
+    high = np.clip(high, mean, values.max(axis=0))
+    return mean, low, high
+
+
+PANEL_RESAMPLES = 500
+"""Bootstrap resamples of the panels' bands: enough for a 95% band to be stable to the
+eye, few enough for a panel to redraw at once."""

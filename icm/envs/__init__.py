@@ -3,9 +3,14 @@
 `load(name, physics=False, seed=...)` gives the paper's discrete tasks: the fast
 tabular twin (physics=False) or the simulated iCub (physics=True), with the same specs
 and episode rules. `load_continuous(name, seed=...)` gives the underlying dm_control
-tasks, whose action is the 7 arm joint targets.
+tasks, whose action is the 7 arm joint targets. `as_gymnasium` wraps a discrete one
+for Gymnasium; `compare_twins` checks that the two versions agree.
+
+MuJoCo, dm_control and Gymnasium are imported only when a physics environment or the
+Gymnasium adapter is first used, so that the tabular twins load in a blink.
 """
 
+import importlib
 import inspect
 import os
 import sys
@@ -14,18 +19,23 @@ if sys.platform.startswith("linux"):
     os.environ.setdefault("MUJOCO_GL", "egl")  # headless rendering, unless the user chose
 
 from icm import _validate  # noqa: E402
-from icm.envs import buttons, rods  # noqa: E402  (after MUJOCO_GL)
-from icm.envs.gym import as_gymnasium  # noqa: E402
+from icm.envs import buttons, rods  # noqa: E402
 from icm.envs.twins import compare_twins  # noqa: E402
 
 _DISCRETE = {
-    "buttons": {False: buttons.ButtonConsole, True: buttons.PhysicsButtonConsole},
-    "rods": {False: rods.RodTable, True: rods.PhysicsRodTable},
+    "buttons": {False: ("icm.envs.buttons.twin", "ButtonConsole"),
+                True: ("icm.envs.buttons.physics", "PhysicsButtonConsole")},
+    "rods": {False: ("icm.envs.rods.twin", "RodTable"),
+             True: ("icm.envs.rods.physics", "PhysicsRodTable")},
 }
-_CONTINUOUS = {"buttons": buttons.load_continuous, "rods": rods.load_continuous}
-_TASKS = {"buttons": buttons.ButtonsTask, "rods": rods.RodsTask}
+_CONTINUOUS = {"buttons": ("icm.envs.buttons.physics", "load_continuous", "ButtonsTask"),
+               "rods": ("icm.envs.rods.physics", "load_continuous", "RodsTask")}
 NAMES = tuple(sorted(_DISCRETE))
 """Names that `load` and `load_continuous` know."""
+
+
+def _resolve(module, name):
+    return getattr(importlib.import_module(module), name)
 
 
 def _check_name(name):
@@ -53,8 +63,8 @@ def load(name, physics=False, seed=None, **kwargs):
       seed: None, an integer >= 0 or a `numpy.random.Generator`; the same seed gives
         the same episodes, in both versions.
       **kwargs: passed to the environment's constructor (see its docstring): for the
-        buttons red_button, presses_per_trial, rewarded_box; for the rods start_cell,
-        max_moves.
+        buttons red_button, presses_per_trial, rewarded_box, noisy_button; for the
+        rods start_cell, max_moves.
 
     Returns:
       A `dm_env.Environment`.
@@ -64,7 +74,7 @@ def load(name, physics=False, seed=None, **kwargs):
     """
     _check_name(name)
     physics = _validate.boolean("physics", physics)
-    factory = _DISCRETE[name][physics]
+    factory = _resolve(*_DISCRETE[name][physics])
     _check_kwargs(name, factory, kwargs)
     return factory(seed=seed, **kwargs)
 
@@ -85,6 +95,15 @@ def load_continuous(name, seed=None, **kwargs):
       ValueError: for an unknown name or a bad argument.
     """
     _check_name(name)
+    module, loader, task = _CONTINUOUS[name]
     task_kwargs = {k: v for k, v in kwargs.items() if k != "time_limit"}
-    _check_kwargs(name, _TASKS[name], task_kwargs)
-    return _CONTINUOUS[name](seed=seed, **kwargs)
+    _check_kwargs(name, _resolve(module, task), task_kwargs)
+    return _resolve(module, loader)(seed=seed, **kwargs)
+
+
+def as_gymnasium(env, render_mode=None):
+    """Wraps a discrete environment of `load` as a `gymnasium.Env` (see
+    `icm.envs.gym.GymnasiumEnv`)."""
+    from icm.envs.gym import GymnasiumEnv
+
+    return GymnasiumEnv(env, render_mode=render_mode)

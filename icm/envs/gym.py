@@ -90,9 +90,3 @@ class GymnasiumEnv(gymnasium.Env):
         if self.render_mode == "rgb_array":
             return self.env.physics.render(480, 640, camera_id="over_shoulder")
         return None
-
-
-def as_gymnasium(env, render_mode=None):
-    """Wraps a discrete environment of `icm.envs.load` as a `gymnasium.Env` (see
-    `GymnasiumEnv`)."""
-    return GymnasiumEnv(env, render_mode=render_mode)

@@ -6,7 +6,6 @@ and lets the physics track them, so the hand moves as the simulated arm moves, n
 by setting its position.
 """
 
-import pathlib
 
 import mujoco
 import numpy as np
@@ -16,10 +15,8 @@ from dm_control.suite import base
 from dm_env import specs
 
 from icm import _validate
+from icm.envs._assets import ASSETS, asset_path  # noqa: F401 (part of this module's API)
 from icm.envs._common import check_time_limit
-
-ASSETS = pathlib.Path(__file__).resolve().parents[2] / "assets"
-"""The folder of MJCF models and data (resolved from the package, not the working dir)."""
 
 ARM_JOINTS = ("r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw", "r_elbow",
               "r_wrist_prosup", "r_wrist_pitch", "r_wrist_yaw")
@@ -35,13 +32,6 @@ CONTROL_TIMESTEP = 0.02
 SUBSTEPS = 10
 """Physics steps between two updates of the actuator targets during a motion."""
 
-
-def asset_path(name):
-    """The path of a file in `assets/`, checked to exist."""
-    path = ASSETS / _validate.text("name", name)
-    if not path.exists():
-        raise FileNotFoundError(f"missing asset {path}")
-    return path
 
 
 def minimum_jerk(fraction):

@@ -1,4 +1,8 @@
-"""The actor-critic on the tabular button console, over many seeds (Figure 6)."""
+"""The actor-critic on the tabular button console, over many seeds (Figure 6).
+
+All seeds run at once (`icm.learners.actor_critic.ActorCriticBatch`): seed k of a batch
+is seed k run alone, and the per-agent `ActorCritic` gives the same numbers (a test
+runs both)."""
 
 import dataclasses
 import math
@@ -11,7 +15,7 @@ from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
 from icm.experiments.goal_oriented import check_results
 from icm.learners import actor_critic, predictors
-from icm.stats import comes_first, first_from_which
+from icm.stats import PANEL_RESAMPLES, bootstrap_band, comes_first, first_from_which
 
 TASKS = ("red", "green")
 """Order of the task axis in the result arrays."""
@@ -231,7 +235,7 @@ def run_actor_critic(n_seeds=100, n_trials=100,
       seed: the root seed: an integer >= 0, a `numpy.random.Generator` (one integer
         is drawn from it) or None (fresh entropy); run i's seeds depend only on it
         and i. The integer used is kept in `settings["seed"]`.
-      progress: show a progress bar over the seeds when the run lasts over a second.
+      progress: show a progress bar when the run lasts over a second.
 
     Returns:
       An `ActorCriticResult`.
@@ -244,53 +248,92 @@ def run_actor_critic(n_seeds=100, n_trials=100,
                                     gamma, reward, variant, rewarded_box, action_selection,
                                     epsilon, action_weight, presses_per_trial, red_button,
                                     seed, progress)
-    seed = settings["seed"]
-    shape = (n_seeds, n_trials, len(TASKS))
-    error_out = np.zeros(shape)
-    practice = np.zeros(shape, dtype=np.int64)
-    press_probability = np.zeros(shape)
+    seeds = run_seeds(settings["seed"], n_seeds, 2)
+    states, start_states, probes = state_table(red_button)
+    env = buttons.ButtonConsoleBatch([s[0] for s in seeds], red_button)
+    agent = actor_critic.ActorCriticBatch(
+        [s[1] for s in seeds], states, buttons.EFFECTS, buttons.N_BUTTONS,
+        temperature=temperature, lr_actor=lr_actor, lr_critic=lr_critic, gamma=gamma,
+        reward=reward, variant=variant, action_selection=action_selection, epsilon=epsilon,
+        action_weight=action_weight)
+    rewarded = -1 if reward != "extrinsic" else \
+        buttons.RED_BOX if rewarded_box == "red" else buttons.GREEN_BOX
+    return _play(settings, env, agent, n_trials, presses_per_trial, red_button,
+                 start_states, probes, rewarded, progress)
+
+
+def state_table(red_button=buttons.DEFAULT_RED_BUTTON):
+    """The states of the actor-critic on the button console, as the batched learner
+    numbers them.
+
+    Returns:
+      (features, start_states, probes): features [17, 7], the 5 lights and the 2
+      boxes of every state (state layout * 3 + effect for the 12 training states: the
+      four layouts with the boxes shut or as a press left them; then the 5 probe
+      states of section 4.1's test); start_states [4], the training states of each
+      layout with the boxes shut; probes, one (task, state, button, true effect) per
+      query of `probe_queries`.
+    """
+    effects = np.asarray(buttons.EFFECTS)
+    features = [np.concatenate([lights, effect]) for lights in buttons.layouts(red_button)
+                for effect in effects]
+    probes = []
+    for task, state, button, truth in probe_queries(red_button):
+        probes.append((task, len(features), button, buttons.EFFECTS.index(truth)))
+        features.append(np.array(state))
+    return np.array(features), np.arange(4) * len(effects), probes
+
+
+def _play(settings, env, agent, n_trials, presses_per_trial, red_button, start_states,
+          probes, rewarded, progress):
+    """Plays every trial of a batched actor-critic run and gathers the result.
+
+    The loop plays and keeps, after each trial, the actor's preferences at the start
+    states, the predictor's answers to the probes and the critic's largest value; the
+    result's arrays are computed from those afterwards, for all trials at once."""
+    n_seeds, n_effects = len(env), len(buttons.EFFECTS)
+    practice = np.zeros((n_seeds, n_trials, len(TASKS)), dtype=np.int64)
     reward_out = np.zeros((n_seeds, n_trials))
     max_abs_value = np.zeros((n_seeds, n_trials))
+    starts = np.zeros((n_seeds, n_trials, len(start_states), agent.n_actions))
+    probe_keys = agent.predictor.keys(np.array([p[1] for p in probes]),
+                                      np.array([p[2] for p in probes]))
+    answers = np.zeros((n_seeds, n_trials, len(probes)), dtype=np.int64)
+    effects = np.asarray(buttons.EFFECTS)
+    trials = progress_bar(range(n_trials), n_trials, "actor-critic", progress, unit="trial")
+    for trial in trials:
+        layout = env.new_trials()
+        state = start_states[layout]
+        for _ in range(presses_per_trial):
+            actions = agent.select_actions(state)
+            observed = env.press(actions)
+            next_state = layout * n_effects + observed
+            external = (observed == rewarded).astype(float)
+            r, _ = agent.learn(state, actions, next_state, observed, external, 1.0)
+            reward_out[:, trial] += r
+            practice[:, trial] += effects[observed]
+            state = next_state
+        starts[:, trial] = agent.actor[:, start_states]
+        answers[:, trial] = agent.predictor.effect[:, probe_keys]
+        max_abs_value[:, trial] = np.abs(agent.critic).max(axis=1)
 
-    queries = probe_queries(red_button)
-    n_green = sum(1 for task, *_ in queries if task == "green")
-    starts = [tuple(lights.tolist()) + (0, 0) for lights in buttons.layouts(red_button)]
-    greens = buttons.green_candidates(red_button)
-
-    seeds = progress_bar(enumerate(run_seeds(seed, n_seeds, 2)), n_seeds, "actor-critic",
-                         progress)
-    for run, (env_seed, agent_seed) in seeds:
-        env = buttons.ButtonConsole(
-            red_button=red_button, presses_per_trial=presses_per_trial,
-            rewarded_box=rewarded_box if reward == "extrinsic" else None, seed=env_seed)
-        agent = actor_critic.ActorCritic(
-            buttons.N_BUTTONS, temperature=temperature, lr_actor=lr_actor,
-            lr_critic=lr_critic, gamma=gamma, reward=reward, variant=variant,
-            action_selection=action_selection, epsilon=epsilon,
-            predictor=predictors.NearestNeighbourPredictor(action_weight), seed=agent_seed)
-        for trial in range(n_trials):
-            step = env.reset()
-            while not step.last():
-                action = agent.select_action(step.observation)
-                next_step = env.step(action)
-                r, _ = agent.learn(step.observation, action, next_step.observation,
-                                   external_reward=next_step.reward,
-                                   discount=next_step.discount)
-                reward_out[run, trial] += r
-                practice[run, trial] += next_step.observation["boxes"]
-                step = next_step
-            for task, state, button, truth in queries:
-                error = math.dist(agent.predict(state, button), truth)
-                if task == "red":
-                    error_out[run, trial, 0] = error
-                else:
-                    error_out[run, trial, 1] += error / n_green
-            for state, green in zip(starts, greens):
-                policy = agent.policy(state)
-                press_probability[run, trial, 0] += policy[red_button] / len(starts)
-                press_probability[run, trial, 1] += policy[green] / len(starts)
-            max_abs_value[run, trial] = max(map(abs, agent.critic.values()), default=0.0)
-
+    # Section 4.1's test: the predictor's error on the probes, red alone, and green
+    # averaged over its four places (added in order, as one run at a time would).
+    errors = np.array([[math.dist(p, o) for o in buttons.EFFECTS] for p in buttons.EFFECTS])
+    error_out = np.zeros((n_seeds, n_trials, len(TASKS)))
+    n_green = sum(1 for task, *_ in probes if task == "green")
+    for i, (task, _, _, truth) in enumerate(probes):
+        error = errors[answers[..., i], truth]
+        if task == "red":
+            error_out[..., 0] = error
+        else:
+            error_out[..., 1] += error / n_green
+    # The policy at the start of a trial, averaged over the layouts.
+    policy = agent.policy_of(starts)  # [seed, trial, layout, action]
+    press_probability = np.zeros((n_seeds, n_trials, len(TASKS)))
+    for layout, green in enumerate(buttons.green_candidates(red_button)):
+        press_probability[..., 0] += policy[:, :, layout, red_button] / len(start_states)
+        press_probability[..., 1] += policy[:, :, layout, green] / len(start_states)
     zero = first_from_which(np.moveaxis(error_out, 1, 2) == 0)
     zero = np.where(zero >= 0, zero + 1, -1)
     return ActorCriticResult(settings, error_out, zero, practice, press_probability,
@@ -323,3 +366,22 @@ def comparison_table(results):
     lines.append("")
     lines.append("† mean over the seeds whose error reaches 0 for good within the run.")
     return "\n".join(lines)
+
+
+def panel_curves(result):
+    """What the Figure 6 panel draws, as numbers: section 4.1's prediction error for
+    each task per trial, the mean over the seeds with a 95% percentile-bootstrap band
+    (which, unlike mean +/- t standard errors, never dips below an error of 0).
+
+    Returns:
+      {"x": trials, "xlabel", "groups": [{"title", "ylabel", "series": {task: (mean,
+      low, high)}}]}.
+    """
+    _validate.instance("result", result, ActorCriticResult,
+                       "an ActorCriticResult (from icm.experiments.run_actor_critic)")
+    series = {task: bootstrap_band(result.prediction_error[:, :, i],
+                                   resamples=PANEL_RESAMPLES)
+              for i, task in enumerate(TASKS)}
+    return {"x": np.arange(1, result.n_trials + 1), "xlabel": "trial",
+            "groups": [{"title": f"Prediction error, {result.n_seeds} seeds",
+                        "ylabel": "prediction error (mean, 95% band)", "series": series}]}

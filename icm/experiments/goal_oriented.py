@@ -1,4 +1,9 @@
-"""The goal-oriented learner on the tabular button console, over many seeds (Figure 5)."""
+"""The goal-oriented learner on the button console, over many seeds (Figure 5).
+
+All seeds run at once (`icm.learners.goal_oriented.GoalOrientedBatch` on
+`icm.envs.buttons.ButtonConsoleBatch`): seed k of a batch is seed k run alone, and the
+per-agent classes give the same numbers (a test runs both).
+"""
 
 import dataclasses
 
@@ -9,13 +14,14 @@ from icm.envs import buttons
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
 from icm.learners import goal_oriented, interest, predictors
-from icm.stats import comes_first, first_below, first_from_which
+from icm.stats import PANEL_RESAMPLES, bootstrap_band, comes_first, first_below, first_from_which
 
 TASKS = ("red", "green")
 """Order of the task axis in the result arrays."""
 _REST = (0, 0)
 TASK_KEYS = {"red": (_REST, (1, 0)), "green": (_REST, (0, 1)), "nothing": (_REST, (0, 0))}
 """The agent's task keys (boxes at rest -> boxes after the press) by name."""
+_TASK_EFFECTS = (buttons.RED_BOX, buttons.GREEN_BOX)  # red, green, as TASKS
 
 
 @dataclasses.dataclass(frozen=True)
@@ -34,6 +40,15 @@ class GoalOrientedResult:
         for that task in every layout and for every button, and stays right to the end
         of the run; -1 if that never happens.
       practice: [seed, trial, task], presses in the trial that opened each box.
+      button_share: [seed, trial, button], the share of the trial's presses on each
+        button (5 buttons, or 6 with the noisy button).
+      action_interest: [seed, trial, button], at the end of each trial, how
+        interesting each button is to the learner (the interest of the task it is
+        predicted to achieve, or of its region with `interest_per="region"`), the mean
+        over the four layouts.
+
+    With `interest_per="region"`, `interest` holds the interest of the red button's
+    region (task red) and the mean over the four buttons that green takes (task green).
     """
 
     settings: dict
@@ -41,6 +56,8 @@ class GoalOrientedResult:
     prediction_error: np.ndarray
     mastery_trial: np.ndarray
     practice: np.ndarray
+    button_share: np.ndarray
+    action_interest: np.ndarray
 
     @property
     def n_seeds(self):
@@ -126,8 +143,8 @@ class GoalOrientedResult:
 
 
 def _check_run_arguments(n_seeds, n_trials, epsilon, window, new_task_factor, reading,
-                         action_weight, presses_per_trial, red_button, physics, seed,
-                         progress):
+                         action_weight, presses_per_trial, red_button, interest_signal,
+                         interest_per, noisy_button, physics, seed, progress):
     """The arguments of `run_goal_oriented`, checked and normalised, as a dict."""
     checked = dict(
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
@@ -141,10 +158,17 @@ def _check_run_arguments(n_seeds, n_trials, epsilon, window, new_task_factor, re
         presses_per_trial=_validate.integer_at_least("presses_per_trial",
                                                      presses_per_trial, 1),
         red_button=buttons.check_red_button(red_button),
+        interest=_validate.one_of("interest", interest_signal, interest.SIGNALS),
+        interest_per=_validate.one_of("interest_per", interest_per,
+                                      goal_oriented.INTEREST_PER),
+        noisy_button=_validate.boolean("noisy_button", noisy_button),
         physics=_validate.boolean("physics", physics),
         seed=_validate.root_seed("seed", seed))
     _validate.boolean("progress", progress)
-    check_run_size("run_goal_oriented", checked["n_seeds"], checked["n_trials"], 48)
+    if checked["physics"] and checked["noisy_button"]:
+        raise ValueError("noisy_button=True runs on the tabular console only (physics=False)")
+    check_run_size("run_goal_oriented", checked["n_seeds"], checked["n_trials"], 160,
+                   bytes_per_seed=8 * (600 + 8 * checked["window"]))
     return checked
 
 
@@ -156,34 +180,42 @@ def run_goal_oriented(n_seeds=100, n_trials=100,
                       action_weight=predictors.DEFAULT_ACTION_WEIGHT,
                       presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
                       red_button=buttons.DEFAULT_RED_BUTTON,
+                      interest="learning_progress",
+                      interest_per="task",
+                      noisy_button=False,
                       physics=False,
                       seed=0,
                       progress=True):
-    """Runs the goal-oriented learner on the tabular button console, once per seed.
+    """Runs the goal-oriented learner on the button console, all seeds at once.
 
-    Each run builds a `ButtonConsole`, a `NearestNeighbourPredictor`, a
-    `LearningProgressInterest` and a `GoalOrientedAgent` with its own seeds (drawn
-    from `seed`), and plays `n_trials` trials. After each trial it records the
-    interest in the red and green tasks and tests the predictor on every (layout,
-    button) pair.
+    Each run has a console, a nearest-neighbour predictor, an interest module and an
+    epsilon-greedy actor with its own seeds (drawn from `seed`), and plays `n_trials`
+    trials. After each trial it records the interest in the red and green tasks and
+    tests the predictor on every (layout, button) pair.
 
     Args:
       n_seeds: number of independent runs (>= 1).
       n_trials: trials per run (>= 1).
       epsilon: probability of a random press, in [0, 1].
-      window: errors in the progress slope (k), >= 2.
+      window: errors in the progress slope (k), >= 2 (and in the mean of the
+        prediction-error signal).
       new_task_factor: share of the mean interest given to a task seen once, [0, 1].
       reading: "progress" (errors going down are interesting) or "literal".
       action_weight: the predictor's cost of a different button (> 0).
       presses_per_trial: presses per trial (>= 1).
       red_button: the button that is always red (0-4).
+      interest: the interest signal: "learning_progress" (the paper's, default),
+        "prediction_error", "novelty" or "random" (see `icm.learners.interest`).
+      interest_per: "task" (the paper's, default) or "region" (each button's own
+        interest); see `icm.learners.goal_oriented.INTEREST_PER`.
+      noisy_button: add the noisy button, action 5 (tabular console only).
       physics: False for the tabular console (default), True for the simulated iCub
         (about 11 ms of computing per press). The same seeds give the same layouts
         and, the physics agreeing with its twin, the same results.
       seed: the root seed: an integer >= 0, a `numpy.random.Generator` (one integer
         is drawn from it) or None (fresh entropy); run i's seeds depend only on it
         and i. The integer used is kept in `settings["seed"]`.
-      progress: show a progress bar over the seeds when the run lasts over a second.
+      progress: show a progress bar over the trials when the run lasts over a second.
 
     Returns:
       A `GoalOrientedResult`.
@@ -194,48 +226,72 @@ def run_goal_oriented(n_seeds=100, n_trials=100,
     """
     settings = _check_run_arguments(n_seeds, n_trials, epsilon, window, new_task_factor,
                                     reading, action_weight, presses_per_trial, red_button,
-                                    physics, seed, progress)
-    seed = settings["seed"]
-    console = buttons.PhysicsButtonConsole if physics else buttons.ButtonConsole
-    shape = (n_seeds, n_trials, len(TASKS))
-    interest_out = np.zeros(shape)
-    error_out = np.zeros(shape)
-    practice = np.zeros(shape, dtype=np.int64)
+                                    interest, interest_per, noisy_button, physics, seed,
+                                    progress)
+    seeds = run_seeds(settings["seed"], n_seeds, 2)
+    env_seeds, agent_seeds = [s[0] for s in seeds], [s[1] for s in seeds]
+    if physics:
+        env = buttons.PhysicsButtonConsoleBatch(env_seeds, red_button, presses_per_trial)
+    else:
+        env = buttons.ButtonConsoleBatch(env_seeds, red_button, noisy_button)
+    n_actions = env.n_actions
+    contexts = np.array(buttons.layouts(red_button))
+    agent = goal_oriented.GoalOrientedBatch(
+        agent_seeds, contexts, buttons.EFFECTS, n_actions, epsilon=epsilon,
+        action_weight=action_weight, interest=interest, window=window,
+        new_task_factor=new_task_factor, reading=reading, interest_per=interest_per)
+    return _play(settings, env, agent, n_trials, presses_per_trial, red_button, progress)
 
-    contexts = [tuple(lights.tolist()) for lights in buttons.layouts(red_button)]
-    queries = [(c, b) for c in contexts for b in range(buttons.N_BUTTONS)]
-    truth = np.array([buttons.press_outcome(c, b) for c, b in queries])
-    task_keys = [TASK_KEYS[t] for t in TASKS]
 
-    seeds = progress_bar(enumerate(run_seeds(seed, n_seeds, 2)), n_seeds,
-                         "goal-oriented learner", progress)
-    for run, (env_seed, agent_seed) in seeds:
-        env = console(red_button=red_button, presses_per_trial=presses_per_trial,
-                      seed=env_seed)
-        agent = goal_oriented.GoalOrientedAgent(
-            buttons.N_BUTTONS,
-            predictor=predictors.NearestNeighbourPredictor(action_weight),
-            interest=interest.LearningProgressInterest(window, new_task_factor, reading),
-            epsilon=epsilon, seed=agent_seed)
-        for trial in range(n_trials):
-            step = env.reset()
-            while not step.last():
-                action = agent.select_action(step.observation)
-                next_step = env.step(action)
-                agent.learn(step.observation, action, next_step.observation)
-                boxes = next_step.observation["boxes"]
-                if boxes[0] or boxes[1]:
-                    practice[run, trial] += boxes
-                step = next_step
-            for i, key in enumerate(task_keys):
-                interest_out[run, trial, i] = agent.interest.interest(key)
-            predicted = np.array([agent.predictor.predict(c, b, default=_REST)
-                                  for c, b in queries])
-            error_out[run, trial] = np.abs(predicted - truth).mean(axis=0)
+def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progress):
+    """Plays every trial of a batched run and gathers a GoalOrientedResult.
 
+    The loop only plays and keeps what happened (the presses, their outcomes, the
+    interest and the predictor after each trial); everything the result reports is
+    computed from those afterwards, for all trials at once."""
+    n_seeds, n_actions = len(env), env.n_actions
+    actions = np.zeros((n_seeds, n_trials, presses_per_trial), dtype=np.int64)
+    outcomes = np.zeros((n_seeds, n_trials, presses_per_trial), dtype=np.int64)
+    values = np.zeros((n_seeds, n_trials, agent.interest.n_keys))
+    predictions = np.zeros((n_seeds, n_trials) + agent.predictor.effect.shape[1:], dtype=np.int64)
+    trials = progress_bar(range(n_trials), n_trials, "goal-oriented learner", progress,
+                          unit="trial")
+    for trial in trials:
+        layout = env.new_trials()
+        for press in range(presses_per_trial):
+            chosen = agent.select_actions(layout)
+            observed = env.press(chosen)
+            agent.learn(layout, chosen, observed)
+            actions[:, trial, press], outcomes[:, trial, press] = chosen, observed
+        values[:, trial] = agent.interest.values()
+        predictions[:, trial] = agent.predictor.effect
+
+    effects = np.asarray(buttons.EFFECTS)
+    practice = np.stack([(outcomes == buttons.RED_BOX).sum(axis=2),
+                         (outcomes == buttons.GREEN_BOX).sum(axis=2)], axis=2)
+    presses = np.stack([(actions == a).sum(axis=2) for a in range(n_actions)], axis=2)
+    per_layout = predictions.reshape(n_seeds, n_trials, 4, n_actions)
+    if agent.interest_per == "task":
+        interest_out = values[..., list(_TASK_EFFECTS)]
+        per_layout_interest = np.take_along_axis(values[:, :, None, :], per_layout, axis=3)
+    else:
+        greens = buttons.green_candidates(red_button)
+        interest_out = np.stack([values[..., red_button], values[..., greens].mean(axis=2)],
+                                axis=2)
+        per_layout_interest = np.broadcast_to(values[:, :, None, :], per_layout.shape)
+    action_interest = np.moveaxis(per_layout_interest, 2, 0).mean(axis=0)
+    # The share of the 20 (layout, button) pairs on which the predictor is wrong about
+    # each box: wrong[predicted effect, true effect, box] is 1 where they differ.
+    wrong = np.abs(effects[:, None, :] - effects[None, :, :]).astype(float)
+    pairs = (per_layout[..., :buttons.N_BUTTONS] * len(effects)
+             + buttons.outcome_table(red_button)).reshape(n_seeds, n_trials, -1)
+    error_out = np.stack([wrong[..., box].reshape(-1).take(pairs).mean(axis=2)
+                          for box in range(2)], axis=2)
     mastery = first_from_which(np.moveaxis(error_out, 1, 2) == 0)
     mastery = np.where(mastery >= 0, mastery + 1, -1)
-    return GoalOrientedResult(settings, interest_out, error_out, mastery, practice)
+    share = presses / presses_per_trial
+    return GoalOrientedResult(settings, interest_out, error_out, mastery, practice, share,
+                              action_interest)
 
 
 def check_results(name, results, cls):
@@ -275,3 +331,23 @@ def comparison_table(results):
             f"| {s['red_fade_trial']} / {s['green_fade_trial']} "
             f"| {s['red_practice_peak_trial']} / {s['green_practice_peak_trial']} |")
     return "\n".join(lines)
+
+
+def panel_curves(result):
+    """What the Figure 5 panel draws, as numbers: the mean interest in each task per
+    trial over the seeds, with a 95% percentile-bootstrap band.
+
+    The interactive panel and the book's precomputed static panel both draw this, so
+    the two show the same numbers for the same settings.
+
+    Returns:
+      {"x": trials [trial], "xlabel", "groups": [{"title", "ylabel", "series":
+      {task: (mean, low, high)}}]}.
+    """
+    _validate.instance("result", result, GoalOrientedResult,
+                       "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
+    series = {task: bootstrap_band(result.interest[:, :, i], resamples=PANEL_RESAMPLES)
+              for i, task in enumerate(TASKS)}
+    return {"x": np.arange(1, result.n_trials + 1), "xlabel": "trial",
+            "groups": [{"title": f"Interest in each task, {result.n_seeds} seeds",
+                        "ylabel": "interest (mean, 95% band)", "series": series}]}

@@ -5,12 +5,12 @@ import dataclasses
 
 import numpy as np
 
-from icm import _validate, envs
+from icm import _validate
 from icm.envs import rods
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
 from icm.learners import predictors, q_learning
-from icm.stats import comes_first, first_from_which
+from icm.stats import PANEL_RESAMPLES, bootstrap_band, comes_first, first_from_which
 
 RODS = rods.ROD_NAMES
 """Order of the rod axis in the result arrays: red, blue."""
@@ -297,7 +297,7 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
       first_run: the number of the first run (>= 0): the result holds runs
         first_run..first_run+n_seeds-1 of the root seed, so that one run of a large
         batch can be rerun alone (`n_seeds=1, first_run=i`).
-      progress: show a progress bar over the seeds when the run lasts over a second.
+      progress: show a progress bar when the run lasts over a second.
 
     Returns:
       A `RodTopplingResult`.
@@ -313,103 +313,213 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
                                settings["start_cell"])
     names = MOMENTS + tuple(f"episode {e}" for e in extra)
     truth = true_outcomes()
-    grid = (rods.N_COLUMNS, rods.N_ROWS)
-    standing = ~np.isnan(truth[..., 0, 0])  # [column, row]: where the hand can rest
-    topples = np.nan_to_num(truth) == 1  # [column, row, action, rod]: the map's pairs
-    states = [cell_state(cell) for cell in _CELLS]
-    width = rods.N_COLUMNS
 
-    toppled = np.full((n_seeds, n_episodes), -1, dtype=np.int64)
-    lengths = np.zeros((n_seeds, n_episodes), dtype=np.int64)
-    errors = np.zeros((n_seeds, n_episodes, len(RODS)))
-    rod_error = np.zeros((n_seeds, n_episodes, len(RODS)))
-    rod_error_toppled = np.full((n_seeds, n_episodes, len(RODS)), np.nan)
-    well_toppled = np.full((n_seeds, len(RODS)), -1, dtype=np.int64)
-    snapshot_episode = np.full((n_seeds, len(names)), -1, dtype=np.int64)
-    q_out = np.full((n_seeds, len(names)) + grid + (N_ACTIONS,), np.nan)
-    p_out = np.full((n_seeds, len(names)) + grid + (N_ACTIONS, len(RODS)), np.nan)
-    c_out = np.full((n_seeds, len(names)) + grid, np.nan)
+    seeds = run_seeds(seed, n_seeds, 2, first=first_run)
+    agent = q_learning.QLearnerBatch([s[1] for s in seeds], N_STATES, N_ACTIONS, len(RODS),
+                                     alpha=alpha, gamma=gamma, epsilon=epsilon,
+                                     initial_q=initial_q, predictor_lr=predictor_lr)
+    if physics:
+        env = rods.PhysicsRodTableBatch(n_seeds, start_cell)
+        played = play_episodes(env, agent, n_episodes, max_moves, extra, progress)
+    else:
+        from icm.experiments import _rods_kernel  # here: it loads Numba
 
-    seeds = progress_bar(enumerate(run_seeds(seed, n_seeds, 2, first=first_run)), n_seeds,
-                         "Q-learner on the rods", progress)
-    for run, (env_seed, agent_seed) in seeds:
-        env = envs.load("rods", physics=physics, seed=env_seed, start_cell=tuple(start_cell),
-                        max_moves=max_moves)
-        predictor = predictors.LinearPredictor(N_ACTIONS, len(RODS), lr=predictor_lr)
-        agent = q_learning.QLearner(N_STATES, N_ACTIONS, predictor, alpha=alpha, gamma=gamma,
-                                    epsilon=epsilon, initial_q=initial_q, seed=agent_seed)
-        # The learner after every episode, [episode, state, ...] in state order, and
-        # the first episode each (state, action) toppled each rod.
-        q_history = np.zeros((n_episodes, N_STATES, N_ACTIONS))
-        p_history = np.zeros((n_episodes, N_STATES, N_ACTIONS, len(RODS)))
-        c_history = np.zeros((n_episodes, N_STATES))
-        found = np.full((N_STATES, N_ACTIONS, len(RODS)), n_episodes)
-        for episode in range(n_episodes):
-            column, row = env.reset().observation["hand"].tolist()
-            state = column + width * row
-            red_error = blue_error = 0.0
-            moves = 0
-            while True:
-                action = agent.select_action(state)
-                step = env.step(action)
-                observed = step.observation["rods"].tolist()
-                column, row = step.observation["hand"].tolist()
-                next_state = column + width * row
-                # agent.learn(...), spelled out to keep each rod's share of the reward.
-                red, blue = predictor.update_per_output(state, action, observed)
-                agent.update(state, action, red + blue, next_state, step.discount)
-                red_error += red
-                blue_error += blue
-                moves += 1
-                if step.last():
-                    break
-                state = next_state
-            lengths[run, episode] = moves
-            errors[run, episode] = red_error, blue_error
-            if any(observed):
-                rod = observed.index(1)
-                toppled[run, episode] = rod
-                found[state, action, rod] = min(found[state, action, rod], episode)
-            q_history[episode] = agent.q
-            p_history[episode] = predictor.table(states)
-            c_history[episode] = [predictor.confidence(s) for s in states]
-
-        # From state order to [column, row] grids; the errors on the map's pairs.
-        q_grid, p_grid, c_grid = _to_grid(q_history), _to_grid(p_history), _to_grid(c_history)
-        pair_error = np.abs(truth[None] - p_grid).sum(axis=-1)  # [episode, col, row, action]
-        found_grid = _to_grid(found[None])[0]  # [column, row, action, rod]
-        episodes = np.arange(n_episodes)[:, None, None, None]
-        for i in range(len(RODS)):
-            rod_error[run, :, i] = pair_error[:, topples[..., i]].max(axis=1)
-            # Reading "toppled": only the map's pairs that have toppled the rod so far.
-            known = (found_grid[None, ..., i] <= episodes) & topples[None, ..., i]
-            any_known = known.any(axis=(1, 2, 3))
-            known_error = np.where(known, pair_error, -np.inf).max(axis=(1, 2, 3))
-            rod_error_toppled[run, any_known, i] = known_error[any_known]
-            good = np.flatnonzero(any_known & (known_error < WELL_PREDICTED_ERROR))
-            well_toppled[run, i] = good[0] + 1 if good.size else -1
-
-        red_well = first_from_which(rod_error[run, :, 0] < WELL_PREDICTED_ERROR)
-        blue_hits = np.flatnonzero(toppled[run] == 1)
-        chosen = [0, int(red_well), well_toppled[run, 0] - 1,
-                  int(blue_hits[0]) if blue_hits.size else -1]
-        chosen += [e - 1 for e in extra]
-        for k, index in enumerate(chosen):
-            if index < 0:
-                continue
-            snapshot_episode[run, k] = index + 1
-            q_out[run, k] = np.where(standing[..., None], q_grid[index], np.nan)
-            p_out[run, k] = np.where(standing[..., None, None], p_grid[index], np.nan)
-            c_out[run, k] = np.where(standing, c_grid[index], np.nan)
-
+        next_cell, topples = rods.transition_tables()
+        bar = progress_bar(None, n_seeds * n_episodes, "Q-learner on the rods", progress,
+                           unit="episode")
+        raw = _rods_kernel.play_all(
+            agent.streams, agent.q, agent.predictor.predictions, agent.predictor.last_error,
+            epsilon, alpha, gamma, predictor_lr, next_cell, topples,
+            rods.cell_number(start_cell), max_moves, n_episodes, bar=bar)
+        if bar is not None:
+            bar.close()
+        played = summarize(raw, N_STATES, N_ACTIONS, len(RODS), extra)
+    rod_error = played["rod_error"]
     predicted_well = first_from_which(np.moveaxis(rod_error < WELL_PREDICTED_ERROR, 1, 2))
     predicted_well = np.where(predicted_well >= 0, predicted_well + 1, -1)
-    return RodTopplingResult(settings, toppled, lengths, errors, rod_error, rod_error_toppled,
-                             predicted_well, well_toppled, names, snapshot_episode, q_out,
-                             p_out, c_out)
+    # The snapshots, from state order to [column, row] grids, NaN where the hand never rests.
+    standing = ~np.isnan(truth[..., 0, 0])  # [column, row]
+    came = (played["snapshot_episode"] >= 1)[..., None, None]
+    q_out = np.where(came[..., None] & standing[..., None], _to_grid(played["q"]), np.nan)
+    p_out = np.where(came[..., None, None] & standing[..., None, None],
+                     _to_grid(played["predictions"]), np.nan)
+    c_out = np.where(came & standing, _to_grid(played["confidence"]), np.nan)
+    return RodTopplingResult(settings, played["toppled"], played["length"], played["errors"],
+                             rod_error, played["rod_error_toppled"], predicted_well,
+                             played["predicted_well_toppled"], names,
+                             played["snapshot_episode"], q_out, p_out, c_out)
+
+
+def toppling_pairs():
+    """The map's pairs that topple a rod, as arrays: cell numbers, actions, rods (0 red,
+    1 blue), in the map's order."""
+    cells, actions, which = [], [], []
+    for (cell, action), rod in rods.load_topple_map()["topples"].items():
+        if rod is not None:
+            cells.append(rods.cell_number(cell))
+            actions.append(action)
+            which.append(RODS.index(rod))
+    return np.array(cells), np.array(actions), np.array(which)
+
+
+def play_episodes(env, agent, n_episodes, max_moves, snapshot_episodes=(), progress=False):
+    """Plays `n_episodes` episodes in every row of a batched rod table and Q-learner
+    (`icm.learners.q_learning.QLearnerBatch`), and summarises them (`summarize`).
+
+    The rows move independently: each acts at every iteration until it has played its
+    episodes, starting a new episode (hand over the start cell) as soon as its last one
+    ended with a topple or after `max_moves` moves. The tabular runs use the compiled
+    loop of `icm.experiments._rods_kernel` instead, which gives the same numbers.
+    """
+    n = agent.q.shape[0]
+    n_states, n_actions = agent.q.shape[1:]
+    n_rods = agent.predictor.predictions.shape[-1]
+    raw = {"toppled": np.full((n, n_episodes), -1, dtype=np.int64),
+           "length": np.zeros((n, n_episodes), dtype=np.int64),
+           "errors": np.zeros((n, n_episodes, n_rods)),
+           "found": np.full((n, n_states, n_actions, n_rods), n_episodes, dtype=np.int64),
+           "q_after": np.zeros((n, n_episodes, n_states * n_actions)),
+           "p_after": np.zeros((n, n_episodes, n_states * n_actions * n_rods)),
+           "e_after": np.zeros((n, n_episodes, n_states * n_actions))}
+    state = np.full(n, env.start)
+    episode = np.zeros(n, dtype=np.int64)
+    moves = np.zeros(n, dtype=np.int64)
+    error_sum = np.zeros((n, n_rods))
+    active = np.arange(n)
+    env.new_episodes(active)
+    rods_range = np.arange(n_rods)
+    bar = progress_bar(None, n * n_episodes, "Q-learner on the rods", progress, unit="episode")
+    while active.size:
+        cells = state[active]
+        actions = agent.select_actions(active, cells)
+        next_cells, toppled = env.move(active, cells, actions)
+        observed = (toppled[:, None] == rods_range).astype(float)
+        discount = (toppled < 0).astype(float)  # 0 when a rod fell: nothing follows
+        error_sum[active] += agent.learn(active, cells, actions, observed, next_cells, discount)
+        moves[active] += 1
+        state[active] = next_cells
+        ended = (toppled >= 0) | (moves[active] >= max_moves)
+        if not ended.any():
+            continue
+        done, top, ep = active[ended], toppled[ended], episode[active[ended]]
+        raw["toppled"][done, ep] = top
+        raw["length"][done, ep] = moves[done]
+        raw["errors"][done, ep] = error_sum[done]
+        raw["q_after"][done, ep] = agent.q[done].reshape(len(done), -1)
+        raw["p_after"][done, ep] = agent.predictor.predictions[done].reshape(len(done), -1)
+        raw["e_after"][done, ep] = agent.predictor.last_error[done].reshape(len(done), -1)
+        hit = top >= 0
+        pairs = (done[hit], cells[ended][hit], actions[ended][hit], top[hit])
+        raw["found"][pairs] = np.minimum(raw["found"][pairs], ep[hit])
+        state[done], moves[done], error_sum[done] = env.start, 0, 0.0
+        episode[done] += 1
+        env.new_episodes(done)
+        active = active[episode[active] < n_episodes]
+        if bar is not None:
+            bar.update(len(done))
+    if bar is not None:
+        bar.close()
+    return summarize(raw, n_states, n_actions, n_rods, snapshot_episodes)
+
+
+def summarize(raw, n_states, n_actions, n_rods, snapshot_episodes=()):
+    """The summary of played episodes (`play_episodes`, or the compiled loop).
+
+    Args:
+      raw: over [row, episode], "toppled", "length", "errors" [..., rod], and the
+        learner after each episode, "q_after", "p_after", "e_after" (flattened);
+        "found" [row, cell, action, rod], the first episode each pair toppled each rod.
+
+    Returns:
+      A dict of arrays: over [row, episode], "toppled" (0 red, 1 blue, -1 none),
+      "length" (moves), "errors" [..., rod] (the predictor's errors, summed over the
+      episode's moves), "rod_error" and "rod_error_toppled" [..., rod] (see
+      `RodTopplingResult`); "predicted_well_toppled" [row, rod]; and the snapshots
+      over [row, snapshot] at the `MOMENTS` and after the `snapshot_episodes`,
+      "snapshot_episode" (-1: never), "q" [..., cell, action], "predictions" [..., cell,
+      action, rod], "confidence" [..., cell].
+    """
+    n, n_episodes = raw["toppled"].shape
+    out = {key: raw[key] for key in ("toppled", "length", "errors")}
+    pair_cells, pair_actions, pair_rods = toppling_pairs()
+    pairs = pair_cells * n_actions + pair_actions
+    # The predictor's error on every toppling pair of the map, after every episode.
+    p_after = raw["p_after"].reshape(n, n_episodes, n_states * n_actions, n_rods)
+    predicted = p_after[:, :, pairs]  # [row, episode, pair, rod]
+    truth = (pair_rods[:, None] == np.arange(n_rods)).astype(float)
+    difference = np.abs(truth - predicted)
+    pair_error = difference[..., 0]
+    for r in range(1, n_rods):
+        pair_error = pair_error + difference[..., r]
+    found = raw["found"].reshape(n, n_states * n_actions, n_rods)[:, pairs, pair_rods]
+    known = found[:, None, :] <= np.arange(n_episodes)[None, :, None]  # [row, ep, pair]
+    out["rod_error"] = np.zeros((n, n_episodes, n_rods))
+    out["rod_error_toppled"] = np.full((n, n_episodes, n_rods), np.nan)
+    out["predicted_well_toppled"] = np.full((n, n_rods), -1, dtype=np.int64)
+    for r in range(n_rods):
+        mine = pair_rods == r
+        out["rod_error"][..., r] = pair_error[..., mine].max(axis=2)
+        # Reading "toppled": only the map's pairs that have toppled the rod so far.
+        seen = known[..., mine]
+        known_error = np.where(seen, pair_error[..., mine], -np.inf).max(axis=2)
+        any_seen = seen.any(axis=2)
+        out["rod_error_toppled"][..., r] = np.where(any_seen, known_error, np.nan)
+        good = any_seen & (known_error < WELL_PREDICTED_ERROR)
+        out["predicted_well_toppled"][:, r] = np.where(good.any(axis=1),
+                                                       np.argmax(good, axis=1) + 1, -1)
+
+    # The moments, and the learner at each of them.
+    red_well = first_from_which(out["rod_error"][..., 0] < WELL_PREDICTED_ERROR)
+    blue = out["toppled"] == 1
+    chosen = np.stack([np.zeros(n, dtype=np.int64), red_well,
+                       out["predicted_well_toppled"][:, 0] - 1,
+                       np.where(blue.any(axis=1), np.argmax(blue, axis=1), -1)]
+                      + [np.full(n, e - 1) for e in snapshot_episodes], axis=1)
+    chosen = np.maximum(chosen, -1)  # a moment that never came: -1
+    out["snapshot_episode"] = np.where(chosen >= 0, chosen + 1, -1)
+    rows, index = np.arange(n)[:, None], np.maximum(chosen, 0)
+    out["q"] = raw["q_after"][rows, index].reshape(chosen.shape + (n_states, n_actions))
+    out["predictions"] = raw["p_after"][rows, index].reshape(
+        chosen.shape + (n_states, n_actions, n_rods))
+    last_error = raw["e_after"][rows, index].reshape(chosen.shape + (n_states, n_actions))
+    capped = np.where(np.isnan(last_error), predictors.UNTRIED_ERROR,
+                      np.minimum(last_error, 1.0))
+    total = capped[..., 0]
+    for a in range(1, n_actions):  # in order, as the one-agent sum
+        total = total + capped[..., a]
+    out["confidence"] = 1.0 - total / n_actions
+    return out
 
 
 def _to_grid(history):
-    """[episode, state, ...] in state order (column + 5 * row) -> [episode, column, row, ...]."""
-    shaped = history.reshape((history.shape[0], rods.N_ROWS, rods.N_COLUMNS) + history.shape[2:])
-    return np.swapaxes(shaped, 1, 2)
+    """[seed, snapshot, state, ...] in state order (column + 5 * row) -> [seed,
+    snapshot, column, row, ...]."""
+    shaped = history.reshape(history.shape[:2] + (rods.N_ROWS, rods.N_COLUMNS)
+                             + history.shape[3:])
+    return np.swapaxes(shaped, 2, 3)
+
+
+def panel_curves(result):
+    """What the Figure 7 panel draws, as numbers, per episode over the seeds (means
+    with 95% percentile-bootstrap bands): the largest error the predictor would still
+    make on a pair that topples each rod (`rod_error`, reading "all": red is learned
+    when its curve falls below 0.1), and the share of episodes that end with each rod
+    toppled (where the robot plays).
+
+    Returns:
+      {"x": episodes, "xlabel", "groups": [{"title", "ylabel", "series": {name: (mean,
+      low, high)}}]}: series "red" and "blue" (the errors) and "red toppled" and "blue
+      toppled" (the shares).
+    """
+    _validate.instance("result", result, RodTopplingResult,
+                       "a RodTopplingResult (from icm.experiments.run_rod_toppling)")
+    series = {}
+    for i, rod in enumerate(RODS):
+        series[rod] = bootstrap_band(result.rod_error[:, :, i], resamples=PANEL_RESAMPLES)
+    for i, rod in enumerate(RODS):
+        series[f"{rod} toppled"] = bootstrap_band((result.toppled == i).astype(float),
+                                                  resamples=PANEL_RESAMPLES)
+    return {"x": np.arange(1, result.n_episodes + 1), "xlabel": "episode",
+            "groups": [{"title": f"Error left on each rod's pairs (solid), share of episodes "
+                                 f"toppling it (dashed), {result.n_seeds} seeds",
+                        "ylabel": "error left / share of episodes", "series": series}]}

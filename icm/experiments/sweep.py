@@ -5,7 +5,7 @@ import functools
 import inspect
 import itertools
 
-import pandas as pd
+
 
 from icm import _validate
 from icm.experiments._progress import progress_bar
@@ -126,4 +126,6 @@ def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=N
         rows = [row for future in progress_bar(futures, len(points), "sweep", progress,
                                                 unit="point")
                 for row in future.result()]
+    import pandas as pd  # here: pandas is slow to import
+
     return pd.DataFrame(rows)

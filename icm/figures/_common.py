@@ -12,11 +12,18 @@ TASK_COLOURS = {"red": "#d62728", "green": "#2ca02c"}
 
 
 class Figure(matplotlib.figure.Figure):
-    """A matplotlib Figure that Jupyter displays as a PNG without pyplot's help."""
+    """A matplotlib Figure that Jupyter displays as a PNG without pyplot's help.
+
+    `png_dpi` sets its resolution; `quick_png` trades file size for speed (light
+    compression), for figures that are redrawn on every slider move."""
+
+    png_dpi = 110
+    quick_png = False
 
     def _repr_png_(self):
         buffer = io.BytesIO()
-        self.savefig(buffer, format="png", dpi=110)
+        options = {"pil_kwargs": {"compress_level": 1}} if self.quick_png else {}
+        self.savefig(buffer, format="png", dpi=self.png_dpi, **options)
         return buffer.getvalue()
 
 

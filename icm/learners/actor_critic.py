@@ -5,9 +5,10 @@ import math
 
 import numpy as np
 
-from icm import _validate
+from icm import _streams, _validate
 from icm.learners._common import check_keys, check_state, check_values, read_observation
-from icm.learners.predictors import NearestNeighbourPredictor
+from icm.learners.goal_oriented import DRAWS_PER_CHOICE, epsilon_greedy, epsilon_greedy_rows
+from icm.learners.predictors import NearestNeighbourPredictor, NearestNeighbourTable
 
 DEFAULT_TEMPERATURE = 0.2
 """Softmax temperature. With rewards of 0 or 1 and the default learning rates, one
@@ -79,14 +80,19 @@ def softmax(preferences, temperature):
 
 
 def _softmax(preferences, temperature):
-    """`softmax` on a list of floats, unchecked, as a list (the learner's inner loop)."""
-    top = max(preferences)
-    # (p - top) <= 0, so exp never overflows; a difference of -inf gives exp 0.0.
-    weights = [math.exp((p - top) / temperature) for p in preferences]
-    total = sum(weights)  # >= 1: the top preference contributes exp(0) = 1
+    """`softmax` on a list of floats, unchecked (the learner's inner loop). numpy's
+    exp, and a sum in order, exactly as `ActorCriticBatch` computes it."""
+    p = np.asarray(preferences, dtype=float)
+    # (p - top) <= 0, so exp never overflows; a difference that overflows to -inf
+    # (preferences 1e308 apart) gives exp 0.0, as it should.
+    with np.errstate(over="ignore"):
+        weights = np.exp((p - p.max()) / temperature)
+    total = 0.0
+    for w in weights.tolist():  # >= 1: the top preference contributes exp(0) = 1
+        total += w
     if not math.isfinite(total):  # an infinite or NaN preference: a diverged actor
         raise FloatingPointError(f"preferences must be finite, got {preferences!r}")
-    return [w / total for w in weights]
+    return weights / total
 
 
 def _check_finite(td_error):
@@ -198,21 +204,19 @@ class ActorCritic:
         preferences = self.actor.get(check_state("state", state))
         if preferences is None:
             return [1.0 / self.n_actions] * self.n_actions
-        return _softmax(preferences, self.temperature)
+        return _softmax(preferences, self.temperature).tolist()
 
     def select_action(self, observation):
         """Picks an action in the observation's state: drawn from the softmax policy,
         or, with `action_selection="epsilon_greedy"`, uniformly at random with
-        probability epsilon and otherwise one of the most preferred (ties at random)."""
+        probability epsilon and otherwise one of the most preferred (ties at random).
+        Either way it draws `DRAWS_PER_CHOICE` numbers (the softmax uses the first)."""
+        draws = self._random.random(DRAWS_PER_CHOICE)
         if self.action_selection == "epsilon_greedy":
-            preferences = self.preferences(self.state(observation))
-            if self._random.random() < self.epsilon:
-                return int(self._random.random() * self.n_actions)
-            best = max(preferences)
-            candidates = [a for a, p in enumerate(preferences) if p == best]
-            return candidates[int(self._random.random() * len(candidates))]
+            return epsilon_greedy(self.preferences(self.state(observation)), self.epsilon,
+                                  draws)
         probabilities = self._policy(self.state(observation))
-        threshold = self._random.random()
+        threshold = draws[0]
         cumulative = 0.0
         for action, probability in enumerate(probabilities):
             cumulative += probability
@@ -314,4 +318,125 @@ class ActorCritic:
         preferences[action] += self.lr_actor * td_error
         # the predictor remembers what the action did
         self.predictor.update(state, action, effect)
+        return reward, td_error
+
+
+class ActorCriticBatch:
+    """The actor-critic for many agents (rows) at once, in a finite world: states and
+    effects are indices into tables listed in advance.
+
+    Row k makes exactly the choices and updates of an `ActorCritic` seeded like it (a
+    test checks it): the same softmax (numpy's exp, summed in order), the same
+    `DRAWS_PER_CHOICE` numbers per choice, the same TD error and updates, and
+    `NearestNeighbourTable` for its predictor. Settings may differ per row, which lets
+    a grid of settings times seeds run as one batch.
+
+    Args:
+      seeds: one seed per row.
+      states: the states' features, an array [n_states, entries] (for the buttons:
+        the 5 lights and the 2 boxes); the predictor compares states by them.
+      effects: the effects (goal states) an action can lead to, [n_effects, entries];
+        effect 0 is the one predicted before anything is stored.
+      n_actions: actions per state.
+      temperature, lr_actor, lr_critic, gamma, epsilon, action_weight: per row or one
+        for all.
+      reward: "intrinsic" or "extrinsic", per row or one for all.
+      variant: one of `VARIANTS`, per row or one for all.
+      action_selection: "softmax" or "epsilon_greedy", one for all.
+    """
+
+    def __init__(self, seeds, states, effects, n_actions, temperature=DEFAULT_TEMPERATURE,
+                 lr_actor=DEFAULT_LR_ACTOR, lr_critic=DEFAULT_LR_CRITIC, gamma=DEFAULT_GAMMA,
+                 reward="intrinsic", variant="standard", action_selection="softmax",
+                 epsilon=DEFAULT_EPSILON, action_weight=10.0):
+        self.streams = _streams.Streams(seeds)
+        n = len(self.streams)
+        per_row = lambda value, dtype=float: np.broadcast_to(np.asarray(value, dtype=dtype), (n,))
+        self.temperature, self.lr_actor = per_row(temperature), per_row(lr_actor)
+        self.lr_critic, self.gamma, self.epsilon = per_row(lr_critic), per_row(gamma), per_row(epsilon)
+        self.intrinsic = per_row(reward, object) == "intrinsic"
+        variants = per_row(variant, object)
+        self.printed_td = np.array([VARIANTS[v][0] == "printed" for v in variants])
+        self.reward_if_right = np.array([VARIANTS[v][1] == "correct" for v in variants])
+        self.action_selection = action_selection
+        self.n_actions = n_actions
+        self.rows = np.arange(n)
+        self.critic = np.zeros((n, len(states)))
+        self.actor = np.zeros((n, len(states), n_actions))
+        self.predictor = NearestNeighbourTable(n, states, n_actions, action_weight)
+
+    def policy(self, states):
+        """Each row's probability of each action in its state, [rows, actions]."""
+        return self.policy_of(self.actor[self.rows, states])
+
+    def policy_of(self, preferences):
+        """The policy for preferences [rows, ..., actions]: their softmax at each row's
+        temperature, or their epsilon-greedy probabilities."""
+        per_row = lambda values: values.reshape((-1,) + (1,) * (preferences.ndim - 1))
+        if self.action_selection == "epsilon_greedy":
+            best = preferences == preferences.max(axis=-1, keepdims=True)
+            greedy = per_row(1 - self.epsilon) * best / best.sum(axis=-1, keepdims=True)
+            return per_row(self.epsilon / self.n_actions) + greedy
+        top = preferences[..., 0]
+        for a in range(1, self.n_actions):
+            top = np.maximum(top, preferences[..., a])
+        with np.errstate(over="ignore"):  # a difference of -inf gives exp 0.0
+            weights = np.exp((preferences - top[..., None]) / per_row(self.temperature))
+        total = weights[..., 0]
+        for a in range(1, self.n_actions):  # in order, as the one-agent sum
+            total = total + weights[..., a]
+        if not np.isfinite(total.sum()):
+            raise FloatingPointError("preferences must be finite: an actor diverged")
+        return weights / total[..., None]
+
+    def select_actions(self, states):
+        """One action per row, in its state (`states`, [rows])."""
+        draws = self.streams.draw(k=DRAWS_PER_CHOICE)
+        preferences = self.actor.reshape(-1, self.n_actions).take(
+            self.rows * self.actor.shape[1] + states, axis=0)
+        if self.action_selection == "epsilon_greedy":
+            return epsilon_greedy_rows(preferences, self.epsilon, draws)
+        # The first action whose cumulative probability exceeds the draw: as many
+        # actions as have a cumulative probability at or below it (n - 1 if all do).
+        policy, threshold = self.policy_of(preferences), draws[:, 0]
+        cumulative = policy[:, 0]
+        action = (cumulative <= threshold).astype(np.int64)
+        for a in range(1, self.n_actions - 1):
+            cumulative = cumulative + policy[:, a]
+            action += cumulative <= threshold
+        return action
+
+    def predict(self, states, actions):
+        """The predicted effect of `actions` in `states`, per row (any matching shapes
+        of states and actions, rows along the first axis)."""
+        keys = self.predictor.keys(states, actions)
+        rows = self.rows.reshape((-1,) + (1,) * (np.ndim(keys) - 1))
+        return self.predictor.predict(rows, keys)
+
+    def learn(self, states, actions, next_states, effects, external_reward, discount):
+        """One step of Figure 4 in every row; returns (rewards, td errors) [rows].
+
+        Raises:
+          FloatingPointError: if a TD error is not finite (a diverged critic).
+        """
+        n_states = self.critic.shape[1]
+        keys = self.predictor.keys(states, actions)
+        right = self.predictor.effect.reshape(-1).take(self.rows * self.predictor.effect.shape[1]
+                                                       + keys) == effects
+        internal = (right == self.reward_if_right).astype(float)  # 1 when paid
+        reward = np.where(self.intrinsic, internal, external_reward)
+        gamma = self.gamma * discount
+        here, there = self.rows * n_states + states, self.rows * n_states + next_states
+        critic = self.critic.reshape(-1)
+        value, next_value = critic.take(here), critic.take(there)
+        td_error = np.where(self.printed_td, reward + gamma * (value - next_value),
+                            reward + gamma * next_value - value)
+        if not np.isfinite(td_error.sum()) and not np.all(np.isfinite(td_error)):
+            _check_finite(float(td_error[~np.isfinite(td_error)][0]))
+        # critic(s) <- critic(s) + lrC * tdError; actor(s, a) <- actor(s, a) + lrA * tdError
+        critic[here] = value + self.lr_critic * td_error
+        actor = self.actor.reshape(-1)
+        chosen = here * self.n_actions + actions
+        actor[chosen] = actor.take(chosen) + self.lr_actor * td_error
+        self.predictor.update(None, keys, effects)
         return reward, td_error

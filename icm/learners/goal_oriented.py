@@ -4,17 +4,78 @@ Predictor, interest module and actor are separate and replaceable. For each acti
 the actor (1) looks at the observation, (2) asks the predictor what the action would
 do, (3) hands that effect, as a task, to the interest module, and (4) gets back how
 interesting the task is; it then picks an action epsilon-greedily on interest.
+
+`GoalOrientedAgent` is one agent, as the paper describes it; `GoalOrientedBatch` runs
+the same learner for many agents at once on a finite world (the experiments use it),
+and a test shows that the two give identical numbers, seed by seed.
 """
 
+import functools
 import math
 
+import numpy as np
 
-from icm import _validate
+from icm import _streams, _validate
 from icm.learners._common import check_keys, check_values, read_observation
-from icm.learners.interest import LearningProgressInterest
-from icm.learners.predictors import NearestNeighbourPredictor
+from icm.learners.interest import InterestTable, LearningProgressInterest
+from icm.learners.predictors import NearestNeighbourPredictor, NearestNeighbourTable
 
 DEFAULT_EPSILON = 0.1
+INTEREST_PER = ("task", "region")
+"""Where interest lives. "task" (the paper's): an action is worth the interest of the
+task it is predicted to achieve (a change of the goal state). "region": an action is
+worth the interest of its own region of the motor space, here the action itself (for
+the buttons: the button), as in curiosity-driven learners that split the
+sensorimotor space into regions (Oudeyer, Kaplan and Hafner 2007)."""
+DRAWS_PER_CHOICE = 3
+"""Uniform numbers an agent draws for each choice, whether it uses them or not: one for
+epsilon, one for the random action, one to break ties. A fixed count keeps one
+agent's stream in step with the same agent in a batch."""
+
+
+def epsilon_greedy(values, epsilon, draws):
+    """The epsilon-greedy choice of one agent: with probability epsilon an action drawn
+    uniformly (`draws[1]`), otherwise one of the best (`draws[2]` breaks ties).
+
+    Args:
+      values: one number per action.
+      epsilon: probability of a random action.
+      draws: three uniform numbers in [0, 1).
+    """
+    if draws[0] < epsilon:
+        return int(draws[1] * len(values))
+    best = max(values)
+    candidates = [a for a, v in enumerate(values) if v == best]
+    return candidates[int(draws[2] * len(candidates))]
+
+
+@functools.lru_cache(maxsize=None)
+def _best_sets(n_actions):
+    """For every set of best actions, as a bit mask: how many they are, and which is
+    the i-th of them (tables indexed [mask] and [mask, i])."""
+    masks = np.arange(1 << n_actions)
+    members = (masks[:, None] >> np.arange(n_actions)) & 1
+    nth = np.zeros((1 << n_actions, n_actions), dtype=np.int64)
+    for mask in range(1 << n_actions):
+        chosen = np.flatnonzero(members[mask])
+        nth[mask, :len(chosen)] = chosen
+    return (1 << np.arange(n_actions)).astype(float), members.sum(axis=1), nth
+
+
+def epsilon_greedy_rows(values, epsilon, draws):
+    """`epsilon_greedy` for many agents: values [rows, actions], epsilon [rows], draws
+    [rows, 3]; returns the actions [rows]. The best actions of a row are a set (a bit
+    mask); tables give how many they are and which is the one picked."""
+    n_actions = values.shape[1]
+    top = values[:, 0]
+    for a in range(1, n_actions):  # column by column: quicker than a row-wise max
+        top = np.maximum(top, values[:, a])
+    powers, count, nth = _best_sets(n_actions)
+    best = ((values == top[:, None]) @ powers).astype(np.int64)  # the set, as a bit mask
+    pick = (draws[:, 2] * count.take(best)).astype(np.int64)  # which of the best
+    greedy = nth.take(best * n_actions + pick)
+    explore = draws[:, 0] < epsilon
+    return greedy + explore * ((draws[:, 1] * n_actions).astype(np.int64) - greedy)
 
 
 class GoalOrientedAgent:
@@ -30,12 +91,14 @@ class GoalOrientedAgent:
       predictor: has `predict(context, action, default)` and `update(context, action,
         effect)`; default a `NearestNeighbourPredictor()`.
       interest: has `record(task, error)` and `interest(task)`; default a
-        `LearningProgressInterest()`.
+        `LearningProgressInterest()` (see `icm.learners.interest` for the others).
       epsilon: probability of a uniformly random action (in [0, 1]).
+      interest_per: "task" (the paper's, default) or "region"; see `INTEREST_PER`.
       context_keys: observation entries that make the context (default the lights).
       goal_key: the observation entry that makes the goal state (default the boxes).
       goal_at_rest: the goal state every action starts from (default all zeros).
-      seed: None, an int, or a `numpy.random.Generator`, for epsilon and ties.
+      seed: None, an int, or a `numpy.random.Generator`, for epsilon and ties
+        (`DRAWS_PER_CHOICE` numbers per choice).
 
     Raises:
       ValueError: for n_actions < 1, epsilon outside [0, 1], a predictor or interest
@@ -44,9 +107,11 @@ class GoalOrientedAgent:
     """
 
     def __init__(self, n_actions, predictor=None, interest=None, epsilon=DEFAULT_EPSILON,
-                 context_keys=("lights",), goal_key="boxes", goal_at_rest=None, seed=None):
+                 interest_per="task", context_keys=("lights",), goal_key="boxes",
+                 goal_at_rest=None, seed=None):
         self.n_actions = _validate.integer_at_least("n_actions", n_actions, 1)
         self.epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
+        self.interest_per = _validate.one_of("interest_per", interest_per, INTEREST_PER)
         self.predictor = NearestNeighbourPredictor() if predictor is None else predictor
         self.interest = LearningProgressInterest() if interest is None else interest
         for name, part, methods in (("predictor", self.predictor, ("predict", "update")),
@@ -81,21 +146,19 @@ class GoalOrientedAgent:
                 for a in range(self.n_actions)]
 
     def action_interests(self, observation):
-        """Interest of the task each action is predicted to achieve (steps 2-4 of Fig. 2)."""
+        """Interest of the task each action is predicted to achieve (steps 2-4 of Fig.
+        2), or with `interest_per="region"` the interest of each action's region."""
+        if self.interest_per == "region":
+            self.context(observation)  # checks the observation
+            return [self.interest.interest(a) for a in range(self.n_actions)]
         rest = self._rest(observation)
         return [self.interest.interest((rest, effect))
                 for effect in self.predicted_effects(observation)]
 
     def select_action(self, observation):
         """Epsilon-greedy on interest; ties between the most interesting are random."""
-        if self.epsilon > 0 and self._random.random() < self.epsilon:
-            return int(self._random.integers(self.n_actions))
-        values = self.action_interests(observation)
-        best = max(values)
-        candidates = [a for a, v in enumerate(values) if v == best]
-        if len(candidates) == 1:
-            return candidates[0]
-        return candidates[int(self._random.integers(len(candidates)))]
+        draws = self._random.random(DRAWS_PER_CHOICE)
+        return epsilon_greedy(self.action_interests(observation), self.epsilon, draws)
 
     def learn(self, observation, action, next_observation):
         """Scores the prediction of `action` against what happened, and remembers it.
@@ -106,7 +169,8 @@ class GoalOrientedAgent:
           next_observation: the observation after the action.
 
         Returns:
-          (task, error): the task witnessed and the Euclidean prediction error.
+          (key, error): the task witnessed (or, per region, the action's region) and
+          the Euclidean prediction error.
 
         Raises:
           ValueError: for an observation without the agent's entries, or an action
@@ -117,7 +181,90 @@ class GoalOrientedAgent:
         observed = self.goal_state(next_observation, "next_observation")
         predicted = self.predictor.predict(context, action, default=rest)
         error = math.dist(predicted, observed)
-        task = (rest, observed)
-        self.interest.record(task, error)
+        key = (rest, observed) if self.interest_per == "task" else action
+        self.interest.record(key, error)
         self.predictor.update(context, action, observed)
-        return task, error
+        return key, error
+
+
+class GoalOrientedBatch:
+    """The goal-oriented learner for many agents (rows) at once, in a finite world:
+    the contexts an agent can meet and the effects an action can have are listed in
+    advance, and observations are their indices.
+
+    Every row draws `DRAWS_PER_CHOICE` numbers from its own seed at each choice and
+    follows `GoalOrientedAgent`'s steps with `NearestNeighbourTable` and
+    `InterestTable` in place of the one-agent predictor and interest module, so row k
+    makes exactly the choices of a `GoalOrientedAgent` seeded like it. Settings may
+    differ per row.
+
+    Args:
+      seeds: one seed per row (the agents' own streams).
+      contexts: the contexts, an array [n_contexts, entries] (for the buttons: the
+        four light layouts).
+      effects: the goal states an action can lead to, [n_effects, entries]; effect 0
+        is the goal state at rest, which an empty predictor predicts.
+      n_actions: actions per context.
+      epsilon, action_weight, window, new_task_factor, reading: per row or one for
+        all (see `GoalOrientedAgent`, `NearestNeighbourPredictor` and the interest
+        signals).
+      interest: the signal, one of `icm.learners.interest.SIGNALS`.
+      interest_per: "task" or "region" (`INTEREST_PER`).
+    """
+
+    def __init__(self, seeds, contexts, effects, n_actions, epsilon=DEFAULT_EPSILON,
+                 action_weight=10.0, interest="learning_progress", window=5,
+                 new_task_factor=0.5, reading="progress", interest_per="task"):
+        self.streams = _streams.Streams(seeds)
+        n = len(self.streams)
+        self.n_actions = n_actions
+        self.effects = np.asarray(effects, dtype=float)
+        self.epsilon = np.broadcast_to(np.asarray(epsilon, dtype=float), (n,))
+        self.interest_per = interest_per
+        self.predictor = NearestNeighbourTable(n, contexts, n_actions, action_weight)
+        n_keys = len(self.effects) if interest_per == "task" else n_actions
+        self.interest = InterestTable(n, n_keys, interest, window, new_task_factor, reading)
+        # errors[p, o]: the Euclidean distance between effects p and o.
+        self.errors = np.array([[math.dist(p, o) for o in self.effects] for p in self.effects])
+        self.rows = np.arange(n)
+
+    def predicted_effects(self, contexts):
+        """The effect each action is predicted to have in each row's context, [rows,
+        actions]."""
+        n_contexts = self.predictor.effect.shape[1] // self.n_actions
+        by_context = self.predictor.effect.reshape(-1, self.n_actions)
+        return by_context.take(self.rows * n_contexts + contexts, axis=0)
+
+    def action_interests(self, contexts):
+        """The interest of each action in each row's context, [rows, actions]."""
+        values = self.interest.values()
+        if self.interest_per == "region":
+            return values
+        offsets = (self.rows * values.shape[1])[:, None]
+        return values.reshape(-1).take(offsets + self.predicted_effects(contexts))
+
+    def mean_action_interests(self):
+        """The interest of each action, averaged over the contexts, [rows, actions]."""
+        values = self.interest.values()
+        n_contexts = self.predictor.effect.shape[1] // self.n_actions
+        if self.interest_per == "region":  # the same in every context
+            return np.stack([values] * n_contexts).mean(axis=0)
+        effects = self.predictor.effect.reshape(len(values), n_contexts, self.n_actions)
+        per_context = np.take_along_axis(values[:, None, :], effects, axis=2)
+        return np.moveaxis(per_context, 1, 0).mean(axis=0)
+
+    def select_actions(self, contexts):
+        """Epsilon-greedy on interest, one action per row."""
+        draws = self.streams.draw(k=DRAWS_PER_CHOICE)
+        return epsilon_greedy_rows(self.action_interests(contexts), self.epsilon, draws)
+
+    def learn(self, contexts, actions, observed):
+        """Every row scores its prediction of `actions` against the observed effects
+        and remembers it; returns the prediction errors [rows]."""
+        keys = self.predictor.keys(contexts, actions)
+        predicted = self.predictor.predict(self.rows, keys)
+        errors = self.errors[predicted, observed]
+        witnessed = observed if self.interest_per == "task" else actions
+        self.interest.record(None, witnessed, errors)
+        self.predictor.update(None, keys, observed)
+        return errors

@@ -272,3 +272,131 @@ class LinearPredictor:
     def states(self):
         """The states seen so far (by `update`), in the order first seen."""
         return list(self._predictions)
+
+
+def hamming_distances(contexts):
+    """The number of differing entries between every pair of `contexts` (an array
+    [n_contexts, entries]), as floats [n_contexts, n_contexts]."""
+    contexts = np.asarray(contexts)
+    return (contexts[:, None, :] != contexts[None, :, :]).sum(axis=-1).astype(float)
+
+
+class NearestNeighbourTable:
+    """`NearestNeighbourPredictor` for many agents at once, in a finite world.
+
+    The contexts an agent can meet are listed in advance (`contexts`, one row each),
+    and so are the effects an action can have (numbered by the caller); a key is a
+    (context, action) pair, number context * n_actions + action. For every agent and
+    every key the table keeps the distance of the nearest experience stored so far
+    and its effect, updated exactly when an experience is stored (`update`), which is
+    what the one-agent predictor's cache does: ties go to the latest experience, and
+    an empty memory predicts `default_effect`.
+
+    Args:
+      n_rows: agents.
+      contexts: the contexts, an array [n_contexts, entries].
+      n_actions: actions per context.
+      action_weight: the cost of a different action, one for all agents or one per
+        agent (an array [n_rows]).
+      default_effect: the effect predicted before anything is stored.
+    """
+
+    def __init__(self, n_rows, contexts, n_actions, action_weight=DEFAULT_ACTION_WEIGHT,
+                 default_effect=0):
+        self.n_actions = n_actions
+        lights = hamming_distances(contexts)
+        n_contexts = len(lights)
+        context_of = np.repeat(np.arange(n_contexts), n_actions)
+        action_of = np.tile(np.arange(n_actions), n_contexts)
+        self.context_distance = lights[context_of[:, None], context_of[None, :]]
+        self.different_action = (action_of[:, None] != action_of[None, :]).astype(float)
+        self.action_weight = np.broadcast_to(np.asarray(action_weight, dtype=float),
+                                             (n_rows,))
+        # One weight for every agent: the distances between keys, computed once.
+        self.key_distance = None
+        if np.all(self.action_weight == self.action_weight[0]):
+            self.key_distance = (self.context_distance
+                                 + self.action_weight[0] * self.different_action)
+        n_keys = n_contexts * n_actions
+        self.distance = np.full((n_rows, n_keys), np.inf)
+        self.effect = np.full((n_rows, n_keys), default_effect, dtype=np.int64)
+
+    def keys(self, contexts, actions):
+        """The key numbers of (context, action) pairs (element-wise)."""
+        return np.asarray(contexts) * self.n_actions + np.asarray(actions)
+
+    def predict(self, rows, keys):
+        """The predicted effect of `keys[i]` for agent `rows[i]` (any matching shapes)."""
+        return self.effect[rows, keys]
+
+    def update(self, rows, keys, effects):
+        """Stores the experience keys[i] -> effects[i] for agent rows[i] (distinct
+        rows; None: every agent, in order)."""
+        weight = self.action_weight if rows is None else self.action_weight[rows]
+        if self.key_distance is not None:
+            distance = self.key_distance.take(keys, axis=0)
+        else:
+            distance = (self.context_distance[keys]
+                        + weight[:, None] * self.different_action[keys])
+        effects = np.asarray(effects)[:, None]
+        if rows is None:  # every agent, in place
+            nearer = distance <= self.distance  # later experiences win ties
+            np.minimum(self.distance, distance, out=self.distance)
+            self.effect += nearer * (effects - self.effect)  # the new effect where nearer
+            return
+        nearer = distance <= self.distance[rows]
+        self.distance[rows] = np.where(nearer, distance, self.distance[rows])
+        self.effect[rows] = np.where(nearer, effects, self.effect[rows])
+
+
+class LinearPredictorTable:
+    """`LinearPredictor` for many agents at once: predictions [row, state, action,
+    output], each moved towards what is observed, p <- p + lr * (o - p), with the
+    latest error of every (state, action) for the state confidence.
+
+    Args:
+      n_rows, n_states, n_actions, n_outputs: the table's size.
+      lr: learning rate, one for all agents or one per agent.
+      initial_prediction: the prediction before any observation.
+    """
+
+    def __init__(self, n_rows, n_states, n_actions, n_outputs, lr=DEFAULT_LINEAR_LR,
+                 initial_prediction=0.0):
+        self.lr = np.broadcast_to(np.asarray(lr, dtype=float), (n_rows,))
+        self.predictions = np.full((n_rows, n_states, n_actions, n_outputs),
+                                   float(initial_prediction))
+        self.last_error = np.full((n_rows, n_states, n_actions), np.nan)  # nan: untried
+        self._pairs = n_states * n_actions
+        self._flat_predictions = self.predictions.reshape(-1, n_outputs)  # views
+        self._flat_errors = self.last_error.reshape(-1)
+
+    def pair_index(self, rows, states, actions):
+        """The flat index of (row, state, action) triples in the tables."""
+        return rows * self._pairs + states * self.predictions.shape[2] + actions
+
+    def update(self, rows, states, actions, observed, pairs=None):
+        """Moves the predictions of (states[i], actions[i]) of agent rows[i] towards
+        observed[i] ([len(rows), n_outputs]); returns the absolute error of each
+        output before the update, [len(rows), n_outputs]. `pairs`, if given, is
+        `pair_index(rows, states, actions)`."""
+        pairs = self.pair_index(rows, states, actions) if pairs is None else pairs
+        predicted = self._flat_predictions.take(pairs, axis=0)
+        difference = observed - predicted
+        self._flat_predictions[pairs] = predicted + self.lr[rows, None] * difference
+        errors = np.abs(difference)
+        total = errors[:, 0]
+        for i in range(1, errors.shape[1]):  # summed in order, as the one-agent sum
+            total = total + errors[:, i]
+        self._flat_errors[pairs] = total
+        return errors
+
+    def confidence(self, rows=None):
+        """The state confidence [rows, n_states]: 1 minus the mean over the actions of
+        the latest error, capped at 1, an action never tried counting `UNTRIED_ERROR`."""
+        rows = slice(None) if rows is None else rows
+        errors = np.where(np.isnan(self.last_error[rows]), UNTRIED_ERROR,
+                          np.minimum(self.last_error[rows], 1.0))
+        total = np.zeros(errors.shape[:2])
+        for a in range(errors.shape[2]):
+            total = total + errors[..., a]
+        return 1.0 - total / errors.shape[2]

@@ -4,8 +4,9 @@ errors: the learner of the rod-toppling experiment (section 4.2, Figure 7)."""
 
 import numpy as np
 
-from icm import _validate
-from icm.learners.predictors import LinearPredictor
+from icm import _streams, _validate
+from icm.learners.goal_oriented import DRAWS_PER_CHOICE, epsilon_greedy, epsilon_greedy_rows
+from icm.learners.predictors import LinearPredictor, LinearPredictorTable
 
 DEFAULT_ALPHA = 0.5
 """Q-learning step size (the paper's alpha; its value is not given). The reward of a
@@ -104,15 +105,8 @@ class QLearner:
         """Epsilon-greedy: a random action with probability epsilon, else a greedy one
         (ties broken uniformly at random)."""
         state = self._check(state)
-        uniform = self._random.random  # floor(u * n) is uniform on 0..n-1, and cheap
-        if self.epsilon > 0 and uniform() < self.epsilon:
-            return int(uniform() * self.n_actions)
-        row = self._q[state]
-        best = max(row)
-        candidates = [a for a, value in enumerate(row) if value == best]
-        if len(candidates) == 1:
-            return candidates[0]
-        return candidates[int(uniform() * len(candidates))]
+        draws = self._random.random(DRAWS_PER_CHOICE)
+        return epsilon_greedy(self._q[state], self.epsilon, draws)
 
     def update(self, state, action, reward, next_state, discount=1.0):
         """One step of equation 3.
@@ -155,3 +149,70 @@ class QLearner:
         reward = self.predictor.update(state, action, observed)
         self.update(state, action, reward, next_state, discount)
         return reward
+
+
+class QLearnerBatch:
+    """`QLearner` with a `LinearPredictor`, for many agents (rows) at once: Q
+    [row, state, action], the predictor's table beside it.
+
+    Rows act independently: `select_actions` and `learn` take the rows that act, so that
+    agents can be at different moves of different episodes. Row k makes exactly the
+    choices and updates of a `QLearner` (and its `LinearPredictor`) seeded like it,
+    drawing `DRAWS_PER_CHOICE` numbers per choice. Settings may differ per row.
+
+    Args:
+      seeds: one seed per row.
+      n_states, n_actions, n_outputs: the tables' size.
+      alpha, gamma, epsilon, initial_q, predictor_lr: per row or one for all.
+    """
+
+    def __init__(self, seeds, n_states, n_actions, n_outputs, alpha=DEFAULT_ALPHA,
+                 gamma=DEFAULT_GAMMA, epsilon=DEFAULT_EPSILON, initial_q=DEFAULT_INITIAL_Q,
+                 predictor_lr=0.2):
+        self.streams = _streams.Streams(seeds)
+        n = len(self.streams)
+        per_row = lambda value: np.broadcast_to(np.asarray(value, dtype=float), (n,))
+        self.alpha, self.gamma, self.epsilon = per_row(alpha), per_row(gamma), per_row(epsilon)
+        self.q = np.empty((n, n_states, n_actions))
+        self.q[:] = per_row(initial_q)[:, None, None]
+        self.predictor = LinearPredictorTable(n, n_states, n_actions, n_outputs, predictor_lr)
+        self._rows = np.arange(n)
+        self._q_by_state = self.q.reshape(n * n_states, n_actions)  # views of q
+        self._q_flat = self.q.reshape(-1)
+
+    def _values(self, rows, states):
+        """Q(s, .) of each of `rows` in its state, [len(rows), n_actions]."""
+        return self._q_by_state.take(rows * self.q.shape[1] + states, axis=0)
+
+    def select_actions(self, rows, states):
+        """Epsilon-greedy on Q, one action for each of `rows` in its state."""
+        every = len(rows) == len(self._rows)
+        draws = self.streams.draw(None if every else rows, k=DRAWS_PER_CHOICE)
+        return epsilon_greedy_rows(self._values(rows, states),
+                                   self.epsilon if every else self.epsilon[rows], draws)
+
+    def update(self, rows, states, actions, rewards, next_states, discounts, pairs=None):
+        """Equation 3 for each of `rows`; returns the TD errors."""
+        following = self._values(rows, next_states)
+        best_next = following[:, 0]
+        for a in range(1, following.shape[1]):
+            best_next = np.maximum(best_next, following[:, a])
+        target = rewards + np.where(discounts > 0,
+                                    self.gamma[rows] * discounts * best_next, 0.0)
+        pairs = self.predictor.pair_index(rows, states, actions) if pairs is None else pairs
+        q = self._q_flat.take(pairs)
+        td_error = target - q
+        self._q_flat[pairs] = q + self.alpha[rows] * td_error
+        return td_error
+
+    def learn(self, rows, states, actions, observed, next_states, discounts):
+        """Each of `rows` pays itself its predictor's absolute error on the move (summed
+        over the outputs, in order), teaches the predictor and updates Q; returns the
+        errors per output [len(rows), n_outputs]."""
+        pairs = self.predictor.pair_index(rows, states, actions)
+        errors = self.predictor.update(rows, states, actions, observed, pairs)
+        reward = errors[:, 0]
+        for i in range(1, errors.shape[1]):
+            reward = reward + errors[:, i]
+        self.update(rows, states, actions, reward, next_states, discounts, pairs)
+        return errors

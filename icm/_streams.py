@@ -1,0 +1,72 @@
+"""Random numbers for many runs at once: one stream of uniform numbers per row.
+
+A batched learner or environment advances many independent runs (rows) together, but
+each run must draw exactly the numbers it would draw alone, so that run k of a batch
+equals run k run by itself, and equals the per-run reference classes seed for seed.
+`Streams` keeps one `numpy.random.Generator` per row and hands out its uniform numbers
+in order, a few at a time, from a buffer refilled by whole chunks (a Generator's
+`random(n)` gives the same numbers as n calls of `random()`).
+"""
+
+import numpy as np
+
+
+class Streams:
+    """Per-row streams of uniform numbers in [0, 1).
+
+    Args:
+      seeds: one integer seed (or Generator) per row.
+      chunk: numbers buffered per row (bounded so that large batches stay small).
+    """
+
+    def __init__(self, seeds, chunk=None):
+        self.generators = [s if isinstance(s, np.random.Generator) else np.random.default_rng(s)
+                           for s in seeds]
+        n = len(self.generators)
+        self.chunk = int(chunk or max(16, min(512, (1 << 23) // max(n, 1))))
+        self.buffer = np.empty((n, self.chunk))
+        for row, generator in enumerate(self.generators):
+            self.buffer[row] = generator.random(self.chunk)
+        self.cursor = np.zeros(n, dtype=np.int64)
+        self._aligned = 0  # while every row has drawn alike: their common cursor; else None
+
+    def __len__(self):
+        return len(self.generators)
+
+    def refill(self, rows, k):
+        """Makes room for `k` more numbers in each of `rows` that needs it (for code
+        that reads `buffer` and moves `cursor` itself)."""
+        self._aligned = None
+        self._refill(np.asarray(rows, dtype=np.int64), k)
+
+    def _refill(self, rows, k):
+        """Makes room for k more numbers in each of `rows` (those that need it)."""
+        short = rows[self.cursor[rows] + k > self.chunk]
+        for row in short.tolist():
+            used = int(self.cursor[row])
+            rest = self.buffer[row, used:].copy()
+            self.buffer[row, :len(rest)] = rest
+            self.buffer[row, len(rest):] = self.generators[row].random(used)
+            self.cursor[row] = 0
+
+    def draw(self, rows=None, k=1):
+        """The next `k` numbers of each row in `rows` (default: every row), an array
+        [len(rows), k]; each row's cursor moves on by k."""
+        if k > self.chunk:
+            raise ValueError(f"k must be at most the chunk {self.chunk}, got {k}")
+        if rows is None and self._aligned is not None:  # every row alike: a slice
+            start = self._aligned
+            if start + k > self.chunk:
+                self._refill(np.arange(len(self.generators)), k)
+                start = 0
+            self._aligned = start + k
+            self.cursor[:] = self._aligned
+            return self.buffer[:, start:start + k]
+        self._aligned = None
+        if rows is None:
+            rows = np.arange(len(self.generators))
+        self._refill(rows, k)
+        columns = self.cursor[rows][:, None] + np.arange(k)
+        out = self.buffer[rows[:, None], columns]
+        self.cursor[rows] += k
+        return out

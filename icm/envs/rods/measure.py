@@ -1,0 +1,101 @@
+"""Measuring the topple map in physics: `python -m icm.envs.rods` runs every move from
+every standable cell on fresh upright rods and writes assets/rod_topple_map.json."""
+
+import collections
+import json
+
+import numpy as np
+
+from icm import _validate
+from icm.envs import icub
+from icm.envs._common import check_discrete_action
+from icm.envs.rods.physics import _RODS, PhysicsRodTable, RodsPhysics
+from icm.envs.rods.rules import (ACTIONS, N_COLUMNS, N_ROWS, ROD_NAMES, TOPPLE_MAP_FILE,
+                                     check_cell)
+
+
+def arm_touches_a_rod(physics):
+    """True if any part of the arm is in contact with a rod."""
+    _validate.instance("physics", physics, RodsPhysics)
+    rods = {physics.model.name2id(name, "geom") for name in _RODS}
+    robot = {physics.model.name2id(name, "body")
+             for name in ("r_upper_arm", "r_forearm", "r_hand")}
+    for contact in physics.data.contact[:physics.data.ncon]:
+        bodies = {physics.model.geom_bodyid[contact.geom1], physics.model.geom_bodyid[contact.geom2]}
+        if {contact.geom1, contact.geom2} & rods and bodies & robot:
+            return True
+    return False
+
+
+def measure_pair(env, cell, action):
+    """Runs one move from `cell` on fresh standing rods, in physics.
+
+    Returns:
+      A dict: "topples" ("red", "blue" or None), "hand" (the cell it ends over), and
+      "disturbance" (the largest displacement, in metres, of a rod that did not topple:
+      a nudge that would make later moves depend on history).
+    """
+    _validate.instance("env", env, PhysicsRodTable)
+    cell = check_cell("cell", cell)
+    action = check_discrete_action(action, len(ACTIONS))
+    env.start_cell = cell  # any cell: the map is what is being measured
+    env.reset()
+    before = env.physics.rod_positions()
+    step = env.step(action)
+    rods = step.observation["rods"]
+    if rods.all():
+        raise RuntimeError(f"the move {ACTIONS[action]} from {cell} topples both rods: the "
+                           "rules (and the tabular twin) allow one; move the rods apart")
+    moved = np.linalg.norm(env.physics.rod_positions() - before, axis=1)
+    standing = rods == 0
+    return {"topples": ROD_NAMES[int(np.argmax(rods))] if rods.any() else None,
+            "hand": tuple(int(v) for v in step.observation["hand"]),
+            "disturbance": float(moved[standing].max()) if standing.any() else 0.0}
+
+
+def measure_topple_map(cells=None):
+    """Measures which (cell, action) pairs topple which rod, by running each in physics.
+
+    A cell is *standable* if the arm, placed over it, touches no rod. Every action from
+    every standable cell (or from `cells`, if given) is run on fresh upright rods.
+
+    Returns:
+      {"standable": sorted list of cells, "pairs": [{"cell", "action", "topples",
+      "hand", "disturbance"}, ...]}.
+    """
+    if cells is not None:
+        if isinstance(cells, (str, bytes)) or not hasattr(cells, "__iter__"):
+            raise _validate.ArgumentTypeError(
+                f"cells must be None or a list of (column, row) cells, got {cells!r}")
+        cells = [check_cell("cells[i]", cell) for cell in cells]
+    env = PhysicsRodTable(max_moves=1)
+    standable = []
+    for row in range(N_ROWS):
+        for column in range(N_COLUMNS):
+            env.start_cell = (column, row)
+            env.reset()
+            if not arm_touches_a_rod(env.physics):
+                standable.append((column, row))
+    pairs = []
+    for cell in (standable if cells is None else cells):
+        for action in range(len(ACTIONS)):
+            result = measure_pair(env, cell, action)
+            pairs.append({"cell": list(cell), "action": action, **result,
+                          "hand": list(result["hand"])})
+    return {"standable": [list(c) for c in standable], "pairs": pairs}
+
+
+def main():
+    """Measures the topple map in physics and writes assets/rod_topple_map.json."""
+    measured = measure_topple_map()
+    path = icub.ASSETS / TOPPLE_MAP_FILE
+    lines = ",\n  ".join(json.dumps(pair) for pair in measured["pairs"])
+    path.write_text('{"standable": ' + json.dumps(measured["standable"]) +
+                    ',\n "pairs": [\n  ' + lines + "\n ]\n}\n")
+    counts = collections.Counter(p["topples"] for p in measured["pairs"])
+    print(f"wrote {path}: {len(measured['pairs'])} pairs from {len(measured['standable'])} "
+          f"standable cells; red {counts['red']}, blue {counts['blue']}")
+
+
+if __name__ == "__main__":
+    main()

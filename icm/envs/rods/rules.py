@@ -1,0 +1,159 @@
+"""The rules of the rod-toppling experiment, shared by the tabular twin and the physics.
+
+The robot's right hand moves between the cells of a 5 x 3 grid over a table (actions
+forward, backward, left, right; a move off the grid leaves the hand where it is). Two
+rods stand on the table: the red one is toppled from many (cell, action) pairs, the
+blue one from few. An episode ends when a rod topples. Which pairs topple which rod is
+measured in physics (`icm.envs.rods.measure`) and stored in
+assets/rod_topple_map.json (`load_topple_map`).
+"""
+
+import collections
+import functools
+import json
+
+import numpy as np
+from dm_env import specs
+
+from icm import _validate
+from icm.envs._assets import ASSETS, asset_path
+from icm.envs._common import check_discrete_action
+
+N_COLUMNS, N_ROWS = 5, 3
+"""Grid size: columns 0-4 from the robot's left to its right, rows 0-2 from the robot
+outwards."""
+N_CELLS = N_COLUMNS * N_ROWS
+"""Cells of the grid; a cell's number is column + 5 * row (`cell_number`)."""
+ACTIONS = ("forward", "backward", "left", "right")
+"""Action names by index: forward is away from the robot (row + 1), left is towards
+the robot's left (column - 1)."""
+_MOVES = {0: (0, 1), 1: (0, -1), 2: (-1, 0), 3: (1, 0)}  # action -> (d column, d row)
+ROD_NAMES = ("red", "blue")
+"""Order of the rods in the `rods` observation."""
+DEFAULT_START_CELL = (0, 0)
+"""Episodes start with the hand over the cell nearest the robot on its left."""
+DEFAULT_MAX_MOVES = 30
+"""An episode without a topple ends after this many moves (a time limit)."""
+TOPPLE_TILT = np.deg2rad(45.0)
+"""A rod counts as toppled when it tilts further than this from upright."""
+TOPPLE_MAP_FILE = "rod_topple_map.json"
+
+HAND_HEIGHT = 0.04
+"""Height of the fingertip above the table while it moves (the rods are 7 cm tall).
+Where the cells are is read from the model: the marker geoms cell_<column>_<row>."""
+
+
+def check_cell(name, cell):
+    """Returns `cell` as a (column, row) tuple of ints if it is on the grid."""
+    allowed = "a (column, row) pair of integers"
+    if isinstance(cell, (str, bytes)) or not hasattr(cell, "__len__") or \
+            np.ndim(cell) != 1 or len(cell) != 2 or \
+            not all(_validate.is_integer(v) for v in cell):
+        raise _validate.ArgumentTypeError(f"{name} must be {allowed}, got "
+                                          f"{_validate.show(cell)}")
+    column, row = (int(v) for v in cell)
+    if not (0 <= column < N_COLUMNS and 0 <= row < N_ROWS):
+        raise ValueError(f"{name} must be on the {N_COLUMNS} x {N_ROWS} grid (column 0-4, "
+                         f"row 0-2), got {cell!r}")
+    return column, row
+
+
+def cell_number(cell):
+    """The number of a (column, row) cell: column + 5 * row (the Q-learner's state)."""
+    column, row = check_cell("cell", cell)
+    return column + N_COLUMNS * row
+
+
+def number_cell(number):
+    """The (column, row) cell of a cell number (see `cell_number`)."""
+    number = _validate.integer("number", number, 0, N_CELLS - 1)
+    return number % N_COLUMNS, number // N_COLUMNS
+
+
+def next_cell(cell, action):
+    """The cell the hand ends in after `action` from `cell` (off the grid: stays)."""
+    cell = check_cell("cell", cell)
+    dc, dr = _MOVES[check_discrete_action(action, len(ACTIONS))]
+    column, row = cell[0] + dc, cell[1] + dr
+    if 0 <= column < N_COLUMNS and 0 <= row < N_ROWS:
+        return column, row
+    return tuple(cell)
+
+
+def observation_spec():
+    """The observation spec shared by the tabular and the physics rod environments."""
+    return collections.OrderedDict(
+        hand=specs.BoundedArray((2,), np.int64, [0, 0], [N_COLUMNS - 1, N_ROWS - 1],
+                                name="hand"),
+        rods=specs.BoundedArray((2,), np.int64, 0, 1, name="rods"),
+    )
+
+
+def action_spec():
+    """Four discrete moves: 0 forward, 1 backward, 2 left, 3 right."""
+    return specs.DiscreteArray(len(ACTIONS), dtype=np.int64, name="move")
+
+
+@functools.lru_cache(maxsize=4)
+def _read_topple_map(text):
+    return json.loads(text)
+
+
+def load_topple_map():
+    """The stored topple map (assets/rod_topple_map.json), as a new dict.
+
+    Returns:
+      {"standable": set of cells where the hand can rest with both rods standing,
+       "topples": {(cell, action): "red" | "blue" | None} for every standable cell}.
+    """
+    data = _read_topple_map(asset_path(TOPPLE_MAP_FILE).read_text())
+    topples = {(tuple(entry["cell"]), entry["action"]): entry["topples"]
+               for entry in data["pairs"]}
+    return {"standable": {tuple(c) for c in data["standable"]}, "topples": topples}
+
+
+def standable_cells():
+    """The standable cells of the stored map; every cell if no map is stored yet (when
+    `python -m icm.envs.rods` measures the first one)."""
+    if not (ASSETS / TOPPLE_MAP_FILE).exists():
+        return {(c, r) for c in range(N_COLUMNS) for r in range(N_ROWS)}
+    return load_topple_map()["standable"]
+
+
+def topple_counts(topple_map):
+    """How many (cell, action) pairs topple each rod: {"red": n, "blue": m}."""
+    values = list(topple_map["topples"].values())
+    return {name: values.count(name) for name in ROD_NAMES}
+
+
+def check_start_cell(start_cell, standable):
+    """Returns `start_cell` if it is on the grid and the hand can rest there."""
+    cell = check_cell("start_cell", start_cell)
+    if cell not in standable:
+        raise ValueError(f"start_cell {cell} is where a rod stands or the arm would touch one; "
+                         f"allowed: {sorted(standable)}")
+    return cell
+
+
+def transition_tables(topple_map=None):
+    """The grid and the topple map as arrays over cell numbers, for the batched twin:
+    next_cell [cell, action] (a cell number) and topples [cell, action] (0 red, 1 blue,
+    -1 none; -1 too on the cells the hand never rests on)."""
+    topple_map = load_topple_map() if topple_map is None else topple_map
+    nxt = np.zeros((N_CELLS, len(ACTIONS)), dtype=np.int64)
+    topples = np.full((N_CELLS, len(ACTIONS)), -1, dtype=np.int64)
+    for number in range(N_CELLS):
+        cell = number_cell(number)
+        for action in range(len(ACTIONS)):
+            nxt[number, action] = cell_number(next_cell(cell, action))
+            rod = topple_map["topples"].get((cell, action))
+            if rod is not None:
+                topples[number, action] = ROD_NAMES.index(rod)
+    return nxt, topples
+
+
+__all__ = ["N_COLUMNS", "N_ROWS", "N_CELLS", "ACTIONS", "ROD_NAMES", "DEFAULT_START_CELL",
+           "DEFAULT_MAX_MOVES", "TOPPLE_TILT", "TOPPLE_MAP_FILE", "HAND_HEIGHT", "check_cell",
+           "cell_number", "number_cell", "next_cell", "observation_spec", "action_spec",
+           "load_topple_map", "standable_cells", "topple_counts", "check_start_cell",
+           "transition_tables"]
