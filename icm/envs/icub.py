@@ -271,3 +271,30 @@ def continuous_environment(physics, task, time_limit):
     time_limit = check_time_limit(time_limit)
     return control.Environment(physics, task, time_limit=time_limit,
                                control_timestep=CONTROL_TIMESTEP)
+
+
+_MOTIONS = {}
+
+
+def shared_motions(kind, physics):
+    """The postures `kind(physics)` computes (inverse kinematics, once per scene and
+    process): every environment of a scene shares them, their arrays read-only.
+
+    Args:
+      kind: a class whose instances hold postures of a scene (e.g. `ButtonMotions`).
+      physics: a physics of that scene; its model must be the scene's, unchanged.
+    """
+    key = (kind, physics.model.nq, physics.model.nbody, physics.model.ngeom,
+           physics.model.body_pos.tobytes(), physics.model.geom_size.tobytes())
+    if key not in _MOTIONS:
+        scratch = physics.copy(share_model=True)
+        with scratch.reset_context():  # the scene at rest, whatever state `physics` is in
+            pass
+        motions = kind(scratch)
+        for value in vars(motions).values():
+            for array in (value.values() if isinstance(value, dict) else
+                          value if isinstance(value, list) else [value]):
+                if isinstance(array, np.ndarray):
+                    array.flags.writeable = False
+        _MOTIONS[key] = motions
+    return _MOTIONS[key]

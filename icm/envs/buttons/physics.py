@@ -156,9 +156,9 @@ class ButtonsTask(icub.ArmTask):
         self._motions = None
 
     def motions(self, physics):
-        """The press primitive's postures for this physics (computed once)."""
+        """The press primitive's postures for this physics (computed once per process)."""
         if self._motions is None:
-            self._motions = ButtonMotions(physics)
+            self._motions = icub.shared_motions(ButtonMotions, physics)
         return self._motions
 
     def initialize_episode(self, physics):

@@ -119,9 +119,9 @@ class RodsTask(icub.ArmTask):
         self._motions = None
 
     def motions(self, physics):
-        """The grid postures for this physics (computed once)."""
+        """The grid postures for this physics (computed once per process)."""
         if self._motions is None:
-            self._motions = GridMotions(physics)
+            self._motions = icub.shared_motions(GridMotions, physics)
         return self._motions
 
     def initialize_episode(self, physics):
