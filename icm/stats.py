@@ -1,5 +1,7 @@
 """Summaries over seeds: means with confidence bands, and "from when on" trial numbers."""
 
+import functools
+
 import numpy as np
 
 from icm import _validate
@@ -80,6 +82,16 @@ def comes_first(first, second):
     return (first >= 1) & ((second == -1) | (first < second))
 
 
+@functools.lru_cache(maxsize=16)
+def _resample_counts(n, resamples, seed):
+    """How many times each of n seeds is drawn in each of `resamples` resamples (kept:
+    every band of a panel uses the same ones). Read-only."""
+    counts = np.random.default_rng(seed).multinomial(n, np.full(n, 1.0 / n), size=resamples)
+    counts = counts.astype(float)  # exact small integers, ready for a float matrix product
+    counts.flags.writeable = False
+    return counts
+
+
 def bootstrap_band(values, level=0.95, resamples=1000, seed=0):
     """Mean over the first axis (seeds) and a percentile-bootstrap band for it.
 
@@ -109,7 +121,7 @@ def bootstrap_band(values, level=0.95, resamples=1000, seed=0):
     mean = values.mean(axis=0)
     # How many times each seed is drawn in each resample; a resample's mean is then a
     # weighted mean, one matrix product for all of them.
-    counts = np.random.default_rng(seed).multinomial(n, np.full(n, 1.0 / n), size=resamples)
+    counts = _resample_counts(n, resamples, seed)
     means = (counts @ values.reshape(n, -1) / n).reshape((resamples,) + values.shape[1:])
     low, high = np.quantile(means, [(1 - level) / 2, (1 + level) / 2], axis=0)
     # Rounding in the weighted means must not put the band outside the values' range.

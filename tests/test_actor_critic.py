@@ -4,13 +4,12 @@ stable softmax, and the paper's claims of section 4.1 on many seeds."""
 import collections
 import warnings
 
-import ipywidgets
 import matplotlib.figure
 import numpy as np
 import pytest
 
 import icm
-from icm import figures, widgets
+from icm import figures
 from icm.envs import buttons
 from icm.experiments import run_actor_critic
 from icm.experiments.actor_critic import probe_queries
@@ -332,25 +331,3 @@ def test_figure3_and_figure4_draw_and_figure4_is_the_library_source():
     assert '"""' not in text  # docstrings are left out
 
 
-def test_figure6_panel_has_the_library_controls_and_reruns_on_change(monkeypatch):
-    calls = []
-
-    def fake_figure6_for(**settings):
-        calls.append(settings)
-        return figures.Figure()
-
-    monkeypatch.setattr(figures, "figure6_for", fake_figure6_for)
-    panel = widgets.figure6_panel(n_trials=10)
-    controls = [w for box in panel.children[:-1] for w in box.children]
-    assert isinstance(panel.children[-1], ipywidgets.Output)
-    names = {c.description for c in controls}
-    assert names == set(widgets.FIGURE6_SLIDERS) | set(widgets.FIGURE6_CHOICES)
-    for c in controls:
-        if c.description in widgets.FIGURE6_SLIDERS:
-            spec = widgets.FIGURE6_SLIDERS[c.description]
-            assert (c.min, c.max, c.value) == (spec["min"], spec["max"], spec["value"])
-    assert calls[0]["temperature"] == actor_critic.DEFAULT_TEMPERATURE
-    assert calls[0]["reward"] == "intrinsic" and calls[0]["n_trials"] == 10
-    reward = next(c for c in controls if c.description == "reward")
-    reward.value = "extrinsic"
-    assert len(calls) == 2 and calls[1]["reward"] == "extrinsic"

@@ -1,12 +1,11 @@
 """Figures and widget panels draw what the results hold."""
 
-import ipywidgets
 import matplotlib.figure
 import numpy as np
 import pytest
 
 import icm
-from icm import figures, widgets
+from icm import figures
 
 
 @pytest.fixture(scope="module")
@@ -43,27 +42,6 @@ def test_first_from_which_finds_where_a_condition_holds_for_good():
 def test_diagrams_and_console_figures_draw():
     assert figures.figure2().axes
     assert len(figures.outcome_table_figure().axes[0].patches) == 20
-
-
-def test_figure5_panel_has_the_library_sliders_and_reruns_on_change(monkeypatch):
-    calls = []
-
-    def fake_figure5_for(**settings):
-        calls.append(settings)
-        return figures.Figure()
-
-    monkeypatch.setattr(figures, "figure5_for", fake_figure5_for)
-    panel = widgets.figure5_panel(n_trials=10)
-    sliders = [w for box in panel.children[:2] for w in box.children]
-    assert {s.description for s in sliders} == set(widgets.FIGURE5_SLIDERS)
-    for s in sliders:
-        spec = widgets.FIGURE5_SLIDERS[s.description]
-        assert (s.min, s.max, s.value) == (spec["min"], spec["max"], spec["value"])
-    assert isinstance(panel.children[2], ipywidgets.Output)
-    assert len(calls) == 1 and calls[0]["n_trials"] == 10
-    epsilon = next(s for s in sliders if s.description == "epsilon")
-    epsilon.value = 0.5
-    assert len(calls) == 2 and calls[1]["epsilon"] == 0.5
 
 
 def test_comes_first_handles_never():

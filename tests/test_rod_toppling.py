@@ -2,17 +2,15 @@
 experiment's arrays and determinism, the paper's claims on many seeds (section 4.2,
 Figure 7), the figures and the panel."""
 
-import ipywidgets
 import matplotlib.figure
 import numpy as np
 import pytest
 
-from icm import figures, widgets
+from icm import figures
 from icm.envs import rods
 from icm.experiments import rod_toppling
 from icm.experiments.rod_toppling import RODS, run_rod_toppling
 from icm.learners import LinearPredictor, QLearner
-from icm.learners import q_learning
 
 
 @pytest.fixture(scope="module")
@@ -431,38 +429,6 @@ def test_physics_comparison_figure_has_a_row_per_run(default_run):
     fig = figures.physics_comparison_figure({"a": default_run, "b": default_run})
     assert len(fig.axes) == 2
     assert len(fig.axes[0].patches) == default_run.n_episodes
-
-
-def test_figure7_panel_has_the_library_sliders_and_reruns_on_change(monkeypatch):
-    calls = []
-
-    def fake_figure7_for(**settings):
-        calls.append(settings)
-        return figures.Figure()
-
-    monkeypatch.setattr(figures, "figure7_for", fake_figure7_for)
-    panel = widgets.figure7_panel(n_episodes=40)
-    controls = [w for box in panel.children[:-1] for w in box.children]
-    sliders = [w for w in controls if isinstance(w, (ipywidgets.IntSlider, ipywidgets.FloatSlider))]
-    assert {s.description for s in sliders} == set(widgets.FIGURE7_SLIDERS)
-    for s in sliders:
-        spec = widgets.FIGURE7_SLIDERS[s.description]
-        if s.description == "episode":
-            assert (s.min, s.max) == (1, 40)
-        else:
-            assert (s.min, s.max, s.value) == (spec["min"], spec["max"], spec["value"])
-    assert isinstance(panel.children[-1], ipywidgets.Output)
-    assert len(calls) == 1 and calls[0]["n_episodes"] == 40
-    assert calls[0]["epsilon"] == q_learning.DEFAULT_EPSILON
-    alpha = next(s for s in sliders if s.description == "alpha")
-    alpha.value = 0.25
-    assert len(calls) == 2 and calls[1]["alpha"] == 0.25
-    reading = next(w for w in controls if w.description == "reading")
-    assert calls[0]["reading"] == widgets.FIGURE7_CHOICES["reading"][0] == "toppled"
-    reading.value = "all"
-    assert len(calls) == 3 and calls[2]["reading"] == "all"
-    with pytest.raises(ValueError, match="n_episodes"):
-        widgets.figure7_panel(n_episodes=0)
 
 
 def test_figure7_for_runs_one_seed_and_draws_it():

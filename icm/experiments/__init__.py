@@ -1,13 +1,15 @@
-"""Experiments: many seeded runs of a learner on a task, returned as arrays; sweeps of
-settings times seeds."""
+"""Experiments: many seeded runs of a learner on a task, returned as arrays; grids and
+sweeps of settings times seeds; the interactive panels' numbers (`panels`)."""
 
-from icm.experiments.actor_critic import ActorCriticResult, run_actor_critic
+from icm.experiments.actor_critic import ActorCriticResult, run_actor_critic, run_actor_critic_grid
 from icm.experiments.actor_critic import comparison_table as actor_critic_table
 from icm.experiments.goal_oriented import (GoalOrientedResult, comparison_table,
-                                          run_goal_oriented)
+                                          run_goal_oriented, run_goal_oriented_grid)
 from icm.experiments.rod_toppling import RodTopplingResult, run_rod_toppling
 from icm.experiments.sweep import sweep
+from icm.experiments import panels  # noqa: E402 (after the experiments it runs)
 
 __all__ = ["ActorCriticResult", "GoalOrientedResult", "RodTopplingResult",
-           "actor_critic_table", "comparison_table", "run_actor_critic",
-           "run_goal_oriented", "run_rod_toppling", "sweep"]
+           "actor_critic_table", "comparison_table", "panels", "run_actor_critic",
+           "run_actor_critic_grid", "run_goal_oriented", "run_goal_oriented_grid",
+           "run_rod_toppling", "sweep"]

@@ -11,6 +11,7 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import buttons
+from icm.experiments import _grid
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
 from icm.experiments.goal_oriented import check_results
@@ -244,22 +245,65 @@ def run_actor_critic(n_seeds=100, n_trials=100,
       ValueError: for any argument outside its allowed range, or a run too large for
         this machine's memory.
     """
-    settings = _check_run_arguments(n_seeds, n_trials, temperature, lr_actor, lr_critic,
-                                    gamma, reward, variant, rewarded_box, action_selection,
-                                    epsilon, action_weight, presses_per_trial, red_button,
-                                    seed, progress)
-    seeds = run_seeds(settings["seed"], n_seeds, 2)
+    return run_actor_critic_grid(
+        [{}], n_seeds=n_seeds, n_trials=n_trials, temperature=temperature,
+        lr_actor=lr_actor, lr_critic=lr_critic, gamma=gamma, reward=reward, variant=variant,
+        rewarded_box=rewarded_box, action_selection=action_selection, epsilon=epsilon,
+        action_weight=action_weight, presses_per_trial=presses_per_trial,
+        red_button=red_button, seed=seed, progress=progress)[0]
+
+
+GRID_ARGUMENTS = ("temperature", "lr_actor", "lr_critic", "gamma", "variant", "epsilon",
+                  "action_weight")
+"""The arguments that may differ between the settings of one `run_actor_critic_grid`
+(the batched learner takes them per row)."""
+
+
+def run_actor_critic_grid(grid, **arguments):
+    """Runs `run_actor_critic(**arguments, **setting)` for every setting of `grid`, all in
+    one batch (each setting's seeds are rows of the batched learner, which takes these
+    settings per row).
+
+    Result k is identical to the separate run of setting k (a test checks it):
+    `run_actor_critic` itself is this function with one setting.
+
+    Args:
+      grid: a non-empty list of dicts, each a setting of some of `GRID_ARGUMENTS`.
+      **arguments: any other arguments of `run_actor_critic`, the same for every
+        setting (n_seeds, n_trials, reward, seed, progress, ...).
+
+    Returns:
+      A list of `ActorCriticResult`, one per setting, in the grid's order.
+
+    Raises:
+      ValueError: for a malformed grid, a setting of an argument not in
+        `GRID_ARGUMENTS`, or any value `run_actor_critic` refuses.
+    """
+    progress = _validate.boolean("progress", arguments.pop("progress", True))
+    if "seed" in arguments:  # one root seed for all settings, even if drawn from entropy
+        arguments["seed"] = _validate.root_seed("seed", arguments["seed"])
+    full = _grid.check_grid(grid, GRID_ARGUMENTS, run_actor_critic, arguments)
+    settings = [_check_run_arguments(
+        a["n_seeds"], a["n_trials"], a["temperature"], a["lr_actor"], a["lr_critic"],
+        a["gamma"], a["reward"], a["variant"], a["rewarded_box"], a["action_selection"],
+        a["epsilon"], a["action_weight"], a["presses_per_trial"], a["red_button"],
+        a["seed"], progress) for a in full]
+    first, n = settings[0], settings[0]["n_seeds"]
+    if len(settings) > 1:
+        check_run_size("run_actor_critic_grid", n * len(settings), first["n_trials"], 64)
+    seeds = run_seeds(first["seed"], n, 2) * len(settings)
+    red_button = first["red_button"]
     states, start_states, probes = state_table(red_button)
     env = buttons.ButtonConsoleBatch([s[0] for s in seeds], red_button)
+    rows = {name: _grid.per_row(settings, name, n) for name in GRID_ARGUMENTS}
     agent = actor_critic.ActorCriticBatch(
         [s[1] for s in seeds], states, buttons.EFFECTS, buttons.N_BUTTONS,
-        temperature=temperature, lr_actor=lr_actor, lr_critic=lr_critic, gamma=gamma,
-        reward=reward, variant=variant, action_selection=action_selection, epsilon=epsilon,
-        action_weight=action_weight)
-    rewarded = -1 if reward != "extrinsic" else \
-        buttons.RED_BOX if rewarded_box == "red" else buttons.GREEN_BOX
-    return _play(settings, env, agent, n_trials, presses_per_trial, red_button,
-                 start_states, probes, rewarded, progress)
+        reward=first["reward"], action_selection=first["action_selection"], **rows)
+    rewarded = -1 if first["reward"] != "extrinsic" else \
+        buttons.RED_BOX if first["rewarded_box"] == "red" else buttons.GREEN_BOX
+    result = _play(first, env, agent, first["n_trials"], first["presses_per_trial"],
+                   red_button, start_states, probes, rewarded, progress)
+    return _grid.split(result, settings, n)
 
 
 def state_table(red_button=buttons.DEFAULT_RED_BUTTON):

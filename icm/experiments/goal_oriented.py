@@ -11,6 +11,7 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import buttons
+from icm.experiments import _grid
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
 from icm.learners import goal_oriented, interest, predictors
@@ -224,23 +225,67 @@ def run_goal_oriented(n_seeds=100, n_trials=100,
       ValueError: for any argument outside its allowed range, or a run too large for
         this machine's memory.
     """
-    settings = _check_run_arguments(n_seeds, n_trials, epsilon, window, new_task_factor,
-                                    reading, action_weight, presses_per_trial, red_button,
-                                    interest, interest_per, noisy_button, physics, seed,
-                                    progress)
-    seeds = run_seeds(settings["seed"], n_seeds, 2)
+    return run_goal_oriented_grid(
+        [{}], n_seeds=n_seeds, n_trials=n_trials, epsilon=epsilon, window=window,
+        new_task_factor=new_task_factor, reading=reading, action_weight=action_weight,
+        presses_per_trial=presses_per_trial, red_button=red_button, interest=interest,
+        interest_per=interest_per, noisy_button=noisy_button, physics=physics, seed=seed,
+        progress=progress)[0]
+
+
+GRID_ARGUMENTS = ("epsilon", "window", "new_task_factor", "reading", "action_weight")
+"""The arguments that may differ between the settings of one `run_goal_oriented_grid`
+(the batched learner takes them per row)."""
+
+
+def run_goal_oriented_grid(grid, **arguments):
+    """Runs `run_goal_oriented(**arguments, **setting)` for every setting of `grid`, all
+    in one batch (each setting's seeds are rows of the batched learner, which takes
+    these settings per row).
+
+    Result k is identical to the separate run of setting k (the same seeds, the same
+    numbers; a test checks it): `run_goal_oriented` itself is this function with one
+    setting. A grid of many settings costs far less than the settings one by one.
+
+    Args:
+      grid: a non-empty list of dicts, each a setting of some of `GRID_ARGUMENTS`
+        (those left out take their value from `arguments`, or the default).
+      **arguments: any other arguments of `run_goal_oriented`, the same for every
+        setting (n_seeds, n_trials, seed, progress, ...).
+
+    Returns:
+      A list of `GoalOrientedResult`, one per setting, in the grid's order.
+
+    Raises:
+      ValueError: for a malformed grid, a setting of an argument not in
+        `GRID_ARGUMENTS`, or any value `run_goal_oriented` refuses.
+    """
+    progress = _validate.boolean("progress", arguments.pop("progress", True))
+    if "seed" in arguments:  # one root seed for all settings, even if drawn from entropy
+        arguments["seed"] = _validate.root_seed("seed", arguments["seed"])
+    full = _grid.check_grid(grid, GRID_ARGUMENTS, run_goal_oriented, arguments)
+    settings = [_check_run_arguments(
+        a["n_seeds"], a["n_trials"], a["epsilon"], a["window"], a["new_task_factor"],
+        a["reading"], a["action_weight"], a["presses_per_trial"], a["red_button"],
+        a["interest"], a["interest_per"], a["noisy_button"], a["physics"], a["seed"],
+        progress) for a in full]
+    first, n = settings[0], settings[0]["n_seeds"]
+    if len(settings) > 1:
+        check_run_size("run_goal_oriented_grid", n * len(settings), first["n_trials"], 160,
+                       bytes_per_seed=8 * (600 + 8 * max(s["window"] for s in settings)))
+    seeds = run_seeds(first["seed"], n, 2) * len(settings)
     env_seeds, agent_seeds = [s[0] for s in seeds], [s[1] for s in seeds]
-    if physics:
-        env = buttons.PhysicsButtonConsoleBatch(env_seeds, red_button, presses_per_trial)
+    red_button, presses = first["red_button"], first["presses_per_trial"]
+    if first["physics"]:
+        env = buttons.PhysicsButtonConsoleBatch(env_seeds, red_button, presses)
     else:
-        env = buttons.ButtonConsoleBatch(env_seeds, red_button, noisy_button)
-    n_actions = env.n_actions
-    contexts = np.array(buttons.layouts(red_button))
+        env = buttons.ButtonConsoleBatch(env_seeds, red_button, first["noisy_button"])
+    rows = {name: _grid.per_row(settings, name, n) for name in GRID_ARGUMENTS}
     agent = goal_oriented.GoalOrientedBatch(
-        agent_seeds, contexts, buttons.EFFECTS, n_actions, epsilon=epsilon,
-        action_weight=action_weight, interest=interest, window=window,
-        new_task_factor=new_task_factor, reading=reading, interest_per=interest_per)
-    return _play(settings, env, agent, n_trials, presses_per_trial, red_button, progress)
+        agent_seeds, np.array(buttons.layouts(red_button)), buttons.EFFECTS, env.n_actions,
+        interest=first["interest"], interest_per=first["interest_per"], **rows)
+    result = _play(first, env, agent, first["n_trials"], presses, red_button, progress)
+    return _grid.split(result, settings, n)
 
 
 def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progress):

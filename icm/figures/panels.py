@@ -57,22 +57,77 @@ def draw_curves(curves, height=3.2, width_per_group=4.6):
     return fig
 
 
+PANEL_LAYOUT = {
+    "figure5": {"ylim": None, "width_per_group": 4.6},
+    "figure6": {"ylim": (0, np.sqrt(2) + 0.05), "width_per_group": 4.6},
+    "figure7": {"ylim": (0, 1.02), "width_per_group": 6.4},
+}
+"""Each panel's fixed layout: the y range (None: from 0 to the data) and the width."""
+
+
+def panel_figure(name, curves):
+    """Draws the `curves` of panel `name` (a key of `icm.experiments.panels.PANELS`) on
+    that panel's fixed layout: what the live panels show."""
+    layout = PANEL_LAYOUT[_validate.one_of("name", name, tuple(PANEL_LAYOUT))]
+    fig = draw_curves(curves, width_per_group=layout["width_per_group"])
+    if layout["ylim"] is not None:
+        fig.axes[0].set_ylim(*layout["ylim"])
+    return fig
+
+
 def figure5_panel_figure(result):
     """The Figure 5 panel: mean interest in each task with its 95% band."""
-    return draw_curves(goal_oriented.panel_curves(result))
+    return panel_figure("figure5", goal_oriented.panel_curves(result))
 
 
 def figure6_panel_figure(result):
     """The Figure 6 panel: mean prediction error on each task with its 95% band."""
-    curves = actor_critic.panel_curves(result)
-    fig = draw_curves(curves)
-    fig.axes[0].set_ylim(0, np.sqrt(2) + 0.05)
-    return fig
+    return panel_figure("figure6", actor_critic.panel_curves(result))
 
 
 def figure7_panel_figure(result):
     """The Figure 7 panel: what is left to learn about each rod, and which rod the
     robot topples, per episode, means over the seeds with their 95% bands."""
-    fig = draw_curves(rod_toppling.panel_curves(result), width_per_group=6.4)
-    fig.axes[0].set_ylim(0, 1.02)
+    return panel_figure("figure7", rod_toppling.panel_curves(result))
+
+
+def sweep_figure(settings, cells):
+    """The epsilon x window sweep as two heatmaps: the mean mastery gap (green - red,
+    trials) and the share of seeds that master red first, per (epsilon, window).
+
+    Args:
+      settings: the grid's settings (dicts with at least epsilon and window), one per
+        cell.
+      cells: for each setting, its `icm.experiments.panels.sweep_cell` numbers.
+    """
+    if not isinstance(settings, (list, tuple)) or not isinstance(cells, (list, tuple)) \
+            or len(settings) != len(cells) or not settings:
+        raise _validate.ArgumentTypeError(
+            f"settings and cells must be lists of the same non-zero length, got "
+            f"{_validate.show(settings)} and {_validate.show(cells)}")
+    epsilons = sorted({s["epsilon"] for s in settings})
+    windows = sorted({s["window"] for s in settings})
+    fig = Figure(figsize=(9.6, 3.8))
+    fig.png_dpi, fig.quick_png = 96, True
+    axes = fig.subplots(1, 2)
+    for ax, (field, title, fmt) in zip(axes, (
+            ("gap", "Mean mastery gap (green - red, trials)", "{:.1f}"),
+            ("red_first", "Share of seeds mastering red first", "{:.0%}"))):
+        table = np.full((len(windows), len(epsilons)), np.nan)
+        for s, c in zip(settings, cells):
+            table[windows.index(s["window"]), epsilons.index(s["epsilon"])] = c[field]
+        image = ax.imshow(table, origin="lower", cmap="viridis", aspect="auto",
+                          vmin=0 if field == "red_first" else None,
+                          vmax=1 if field == "red_first" else None)
+        ax.set_xticks(range(len(epsilons)), [f"{v:g}" for v in epsilons])
+        ax.set_yticks(range(len(windows)), [f"{v:g}" for v in windows])
+        ax.set_xlabel("epsilon")
+        ax.set_ylabel("window k")
+        ax.set_title(title, fontsize=10)
+        low, high = image.get_clim()
+        for (i, j), number in np.ndenumerate(table):
+            ax.text(j, i, fmt.format(number), ha="center", va="center", fontsize=8,
+                    color="white" if number < (low + high) / 2 else "black")
+        fig.colorbar(image, ax=ax)
+    fig.subplots_adjust(left=0.07, right=0.97, bottom=0.14, top=0.9, wspace=0.25)
     return fig

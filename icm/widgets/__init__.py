@@ -1,9 +1,12 @@
-"""Interactive panels for the book: sliders that rerun an experiment and redraw a figure.
+"""Interactive panels for the book: sliders that redraw the paper's figures.
 
-The panels need a running Jupyter kernel to move; in the static HTML book they show
-the controls and the figure of their first run.
+Each panel is live in a running notebook (ipywidgets: every slider move reruns the
+experiment, 100 seeds) and static in the HTML book (a Vega-Lite figure over a grid of
+settings precomputed when the book is built, which moves in the browser with no
+kernel). Both draw `icm.experiments.panels.panel_curves_for`, so they show the same
+numbers at every setting of the grid.
 """
 
 from icm.widgets.actor_critic import FIGURE6_CHOICES, FIGURE6_SLIDERS, figure6_panel
-from icm.widgets.goal_oriented import FIGURE5_SLIDERS, figure5_panel
-from icm.widgets.rod_toppling import FIGURE7_CHOICES, FIGURE7_SLIDERS, figure7_panel
+from icm.widgets.goal_oriented import FIGURE5_SLIDERS, figure5_panel, sweep_panel
+from icm.widgets.rod_toppling import FIGURE7_SLIDERS, figure7_panel

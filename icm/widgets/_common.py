@@ -1,21 +1,45 @@
 """Shared pieces of the interactive panels."""
 
-import inspect
+import os
 
 import ipywidgets
 
 from icm import _validate
 
+STATIC_ENV = "ICM_STATIC_PANELS"
+"""When this environment variable is "1" (the book build sets it, see
+`book/_ext/execute_book.py`), the panels are drawn as their static, precomputed
+versions, which move in the HTML book without a kernel."""
 
-def check_fixed(run_fn, fixed, controlled):
-    """Raises ValueError unless every key of `fixed` is an argument of `run_fn` that the
-    panel does not control itself (`controlled`: its sliders and choices)."""
-    parameters = inspect.signature(run_fn).parameters
-    allowed = [p for p in parameters if p not in controlled and p != "progress"]
+
+def wants_static(static):
+    """Whether a panel should be its static version: `static` if True or False; if
+    None, whether the book is being built (`STATIC_ENV` is "1")."""
+    if static is None:
+        return os.environ.get(STATIC_ENV) == "1"
+    return _validate.boolean("static", static)
+
+
+def check_fixed(fixed, controls, allowed):
+    """Raises ValueError unless every key of `fixed` is one of `allowed` (the run's other
+    arguments); `controls` are the panel's own sliders and choices, which cannot be held
+    fixed."""
     for name in fixed:
+        if name in controls:
+            raise ValueError(f"{name!r} cannot be held fixed in this panel: it is one of "
+                             f"its controls ({', '.join(controls)})")
         if name not in allowed:
             raise ValueError(f"{name!r} cannot be held fixed in this panel; allowed: "
-                             f"{', '.join(allowed)} (the panel sets {', '.join(controlled)})")
+                             f"{', '.join(allowed)}")
+
+
+def run_arguments(run_fn, controls):
+    """The arguments of `run_fn` a panel may hold fixed: all but its controls and the
+    progress bar."""
+    import inspect
+
+    return tuple(p for p in inspect.signature(run_fn).parameters
+                 if p not in controls and p != "progress")
 
 
 def slider(name, spec):
@@ -30,9 +54,19 @@ def slider(name, spec):
                style={"description_width": "initial"}, **spec)
 
 
+def choice(name, options):
+    """A toggle of `options` named `name`, first option selected."""
+    _validate.text("name", name)
+    return ipywidgets.ToggleButtons(description=name, options=list(options),
+                                    value=options[0], style={"description_width": "initial"})
+
+
 def panel(sliders, draw, per_row=2):
     """A VBox of `sliders` (a dict name -> slider) above an Output that shows
-    `draw(**values)`, redrawn whenever a slider is released."""
+    `draw(**values)`, redrawn whenever a slider is released.
+
+    The first figure is drawn before any widget exists, so that a bad argument raises
+    its error here (a redraw's error shows in the panel's output)."""
     from IPython.display import display
 
     if not isinstance(sliders, dict) or not sliders:
@@ -40,6 +74,7 @@ def panel(sliders, draw, per_row=2):
                                           f"widget, got {_validate.show(sliders)}")
     _validate.function("draw", draw, allow_none=False)
     per_row = _validate.integer("per_row", per_row, 1, 10)
+    first = draw(**{name: s.value for name, s in sliders.items()})
     output = ipywidgets.Output()
 
     def redraw(_change=None):
@@ -49,7 +84,34 @@ def panel(sliders, draw, per_row=2):
 
     for s in sliders.values():
         s.observe(redraw, names="value")
-    redraw()
+    with output:
+        display(first)
     controls = list(sliders.values())
     rows = [ipywidgets.HBox(controls[i:i + per_row]) for i in range(0, len(controls), per_row)]
     return ipywidgets.VBox(rows + [output])
+
+
+def curves_panel(name, sliders, static, fixed, per_row=2):
+    """Panel `name` of `icm.experiments.panels.PANELS`: live (ipywidgets `sliders`, and
+    the panel's choices, that rerun `panel_curves_for`) or static (its precomputed
+    grid as a Vega-Lite figure), as `wants_static(static)` says."""
+    from icm import figures
+    from icm.experiments import panels
+
+    spec = panels.spec(name)
+    check_fixed(fixed, spec.controls, run_arguments(spec.run, spec.controls))
+    if wants_static(static):
+        if fixed:
+            raise ValueError(f"the static panel shows its precomputed grid and cannot hold "
+                             f"{', '.join(fixed)} fixed; use static=False")
+        from icm.figures import interactive
+
+        return interactive.curves_panel(panels.precompute(name))
+    controls = {n: slider(n, s) for n, s in sliders.items()}
+    for n, options in spec.choices.items():
+        controls[n] = choice(n, options)
+
+    def draw(**values):
+        return figures.panel_figure(name, panels.panel_curves_for(name, fixed, **values))
+
+    return panel(controls, draw, per_row=per_row)

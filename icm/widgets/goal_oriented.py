@@ -1,37 +1,74 @@
-"""The Figure 5 panel: sliders that rerun the goal-oriented learner."""
+"""The Figure 5 panel and the epsilon x window sweep: sliders that rerun the
+goal-oriented learner."""
 
-from icm import _validate, figures
-from icm.experiments import run_goal_oriented
 from icm.learners import goal_oriented, interest
-from icm.widgets._common import check_fixed, panel, slider
+from icm.widgets._common import curves_panel, panel, slider, wants_static
 
 FIGURE5_SLIDERS = {
     "epsilon": dict(min=0.0, max=1.0, step=0.05, value=goal_oriented.DEFAULT_EPSILON),
     "window": dict(min=2, max=20, step=1, value=interest.DEFAULT_WINDOW),
     "new_task_factor": dict(min=0.0, max=1.0, step=0.05,
                             value=interest.DEFAULT_NEW_TASK_FACTOR),
-    "n_seeds": dict(min=5, max=200, step=5, value=20),
 }
-"""Slider ranges of `figure5_panel`: the allowed ranges of the learner's arguments
-(window capped at 20 to stay readable), and seeds few enough to redraw quickly."""
+"""Slider ranges of the live `figure5_panel`: the allowed ranges of the learner's
+arguments (window capped at 20 to stay readable). Every value of the static panel's
+grid (`icm.experiments.panels.PANELS["figure5"]`) is on these sliders."""
 
 
-def figure5_panel(n_trials=60, **fixed):
-    """A panel that reruns the goal-oriented learner and redraws Figure 5.
+def figure5_panel(static=None, **fixed):
+    """The Figure 5 panel: the goal-oriented learner's interest in each task, 100 seeds,
+    60 trials, for the epsilon, window and new-task factor of its sliders.
 
     Args:
-      n_trials: trials per run.
-      **fixed: other arguments of `run_goal_oriented`, held fixed (e.g. reading).
+      static: True for the static version (a Vega-Lite figure over the precomputed
+        grid of `icm.experiments.panels`, which moves in the HTML book without a
+        kernel), False for the live ipywidgets panel that reruns the learner on every
+        change; None (default): static while the book is built, live otherwise.
+      **fixed: other arguments of `run_goal_oriented`, held fixed (e.g.
+        reading="literal", n_seeds=20); live panel only.
 
     Returns:
-      An `ipywidgets.VBox` with sliders for epsilon, window, new-task factor and
-      number of seeds above the figure.
+      An `ipywidgets.VBox` (sliders above the figure) or an
+      `icm.figures.interactive.StaticPanel`.
 
     Raises:
-      ValueError: for n_trials < 1 or a fixed argument the panel cannot hold.
+      ValueError: for a fixed argument the panel cannot hold.
     """
-    n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
-    check_fixed(run_goal_oriented, fixed, tuple(FIGURE5_SLIDERS) + ("n_trials",))
-    sliders = {name: slider(name, spec) for name, spec in FIGURE5_SLIDERS.items()}
-    return panel(sliders, lambda **values: figures.figure5_for(n_trials=n_trials, **fixed,
-                                                                **values))
+    return curves_panel("figure5", FIGURE5_SLIDERS, static, fixed)
+
+
+def sweep_panel(static=None):
+    """The epsilon x window sweep of Figure 5's runs: for the new-task factor of its
+    slider, the mean mastery gap (green - red) and the share of seeds that master red
+    first, for each epsilon and window of the Figure 5 grid (100 seeds each).
+
+    Args:
+      static: as in `figure5_panel`.
+
+    Returns:
+      An `ipywidgets.VBox` or an `icm.figures.interactive.StaticPanel`.
+    """
+    from icm import figures
+    from icm.experiments import panels
+
+    if wants_static(static):
+        from icm.figures import interactive
+
+        return interactive.sweep_panel(panels.precompute("figure5"))
+    spec = panels.spec("figure5")
+    factors = spec.sliders["new_task_factor"]
+    factor = slider("new_task_factor", dict(min=factors[0], max=factors[-1],
+                                            step=factors[1] - factors[0],
+                                            value=spec.defaults["new_task_factor"]))
+
+    def draw(new_task_factor):
+        settings = [s for s in spec.settings()
+                    if abs(s["new_task_factor"] - factors[0]) < 1e-9]
+        settings = [dict(s, new_task_factor=new_task_factor) for s in settings]
+        cells = [panels.sweep_cell(panels.panel_run("figure5", **s)) for s in settings]
+        return figures.sweep_figure(settings, cells)
+
+    return panel({"new_task_factor": factor}, draw)
+
+
+__all__ = ["FIGURE5_SLIDERS", "figure5_panel", "sweep_panel"]

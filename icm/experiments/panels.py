@@ -1,0 +1,359 @@
+"""The interactive panels' numbers: one library call per panel setting, and the grid of
+settings that the book precomputes for its kernel-free (static HTML) panels.
+
+A panel is one of the paper's figures redrawn for a chosen setting of its sliders:
+
+- ``"figure5"``: the goal-oriented learner's interest in each task (epsilon, window,
+  new-task factor); the same runs give the epsilon x window sweep of the mastery gap;
+- ``"figure6"``: the actor-critic's prediction error on each task (actor and critic
+  learning rates, temperature, variant);
+- ``"figure7"``: the curious Q-learner's error left on each rod and where it plays
+  (epsilon, alpha, gamma, predictor learning rate).
+
+`panel_curves_for` is the one call behind a panel: the live ipywidgets panel
+(`icm.widgets`) makes it for whatever setting the sliders show, and `precompute`
+makes it for every setting of the panel's grid, so the book's static panels show the
+same numbers as the live ones wherever the grid has the setting.
+"""
+
+import dataclasses
+import functools
+import itertools
+
+import numpy as np
+
+from icm import _validate
+from icm.experiments import actor_critic as _actor_critic
+from icm.experiments import goal_oriented as _goal_oriented
+from icm.experiments import rod_toppling as _rod_toppling
+from icm.experiments._progress import progress_bar
+from icm.learners import actor_critic, goal_oriented, interest, predictors, q_learning
+from icm.stats import bootstrap_band
+
+
+@dataclasses.dataclass(frozen=True)
+class PanelSpec:
+    """What a panel runs and which settings its sliders offer.
+
+    Attributes:
+      title: what the panel shows, for headings.
+      run: the experiment (`run_goal_oriented`, ...).
+      grid_run: its many-settings form (`run_goal_oriented_grid`, ...), or None if it
+        has none (then the settings run one by one).
+      curves: the experiment's `panel_curves` (result -> curves dict).
+      sliders: {argument: grid values}, each an evenly spaced tuple of at least 5
+        numbers that includes the library's default.
+      choices: {argument: options}, first option the library's default.
+      defaults: the library's default of every slider and choice.
+      fixed: the run's other arguments (seeds, trials, root seed).
+      every: the static panel keeps every `every`-th point of each curve (and the
+        last): enough for the eye, a smaller page.
+    """
+
+    title: str
+    run: object
+    grid_run: object
+    curves: object
+    sliders: dict
+    choices: dict
+    defaults: dict
+    fixed: dict
+    every: int = 1
+
+    @property
+    def controls(self):
+        """Names of the sliders and choices, in order."""
+        return tuple(self.sliders) + tuple(self.choices)
+
+    def settings(self):
+        """Every setting of the grid, as dicts, in a fixed order."""
+        names = self.controls
+        values = [self.sliders[n] for n in self.sliders] + [self.choices[n]
+                                                             for n in self.choices]
+        return [dict(zip(names, combo)) for combo in itertools.product(*values)]
+
+
+def _evenly(first, step, n=5):
+    return tuple(round(first + i * step, 10) for i in range(n))
+
+
+PANELS = {
+    "figure5": PanelSpec(
+        title="Figure 5: interest in each task",
+        run=_goal_oriented.run_goal_oriented,
+        grid_run=_goal_oriented.run_goal_oriented_grid, curves=_goal_oriented.panel_curves,
+        sliders={"epsilon": _evenly(0.0, 0.1), "window": (3, 5, 7, 9, 11),
+                 "new_task_factor": _evenly(0.0, 0.25)},
+        choices={},
+        defaults={"epsilon": goal_oriented.DEFAULT_EPSILON,
+                  "window": interest.DEFAULT_WINDOW,
+                  "new_task_factor": interest.DEFAULT_NEW_TASK_FACTOR},
+        fixed={"n_seeds": 100, "n_trials": 60, "seed": 0}),
+    "figure6": PanelSpec(
+        title="Figure 6: the actor-critic's prediction error",
+        run=_actor_critic.run_actor_critic,
+        grid_run=_actor_critic.run_actor_critic_grid, curves=_actor_critic.panel_curves,
+        sliders={"lr_actor": _evenly(0.1, 0.2), "lr_critic": _evenly(0.1, 0.2),
+                 "temperature": _evenly(0.1, 0.1)},
+        choices={"variant": tuple(actor_critic.VARIANTS)},
+        defaults={"lr_actor": actor_critic.DEFAULT_LR_ACTOR,
+                  "lr_critic": actor_critic.DEFAULT_LR_CRITIC,
+                  "temperature": actor_critic.DEFAULT_TEMPERATURE, "variant": "standard"},
+        fixed={"n_seeds": 100, "n_trials": 60, "seed": 0}),
+    "figure7": PanelSpec(
+        title="Figure 7: what is left to learn about each rod",
+        run=_rod_toppling.run_rod_toppling, grid_run=None,
+        curves=_rod_toppling.panel_curves,
+        sliders={"epsilon": _evenly(0.0, 0.1), "alpha": _evenly(0.1, 0.2),
+                 "gamma": _evenly(0.1, 0.2), "predictor_lr": _evenly(0.1, 0.1)},
+        choices={},
+        defaults={"epsilon": q_learning.DEFAULT_EPSILON, "alpha": q_learning.DEFAULT_ALPHA,
+                  "gamma": q_learning.DEFAULT_GAMMA,
+                  "predictor_lr": predictors.DEFAULT_LINEAR_LR},
+        fixed={"n_seeds": 100, "n_episodes": 150, "seed": 0}, every=3),
+}
+"""The panels, by name. Each slider's grid has 5 evenly spaced values around the
+library's default; every run has 100 seeds."""
+
+
+def spec(name):
+    """The `PanelSpec` of panel `name` (one of `PANELS`).
+
+    Raises:
+      ValueError: for an unknown name, listing the known ones.
+    """
+    return PANELS[_validate.one_of("name", name, tuple(PANELS))]
+
+
+def _check_setting(panel, setting, fixed):
+    allowed = panel.controls
+    for key in setting:
+        if key not in allowed:
+            raise ValueError(f"{key!r} is not a control of the {panel.title!r} panel; its "
+                             f"controls are {', '.join(allowed)}")
+    for key in fixed:
+        if key in allowed or key == "progress":
+            raise ValueError(f"{key!r} cannot be held fixed in this panel (it is one of "
+                             f"its controls, or the progress bar)")
+    return {**panel.defaults, **setting}, {**panel.fixed, **fixed}
+
+
+ROWS_PER_BATCH = 5000
+"""Rows (settings x seeds) run together by `panel_runs`: large enough to spread the
+per-step overhead, small enough to keep the batch's records in a few tens of MB."""
+
+
+def panel_runs(name, settings, fixed=None, progress=False):
+    """Runs panel `name`'s experiment at each of `settings`, yielding the results in
+    order. Settings run together, as rows of one batch (the experiment's grid form,
+    which gives each setting the numbers of its separate run), `ROWS_PER_BATCH` rows
+    at a time.
+
+    Args:
+      name: a panel of `PANELS`.
+      settings: a list of dicts of slider and choice values; a control left out takes
+        its default.
+      fixed: a dict of the run's other arguments, replacing the panel's (e.g.
+        {"n_seeds": 20}); None keeps the panel's 100 seeds.
+      progress: show a progress bar over the settings.
+
+    Yields:
+      The experiment's result for each setting.
+
+    Raises:
+      ValueError: for an unknown panel, a setting that is not one of its controls, or
+        a value the experiment refuses.
+    """
+    panel = spec(name)
+    if fixed is not None and not isinstance(fixed, dict):
+        raise _validate.ArgumentTypeError(f"fixed must be a dict of the run's other "
+                                          f"arguments or None, got {_validate.show(fixed)}")
+    if not isinstance(settings, (list, tuple)) or not settings:
+        raise _validate.ArgumentTypeError(f"settings must be a non-empty list of dicts, got "
+                                          f"{_validate.show(settings)}")
+    checked = [_check_setting(panel, s, fixed or {}) for s in settings]
+    run_fixed = checked[0][1]
+    full = [setting for setting, _ in checked]
+    per_batch = 1 if panel.grid_run is None else \
+        max(1, ROWS_PER_BATCH // run_fixed.get("n_seeds", 1))
+    bar = progress_bar(None, len(full), f"{name} panel", progress, unit="setting")
+    for start in range(0, len(full), per_batch):
+        chunk = full[start:start + per_batch]
+        if panel.grid_run is None:
+            results = [panel.run(**chunk[0], **run_fixed, progress=False)]
+        else:
+            results = panel.grid_run(chunk, **run_fixed, progress=False)
+        if bar is not None:
+            bar.update(len(chunk))
+        yield from results
+    if bar is not None:
+        bar.close()
+
+
+def panel_run(name, fixed=None, **setting):
+    """Runs panel `name`'s experiment at one `setting` (`panel_runs` of one setting).
+
+    Args:
+      name: a panel of `PANELS`.
+      fixed: a dict of the run's other arguments, replacing the panel's (e.g.
+        {"n_seeds": 20}); None keeps the panel's 100 seeds.
+      **setting: slider and choice values; a control left out takes its default.
+
+    Returns:
+      The experiment's result.
+    """
+    return next(panel_runs(name, [setting], fixed))
+
+
+def panel_curves_for(name, fixed=None, **setting):
+    """What panel `name` draws at `setting`: the experiment's `panel_curves` of
+    `panel_run(name, fixed, **setting)`. The live panels call this; `precompute` calls
+    the same `panel_runs` and `panel_curves` for every setting of the grid, so the two
+    show the same numbers for the same setting (a test checks it)."""
+    return spec(name).curves(panel_run(name, fixed, **setting))
+
+
+def sweep_cell(result):
+    """The epsilon x window sweep's numbers for one goal-oriented result: the share of
+    seeds that master red first, and the mean mastery gap (green - red, over the seeds
+    that master both) with its 95% percentile-bootstrap band.
+
+    Returns:
+      {"red_first": share, "gap": mean, "gap_low": low, "gap_high": high, "gap_seeds":
+      how many seeds mastered both}; the gap numbers are NaN if no seed did.
+    """
+    _validate.instance("result", result, _goal_oriented.GoalOrientedResult,
+                       "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
+    red, green = result.mastery_trial[:, 0], result.mastery_trial[:, 1]
+    both = (red >= 1) & (green >= 1)
+    out = {"red_first": result.red_first_fraction(), "gap_seeds": int(both.sum())}
+    if both.any():
+        mean, low, high = bootstrap_band((green - red)[both].astype(float),
+                                         resamples=_goal_oriented.PANEL_RESAMPLES)
+        out.update(gap=float(mean), gap_low=float(low), gap_high=float(high))
+    else:
+        out.update(gap=float("nan"), gap_low=float("nan"), gap_high=float("nan"))
+    return out
+
+
+@dataclasses.dataclass(frozen=True)
+class PanelGrid:
+    """A panel's curves at every setting of its grid.
+
+    Attributes:
+      name: the panel (a key of `PANELS`).
+      settings: the grid's settings, dicts of slider and choice values.
+      curves: for each setting, what `panel_curves_for` returned.
+      cells: for "figure5", each setting's `sweep_cell` (else None).
+    """
+
+    name: str
+    settings: tuple
+    curves: tuple
+    cells: tuple = None
+
+    @property
+    def spec(self):
+        """The panel's `PanelSpec`."""
+        return PANELS[self.name]
+
+    def index(self, **setting):
+        """Position of `setting` (every control given) in the grid.
+
+        Raises:
+          ValueError: if the grid has no such setting.
+        """
+        for i, s in enumerate(self.settings):
+            if s.keys() == setting.keys() and all(_same(s[k], setting[k]) for k in s):
+                return i
+        raise ValueError(f"the {self.name} grid has no setting {setting}; its values are "
+                         f"{ {**self.spec.sliders, **self.spec.choices} }")
+
+
+def _same(a, b):
+    if isinstance(a, str) or isinstance(b, str):
+        return a == b
+    return _validate.is_real(b) and abs(a - b) < 1e-9
+
+
+@functools.lru_cache(maxsize=4)
+def _precompute(name, progress):
+    panel = PANELS[name]
+    settings = panel.settings()
+    curves, cells = [], []
+    for result in panel_runs(name, settings, progress=progress):
+        curves.append(panel.curves(result))
+        if name == "figure5":
+            cells.append(sweep_cell(result))
+    return PanelGrid(name=name, settings=tuple(settings), curves=tuple(curves),
+                     cells=tuple(cells) if cells else None)
+
+
+def precompute(name, progress=True):
+    """Runs panel `name` at every setting of its grid (100 seeds each), as the live panel
+    would: the numbers of the book's static panels.
+
+    The result is kept for the rest of the session (a chapter that shows Figure 5's
+    panel and the sweep computes the grid once).
+
+    Args:
+      name: a panel of `PANELS`.
+      progress: show a progress bar over the settings.
+
+    Returns:
+      A `PanelGrid`.
+
+    Raises:
+      ValueError: for an unknown panel name.
+    """
+    spec(name)
+    return _precompute(name, _validate.boolean("progress", progress))
+
+
+def thin(curves, every):
+    """`curves` with every `every`-th point of each series kept (and the last one)."""
+    every = _validate.integer("every", every, 1)
+    n = len(curves["x"])
+    keep = np.unique(np.r_[np.arange(0, n, every), n - 1])
+    groups = [{**g, "series": {k: tuple(np.asarray(a)[keep] for a in band)
+                               for k, band in g["series"].items()}}
+              for g in curves["groups"]]
+    return {**curves, "x": np.asarray(curves["x"])[keep], "groups": groups}
+
+
+def sweep_summary(grid):
+    """The numbers the book quotes about the epsilon x window sweep of the Figure 5
+    grid.
+
+    Returns:
+      A dict: "settings", "runs" (settings x seeds); "red_first" (share of all runs
+      that master red first) and "red_first_lowest" (the lowest share of any
+      setting); "gap_lowest", "gap_highest" (the range of the settings' mean gaps);
+      "windows" (the grid's windows) and "default_gaps" (the mean gap at each window,
+      at the default epsilon and new-task factor); "longer_window_larger" (in how many
+      (epsilon, new-task factor) pairs the longest window gives a larger mean gap than
+      the shortest) out of "pairs".
+    """
+    _validate.instance("grid", grid, PanelGrid,
+                       "a PanelGrid (from icm.experiments.panels.precompute)")
+    if grid.cells is None:
+        raise ValueError(f"grid must be the figure5 grid, got the {grid.name} grid")
+    spec_ = grid.spec
+    n_seeds = spec_.fixed["n_seeds"]
+    shares = np.array([c["red_first"] for c in grid.cells])
+    gaps = np.array([c["gap"] for c in grid.cells])
+    windows = spec_.sliders["window"]
+
+    def gap(**setting):
+        return grid.cells[grid.index(**setting)]["gap"]
+
+    defaults = {k: spec_.defaults[k] for k in ("epsilon", "new_task_factor")}
+    pairs = [(e, f) for e in spec_.sliders["epsilon"] for f in spec_.sliders["new_task_factor"]]
+    larger = sum(gap(epsilon=e, window=windows[-1], new_task_factor=f)
+                 > gap(epsilon=e, window=windows[0], new_task_factor=f) for e, f in pairs)
+    return {"settings": len(grid.settings), "runs": len(grid.settings) * n_seeds,
+            "red_first": float(shares.mean()), "red_first_lowest": float(shares.min()),
+            "gap_lowest": float(np.nanmin(gaps)), "gap_highest": float(np.nanmax(gaps)),
+            "windows": tuple(windows),
+            "default_gaps": tuple(gap(window=w, **defaults) for w in windows),
+            "longer_window_larger": int(larger), "pairs": len(pairs)}

@@ -1,0 +1,282 @@
+"""Static interactive panels: Vega-Lite figures whose sliders redraw them in the browser,
+with no Python kernel, from a grid of settings computed beforehand
+(`icm.experiments.panels.precompute`).
+
+Each figure is a Vega-Lite specification, a declarative description written here as
+a plain dict: each slider is a parameter bound to a range input, and the marks draw
+the rows of the precomputed data whose setting equals the sliders' values. (Altair
+builds the same specifications, and the tests check ours against its Vega-Lite
+schema; the library does not import it, which would cost seconds per notebook.) The book's HTML loads Vega, Vega-Lite and vega-embed from its own
+`_static/vendor` folder (no network); in the page, each panel's view is kept in
+``window.icmPanels[id]`` (the browser test reads it).
+"""
+
+import hashlib
+import html
+import json
+import math
+
+import numpy as np
+
+from icm import _validate
+from icm.experiments import panels as _panels
+from icm.figures.panels import SERIES_COLOURS
+
+LABELS = {
+    "epsilon": "epsilon (random presses)", "window": "window k",
+    "new_task_factor": "new-task factor", "lr_actor": "actor learning rate",
+    "lr_critic": "critic learning rate", "temperature": "temperature",
+    "variant": "variant", "alpha": "alpha (Q learning rate)", "gamma": "gamma (discount)",
+    "predictor_lr": "predictor learning rate",
+}
+"""Readable names of the panels' controls, shown next to the sliders."""
+
+DIGITS = 4
+"""Decimals kept in the page's data: far finer than a pixel of the figure."""
+
+
+class StaticPanel:
+    """A Vega-Lite figure with its own sliders, for the HTML book.
+
+    Jupyter shows it through its HTML: a div, the Vega-Lite specification as JSON, and
+    the call that draws the one into the other once the page's scripts are loaded. In
+    a running notebook it shows only a short note (the page's scripts are the book's),
+    so use the live `icm.widgets` panels there.
+
+    Attributes:
+      spec: the Vega-Lite specification (a dict, data included).
+      title: what the panel shows.
+      element_id: the id of its div in the page (a hash of the specification).
+    """
+
+    def __init__(self, spec, title):
+        if not isinstance(spec, dict) or "$schema" not in spec:
+            raise _validate.ArgumentTypeError(f"spec must be a Vega-Lite specification "
+                                              f"dict, got {_validate.show(spec)}")
+        self.spec = spec
+        self.title = _validate.text("title", title)
+        text = json.dumps(spec, sort_keys=True, separators=(",", ":"))
+        self.element_id = "icm-panel-" + hashlib.sha256(text.encode()).hexdigest()[:12]
+        self._json = text
+
+    def html(self):
+        """The panel as HTML: a div, its specification, and the script that draws it."""
+        spec = self._json.replace("</", "<\\/")
+        note = html.escape(f"{self.title}: this figure is drawn by the book's HTML pages "
+                           f"(Vega-Lite). In Jupyter, use the live panel of icm.widgets.")
+        return (f'<div class="icm-static-panel" id="{self.element_id}">'
+                f'<p class="icm-static-panel-note">{note}</p></div>\n'
+                f'<script type="application/json" id="{self.element_id}-spec">{spec}'
+                f'</script>\n<script>{_EMBED % {"id": self.element_id}}</script>')
+
+    def _repr_html_(self):
+        return self.html()
+
+    def __repr__(self):
+        return f"<StaticPanel {self.title!r}>"
+
+
+_EMBED = """(function () {
+  var id = "%(id)s", tries = 0;
+  function draw() {
+    if (typeof vegaEmbed === "undefined") {
+      if (++tries < 200) { setTimeout(draw, 50); }
+      return;
+    }
+    var spec = JSON.parse(document.getElementById(id + "-spec").textContent);
+    vegaEmbed("#" + id, spec, {actions: false, renderer: "svg"}).then(function (result) {
+      (window.icmPanels = window.icmPanels || {})[id] = result.view;
+    }).catch(function (error) { console.error(error); });
+  }
+  draw();
+})();"""
+
+
+def _rounded(values):
+    return [None if not math.isfinite(v) else round(float(v), DIGITS)
+            for v in np.asarray(values, dtype=float)]
+
+
+def _plain(value):
+    return value if isinstance(value, str) else float(value) if not float(value).is_integer() \
+        else int(value)
+
+
+VEGA_LITE_SCHEMA = "https://vega.github.io/schema/vega-lite/v6.json"
+"""The Vega-Lite version of the specifications (the vendored vega-lite is 6.4)."""
+
+DATASET = "grid"
+"""Name of a static panel's dataset (the precomputed rows) in its specification."""
+
+_CONFIG = {"view": {"stroke": None}, "title": {"anchor": "start", "fontSize": 13},
+           "axis": {"labelFontSize": 11, "titleFontSize": 12},
+           "legend": {"labelFontSize": 12}}
+
+
+def _controls(spec):
+    """Vega-Lite parameters for the panel's sliders and choices, and the filter that
+    keeps the rows of the setting they show."""
+    params, tests = [], []
+    for name, values in spec.sliders.items():
+        params.append(_slider(name, values, spec.defaults[name]))
+        tests.append(f"abs(datum.{name} - {name}) < 1e-6")
+    for name, options in spec.choices.items():
+        params.append({"name": name, "value": spec.defaults[name],
+                       "bind": {"input": "radio", "options": list(options),
+                                "name": LABELS.get(name, name) + " "}})
+        tests.append(f"datum.{name} == {name}")
+    return params, " && ".join(tests)
+
+
+def _slider(name, values, default):
+    """A parameter bound to a range input over the evenly spaced `values`."""
+    step = round(values[1] - values[0], 10) if len(values) > 1 else 1
+    return {"name": name, "value": _plain(default),
+            "bind": {"input": "range", "min": _plain(values[0]), "max": _plain(values[-1]),
+                     "step": _plain(step), "name": LABELS.get(name, name) + " "}}
+
+
+def _specification(rows, params, transform, body):
+    return {"$schema": VEGA_LITE_SCHEMA, "data": {"name": DATASET},
+            "datasets": {DATASET: rows}, "params": params, "transform": transform,
+            "config": _CONFIG, **body}
+
+
+def curves_rows(grid):
+    """The page's data of a curves panel: one row per setting and series, the series'
+    points as arrays (x, mean, low, high), thinned to the panel's `every`."""
+    _validate.instance("grid", grid, _panels.PanelGrid,
+                       "a PanelGrid (from icm.experiments.panels.precompute)")
+    rows = []
+    for setting, curves in zip(grid.settings, grid.curves):
+        curves = _panels.thin(curves, grid.spec.every)
+        x = [int(v) for v in curves["x"]]
+        for group in curves["groups"]:
+            for series, (mean, low, high) in group["series"].items():
+                rows.append({**{k: _plain(v) for k, v in setting.items()},
+                             "series": series, "x": x, "mean": _rounded(mean),
+                             "low": _rounded(low), "high": _rounded(high)})
+    return rows
+
+
+def curves_panel(grid, width=560, height=280):
+    """The static version of a curves panel (Figures 5, 6 and 7): a line and a 95% band
+    per series, for the setting its sliders show.
+
+    Args:
+      grid: a `PanelGrid` of "figure5", "figure6" or "figure7".
+      width, height: size of the plot in pixels.
+
+    Returns:
+      A `StaticPanel`.
+    """
+    _validate.instance("grid", grid, _panels.PanelGrid,
+                       "a PanelGrid (from icm.experiments.panels.precompute)")
+    width = _validate.integer("width", width, 200, 2000)
+    height = _validate.integer("height", height, 100, 2000)
+    spec = grid.spec
+    rows = curves_rows(grid)
+    first = grid.curves[0]
+    group = first["groups"][0]
+    names = list(group["series"])
+    colour = {"field": "series", "type": "nominal",
+              "scale": {"domain": names,
+                        "range": [SERIES_COLOURS[n.split()[0]] for n in names]}}
+    top = max(max(v for v in row["high"] if v is not None) for row in rows)
+    x = {"field": "x", "type": "quantitative", "title": first["xlabel"],
+         "scale": {"domain": [int(first["x"][0]), int(first["x"][-1])]}}
+    params, keep = _controls(spec)
+    band = {"mark": {"type": "area", "opacity": 0.2},
+            "encoding": {"x": x, "y": {"field": "low", "type": "quantitative",
+                                       "scale": {"domain": [0, top * 1.02], "nice": False},
+                                       "title": group["ylabel"]},
+                         "y2": {"field": "high"}, "color": colour}}
+    tooltip = [{"field": "series", "type": "nominal"},
+               {"field": "x", "type": "quantitative", "title": first["xlabel"]}] + \
+        [{"field": f, "type": "quantitative", "format": ".3f"} for f in ("mean", "low", "high")]
+    line = {"mark": {"type": "line", "strokeWidth": 2},
+            "encoding": {"x": x, "y": {"field": "mean", "type": "quantitative"},
+                         "color": {**colour, "legend": {"title": None, "orient": "top",
+                                                        "symbolType": "stroke",
+                                                        "symbolStrokeWidth": 3}},
+                         "strokeDash": {"condition": {
+                             "test": "indexof(datum.series, 'toppled') >= 0",
+                             "value": [6, 3]}, "value": [1, 0]},
+                         "tooltip": tooltip}}
+    title = f"{spec.title}, {spec.fixed['n_seeds']} seeds per setting, 95% bands"
+    body = {"title": title, "width": width, "height": height, "layer": [band, line]}
+    transform = [{"filter": keep}, {"flatten": ["x", "mean", "low", "high"]}]
+    return StaticPanel(_specification(rows, params, transform, body), title)
+
+
+def sweep_rows(grid):
+    """The page's data of the sweep panel: one row per setting of the Figure 5 grid with
+    its `sweep_cell` numbers."""
+    _validate.instance("grid", grid, _panels.PanelGrid,
+                       "a PanelGrid (from icm.experiments.panels.precompute)")
+    if grid.cells is None:
+        raise ValueError(f"grid must be the figure5 grid (its runs give the sweep), got "
+                         f"the {grid.name} grid")
+    rows = []
+    for setting, cell in zip(grid.settings, grid.cells):
+        row = {k: _plain(v) for k, v in setting.items()}
+        row.update({k: (None if not math.isfinite(v) else round(float(v), DIGITS))
+                    for k, v in cell.items()})
+        rows.append(row)
+    return rows
+
+
+def sweep_panel(grid, cell=56):
+    """The static epsilon x window sweep: for the new-task factor its slider shows, two
+    heatmaps over epsilon and window, the mean mastery gap (green - red, trials) and
+    the share of seeds that master red first, each cell labelled with its number.
+
+    Args:
+      grid: the "figure5" `PanelGrid` (the sweep reuses its runs).
+      cell: size of a heatmap cell in pixels.
+
+    Returns:
+      A `StaticPanel`.
+    """
+    rows = sweep_rows(grid)
+    cell = _validate.integer("cell", cell, 20, 200)
+    spec = grid.spec
+    params = [_slider("new_task_factor", spec.sliders["new_task_factor"],
+                      spec.defaults["new_task_factor"])]
+    axes = {"x": {"field": "epsilon", "type": "ordinal", "title": "epsilon",
+                  "axis": {"labelAngle": 0}},
+            "y": {"field": "window", "type": "ordinal", "title": "window k",
+                  "sort": "descending"}}
+    gaps = [r["gap"] for r in rows if r["gap"] is not None]
+    heatmaps = []
+    for field, title, domain, fmt in (
+            ("gap", "Mean mastery gap (green - red, trials)", [min(gaps), max(gaps)], ".1f"),
+            ("red_first", "Share of seeds mastering red first", [0, 1], ".0%")):
+        tooltip = [{"field": "epsilon", "type": "ordinal"},
+                   {"field": "window", "type": "ordinal"},
+                   {"field": field, "type": "quantitative", "format": fmt}]
+        if field == "gap":
+            tooltip += [{"field": "gap_low", "type": "quantitative", "format": ".1f",
+                         "title": "95% band from"},
+                        {"field": "gap_high", "type": "quantitative", "format": ".1f",
+                         "title": "to"},
+                        {"field": "gap_seeds", "type": "quantitative",
+                         "title": "seeds mastering both"}]
+        rect = {"mark": "rect", "encoding": {**axes, "tooltip": tooltip, "color": {
+            "field": field, "type": "quantitative",
+            "scale": {"scheme": "viridis", "domain": domain},
+            "legend": {"title": None, "format": fmt}}}}
+        middle = (domain[0] + domain[1]) / 2
+        text = {"mark": {"type": "text", "fontSize": 11}, "encoding": {
+            **axes, "text": {"field": field, "type": "quantitative", "format": fmt},
+            "color": {"condition": {"test": f"datum.{field} < {middle}", "value": "white"},
+                      "value": "black"}}}
+        heatmaps.append({"title": title, "width": cell * len(spec.sliders["epsilon"]),
+                         "height": cell * len(spec.sliders["window"]),
+                         "layer": [rect, text]})
+    title = (f"The epsilon x window sweep, {spec.fixed['n_seeds']} seeds per cell, "
+             f"{spec.fixed['n_trials']} trials")
+    body = {"title": title, "hconcat": heatmaps,
+            "resolve": {"scale": {"color": "independent"}}}
+    transform = [{"filter": "abs(datum.new_task_factor - new_task_factor) < 1e-6"}]
+    return StaticPanel(_specification(rows, params, transform, body), title)

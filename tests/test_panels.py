@@ -1,0 +1,286 @@
+"""The interactive panels: the grid runs, the precomputed grids, the live and the static
+panels, and the numbers the book quotes about the sweep."""
+
+import dataclasses
+import json
+
+import ipywidgets
+import numpy as np
+import pytest
+
+import icm
+from icm import figures, widgets
+from icm.experiments import panels
+from icm.figures import interactive
+
+
+def same_result(one, other):
+    assert type(one) is type(other)
+    for field in dataclasses.fields(one):
+        a, b = getattr(one, field.name), getattr(other, field.name)
+        if isinstance(a, np.ndarray):
+            assert np.array_equal(a, b), field.name
+        else:
+            assert a == b, field.name
+
+
+# --- grid runs: every setting's numbers are those of its own run ---------------------
+
+GOAL_GRID = [dict(epsilon=e, window=w, new_task_factor=f, reading=r, action_weight=a)
+             for e, w, f, r, a in [(0.0, 3, 0.5, "progress", 10.0), (0.3, 7, 0.0, "literal", 1.0),
+                                   (0.1, 5, 1.0, "progress", 2.5), (1.0, 2, 0.25, "literal", 10.0)]]
+CRITIC_GRID = [dict(temperature=t, lr_actor=la, lr_critic=lc, gamma=g, variant=v, epsilon=e,
+                    action_weight=a)
+               for t, la, lc, g, v, e, a in [(0.1, 0.2, 0.5, 0.5, "standard", 0.1, 10.0),
+                                             (0.5, 0.9, 0.1, 0.9, "printed", 0.3, 1.0),
+                                             (1.0, 0.5, 0.7, 0.0, "printed_td", 0.0, 3.0),
+                                             (0.2, 0.3, 0.3, 0.7, "printed_reward", 1.0, 10.0)]]
+
+
+@pytest.mark.parametrize("common", [{}, {"interest": "prediction_error", "presses_per_trial": 5}])
+def test_goal_oriented_grid_gives_each_setting_its_own_runs_numbers(common):
+    many = icm.experiments.run_goal_oriented_grid(GOAL_GRID, n_seeds=12, n_trials=25, seed=3,
+                                                  progress=False, **common)
+    assert len(many) == len(GOAL_GRID)
+    for setting, result in zip(GOAL_GRID, many):
+        alone = icm.experiments.run_goal_oriented(n_seeds=12, n_trials=25, seed=3,
+                                                  progress=False, **common, **setting)
+        same_result(alone, result)
+
+
+@pytest.mark.parametrize("common", [{}, {"reward": "extrinsic", "rewarded_box": "red",
+                                         "action_selection": "epsilon_greedy"}])
+def test_actor_critic_grid_gives_each_setting_its_own_runs_numbers(common):
+    many = icm.experiments.run_actor_critic_grid(CRITIC_GRID, n_seeds=12, n_trials=25, seed=5,
+                                                 progress=False, **common)
+    for setting, result in zip(CRITIC_GRID, many):
+        alone = icm.experiments.run_actor_critic(n_seeds=12, n_trials=25, seed=5,
+                                                 progress=False, **common, **setting)
+        same_result(alone, result)
+
+
+def test_grid_runs_refuse_bad_grids():
+    run = icm.experiments.run_goal_oriented_grid
+    for grid, match in (([], "grid"), ({"epsilon": 0.1}, "grid"), ([{"n_seeds": 3}], "n_seeds"),
+                        ([{"colour": 1}], "colour"), ([{"epsilon": 2.0}], "epsilon")):
+        with pytest.raises(ValueError, match=match):
+            run(grid, n_seeds=2, n_trials=2, progress=False)
+    with pytest.raises(ValueError, match="both"):
+        run([{"epsilon": 0.1}], epsilon=0.2, n_seeds=2, n_trials=2, progress=False)
+    with pytest.raises(ValueError, match="colour"):
+        icm.experiments.run_actor_critic_grid([{}], colour=2, progress=False)
+
+
+def test_a_grid_drawn_from_fresh_entropy_uses_one_root_seed_for_all_settings():
+    first, second = icm.experiments.run_goal_oriented_grid(
+        [{"epsilon": 0.1}, {"epsilon": 0.1}], n_seeds=3, n_trials=5, seed=None, progress=False)
+    same_result(first, second)
+
+
+# --- the panels' grids -------------------------------------------------------------
+
+@pytest.mark.parametrize("name", sorted(panels.PANELS))
+def test_every_panel_grid_has_five_evenly_spaced_values_around_the_default(name):
+    spec = panels.PANELS[name]
+    for slider, values in spec.sliders.items():
+        assert len(values) >= 5
+        assert np.allclose(np.diff(values), values[1] - values[0]), slider
+        assert any(abs(v - spec.defaults[slider]) < 1e-9 for v in values), slider
+    for choice, options in spec.choices.items():
+        assert options[0] == spec.defaults[choice]
+    assert spec.fixed["n_seeds"] == 100
+    assert len(spec.settings()) == np.prod([len(v) for v in
+                                            [*spec.sliders.values(), *spec.choices.values()]])
+
+
+SMALL = {"figure5": {"epsilon": (0.0, 0.2), "window": (3, 5)},
+         "figure6": {"lr_actor": (0.1, 0.5), "temperature": (0.2, 0.4)},
+         "figure7": {"alpha": (0.1, 0.5), "predictor_lr": (0.2, 0.3)}}
+
+
+@pytest.fixture(params=sorted(SMALL))
+def small_grid(request, monkeypatch):
+    """Panel `name` with a small grid (2 x 2 settings and its choices, 10 seeds):
+    `precompute` runs it as it runs the book's grid."""
+    name = request.param
+    spec = panels.PANELS[name]
+    sliders = {**spec.sliders, **SMALL[name]}
+    sliders = {k: (v if k in SMALL[name] else (spec.defaults[k],)) for k, v in sliders.items()}
+    choices = {k: v[:2] for k, v in spec.choices.items()}
+    small = dataclasses.replace(spec, sliders=sliders, choices=choices,
+                                fixed={**spec.fixed, "n_seeds": 10})
+    monkeypatch.setitem(panels.PANELS, name, small)
+    panels._precompute.cache_clear()
+    yield name, panels.precompute(name, progress=False)
+    panels._precompute.cache_clear()
+
+
+def test_the_precomputed_grid_equals_the_live_panels_call_at_every_setting(small_grid):
+    name, grid = small_grid
+    assert len(grid.settings) == len(grid.curves) >= 4
+    for setting, curves in zip(grid.settings, grid.curves):
+        live = panels.panel_curves_for(name, **setting)
+        assert np.array_equal(live["x"], curves["x"])
+        for mine, theirs in zip(live["groups"], curves["groups"]):
+            assert mine["series"].keys() == theirs["series"].keys()
+            for key in mine["series"]:
+                for a, b in zip(mine["series"][key], theirs["series"][key]):
+                    assert np.array_equal(a, b), (setting, key)
+        if name == "figure5":
+            assert grid.cells[grid.index(**setting)] == panels.sweep_cell(
+                panels.panel_run(name, **setting))
+
+
+def test_the_static_panel_holds_the_precomputed_numbers(small_grid):
+    name, grid = small_grid
+    panel = interactive.curves_panel(grid)
+    rows = panel.spec["datasets"][interactive.DATASET]
+    spec = grid.spec
+    for setting, curves in zip(grid.settings, grid.curves):
+        thinned = panels.thin(curves, spec.every)
+        for series, (mean, low, high) in thinned["groups"][0]["series"].items():
+            row = next(r for r in rows if r["series"] == series and all(
+                r[k] == v if isinstance(v, str) else abs(r[k] - v) < 1e-9
+                for k, v in setting.items()))
+            assert row["x"] == [int(x) for x in thinned["x"]]
+            for key, values in (("mean", mean), ("low", low), ("high", high)):
+                assert np.allclose(row[key], values, atol=0.5 * 10 ** -interactive.DIGITS)
+    html = panel.html()
+    assert html.count(panel.element_id) == 3  # the div, the specification, the script
+    embedded = html.split(f'id="{panel.element_id}-spec">', 1)[1].split("</script>", 1)[0]
+    assert json.loads(embedded.replace("<\\/", "</")) == panel.spec
+    assert [p["name"] for p in panel.spec["params"]] == list(spec.controls)
+
+
+def test_thinning_keeps_every_nth_point_and_the_last():
+    curves = {"x": np.arange(1, 11), "xlabel": "t",
+              "groups": [{"title": "", "ylabel": "", "series": {"red": (np.arange(10.0),) * 3}}]}
+    thinned = panels.thin(curves, 3)
+    assert thinned["x"].tolist() == [1, 4, 7, 10]
+    assert thinned["groups"][0]["series"]["red"][0].tolist() == [0, 3, 6, 9]
+
+
+def test_the_specifications_are_valid_vega_lite(small_grid):
+    alt = pytest.importorskip("altair")
+    name, grid = small_grid
+    panels_ = [interactive.curves_panel(grid)]
+    if name == "figure5":
+        panels_.append(interactive.sweep_panel(grid))
+    for panel in panels_:
+        spec = {k: v for k, v in panel.spec.items() if k != "$schema"}
+        cls = alt.HConcatChart if "hconcat" in spec else alt.LayerChart
+        cls.from_dict(spec)  # raises on anything the Vega-Lite schema refuses
+
+
+def test_panel_calls_refuse_bad_names_settings_and_fixed_arguments():
+    with pytest.raises(ValueError, match="figure5, figure6, figure7|'figure5'"):
+        panels.panel_run("figure8")
+    with pytest.raises(ValueError, match="controls"):
+        panels.panel_run("figure5", colour=1)
+    with pytest.raises(ValueError, match="cannot be held fixed"):
+        panels.panel_run("figure5", fixed={"epsilon": 0.2})
+    with pytest.raises(TypeError, match="fixed"):
+        panels.panel_run("figure5", fixed=[1])
+    with pytest.raises(ValueError, match="epsilon"):
+        panels.panel_run("figure5", epsilon=1.5)
+    with pytest.raises(ValueError, match="grid has no setting"):
+        panels.PanelGrid("figure5", ({"epsilon": 0.1},), ({},)).index(epsilon=0.2)
+    with pytest.raises(TypeError, match="PanelGrid"):
+        interactive.curves_panel("figure5")
+    with pytest.raises(ValueError, match="figure5 grid"):
+        interactive.sweep_panel(panels.PanelGrid("figure6", (), ()))
+
+
+# --- the widgets: live in Jupyter, static while the book is built --------------------
+
+@pytest.mark.parametrize("name, make, live_sliders", [
+    ("figure5", widgets.figure5_panel, widgets.FIGURE5_SLIDERS),
+    ("figure6", widgets.figure6_panel, widgets.FIGURE6_SLIDERS),
+    ("figure7", widgets.figure7_panel, widgets.FIGURE7_SLIDERS)])
+def test_live_panels_have_the_grids_controls_and_rerun_the_panels_call(name, make, live_sliders,
+                                                                       monkeypatch):
+    calls = []
+    real = panels.panel_curves_for
+
+    def spy(panel_name, fixed=None, **setting):
+        calls.append((panel_name, fixed, setting))
+        return real(panel_name, fixed, **setting)
+
+    monkeypatch.setattr(panels, "panel_curves_for", spy)
+    spec = panels.PANELS[name]
+    fixed = {"n_seeds": 4} if name != "figure7" else {"n_seeds": 4, "n_episodes": 20}
+    panel = make(static=False, **fixed)
+    assert isinstance(panel, ipywidgets.VBox)
+    assert isinstance(panel.children[-1], ipywidgets.Output)
+    controls = {w.description: w for box in panel.children[:-1] for w in box.children}
+    assert set(controls) == set(spec.controls) == set(live_sliders) | set(spec.choices)
+    for slider, values in spec.sliders.items():
+        s = controls[slider]
+        assert (s.value, s.min <= values[0], s.max >= values[-1]) == \
+            (spec.defaults[slider], True, True)
+        steps = (np.array(values) - s.min) / s.step  # every grid value is on the slider
+        assert np.allclose(steps, np.round(steps)), slider
+    assert calls == [(name, fixed, {k: spec.defaults[k] for k in spec.controls})]
+    first_slider = next(iter(spec.sliders))
+    controls[first_slider].value = spec.sliders[first_slider][-1]
+    assert calls[-1][2][first_slider] == spec.sliders[first_slider][-1] and len(calls) == 2
+
+
+def test_panels_are_static_while_the_book_is_built(monkeypatch, small_grid):
+    name, grid = small_grid
+    make = {"figure5": widgets.figure5_panel, "figure6": widgets.figure6_panel,
+            "figure7": widgets.figure7_panel}[name]
+    monkeypatch.setenv("ICM_STATIC_PANELS", "1")
+    panel = make()
+    assert isinstance(panel, interactive.StaticPanel)
+    assert panel.spec == interactive.curves_panel(grid).spec
+    with pytest.raises(ValueError, match="static"):
+        make(n_seeds=5)
+    monkeypatch.setenv("ICM_STATIC_PANELS", "0")
+    assert isinstance(make(static=True), interactive.StaticPanel)
+    with pytest.raises(TypeError, match="static"):
+        make(static="yes")
+
+
+def test_the_live_sweep_panel_draws_the_cells_of_the_grids_runs(monkeypatch):
+    spec = panels.PANELS["figure5"]
+    small = dataclasses.replace(spec, sliders={**spec.sliders, "epsilon": (0.0, 0.1),
+                                               "window": (3, 5)},
+                                fixed={**spec.fixed, "n_seeds": 5, "n_trials": 20})
+    monkeypatch.setitem(panels.PANELS, "figure5", small)
+    panel = widgets.sweep_panel(static=False)
+    factor = panel.children[0].children[0]
+    assert factor.description == "new_task_factor" and factor.value == 0.5
+    drawn = figures.sweep_figure([{"epsilon": 0.0, "window": 3}], [
+        panels.sweep_cell(panels.panel_run("figure5", epsilon=0.0, window=3))])
+    assert len(drawn.axes) == 4  # two heatmaps and their colour bars
+
+
+# --- the numbers the book quotes about the sweep ------------------------------------
+
+@pytest.fixture(scope="module")
+def own_grid():
+    """The Figure 5 grid on the tests' own root seed (the book uses seed 0)."""
+    spec = panels.PANELS["figure5"]
+    results = icm.experiments.run_goal_oriented_grid(spec.settings(), **{**spec.fixed,
+                                                                         "seed": 11},
+                                                     progress=False)
+    return panels.PanelGrid("figure5", tuple(spec.settings()),
+                            tuple({"x": [], "groups": []} for _ in results),
+                            tuple(panels.sweep_cell(r) for r in results))
+
+
+def test_red_is_mastered_first_in_every_setting_of_the_sweep(own_grid):
+    summary = panels.sweep_summary(own_grid)
+    assert summary["runs"] == 12500
+    assert summary["red_first_lowest"] >= 0.97
+    assert 15 <= summary["gap_lowest"] <= summary["gap_highest"] <= 30
+
+
+def test_a_longer_window_lengthens_the_mastery_gap(own_grid):
+    # Chapter 2: "A surprise stays in the slope of a longer window for longer, so the
+    # learner lingers on a task it has already learned."
+    summary = panels.sweep_summary(own_grid)
+    gaps = summary["default_gaps"]
+    assert gaps[-1] > gaps[0] + 2
+    assert summary["longer_window_larger"] >= 0.8 * summary["pairs"]
