@@ -1,5 +1,6 @@
 """Shared fixtures: the book, built once per test session as CI builds it."""
 
+import os
 import pathlib
 import subprocess
 import sys
@@ -24,7 +25,13 @@ def built_book(tmp_path_factory, request):
     """Builds the whole book once, as CI does: every notebook executed afresh by
     book/_ext/execute_book.py (--force, into this build's own cache), then
     jupyter-book build with -W (warnings fatal) and --keep-going, which must take
-    every notebook from that cache; returns the folder of the HTML."""
+    every notebook from that cache; returns the folder of the HTML.
+
+    While working on the browser checks, ICM_BUILT_BOOK=<folder of the HTML> reuses a
+    book built before (CI never sets it)."""
+    reuse = os.environ.get("ICM_BUILT_BOOK")
+    if reuse:
+        return pathlib.Path(reuse)
     out = tmp_path_factory.mktemp("book")
     executed = subprocess.run(
         [sys.executable, str(ROOT / "book" / "_ext" / "execute_book.py"), "--force",

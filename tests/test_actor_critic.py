@@ -293,11 +293,15 @@ def test_bad_run_arguments_raise_value_error(kwargs, message):
         run_actor_critic(**{"n_seeds": 2, "n_trials": 2, **kwargs})
 
 
-def test_comparison_table_has_one_row_per_run(default_run):
+def test_comparison_table_has_one_column_per_run(default_run):
     table = icm.experiments.actor_critic_table({"a": default_run, "b": default_run})
     lines = table.splitlines()
-    assert lines[2].startswith("| a | 120 |") and lines[3].startswith("| b | 120 |")
-    assert lines[4] == "" and lines[5].startswith("†")  # the footnote
+    assert lines[0] == "| | a | b |" and lines[1] == "|---|---|---|"
+    assert lines[2] == "| seeds | 120 | 120 |"
+    s = default_run.summary()
+    assert f"| red first | {s['red_first']:.0%} | {s['red_first']:.0%} |" in lines
+    assert all(line.count("|") == 4 for line in lines[:-2])
+    assert lines[-2] == "" and lines[-1].startswith("†")  # the footnote
 
 
 # --- figures and panel ----------------------------------------------------------------
@@ -320,14 +324,19 @@ def test_figure6_draws_each_seed_and_the_mean_with_a_band():
     assert len(figures.practice_figure({"a": small, "b": small}).axes) == 2
 
 
-def test_figure3_and_figure4_draw_and_figure4_is_the_library_source():
+def test_figure3_draws_and_figure4_is_the_library_source_as_text():
     assert len(figures.figure3().axes) == 2
-    fig = figures.figure4()
-    text = "\n".join(t.get_text() for t in fig.axes[0].texts)
+    listing = figures.figure4(name="fig-4")
     for line in ("def learn(self, observation, action, next_observation",
                  "self.critic[state] = self.value(state) + self.lr_critic * td_error",
                  "def td_error(self, reward, state, next_state, discount=1.0):"):
-        assert line in text
-    assert '"""' not in text  # docstrings are left out
+        assert line in listing.code
+    assert '"""' not in listing.code  # docstrings are left out
+    markdown = listing._repr_markdown_()
+    assert markdown.startswith("````{code-block} python\n:caption: ActorCritic in")
+    assert ":name: fig-4" in markdown and listing.code in markdown
+    assert markdown.endswith("\n````")
+    with pytest.raises(ValueError, match="methods"):
+        figures.figure4(("fly",))
 
 

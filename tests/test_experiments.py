@@ -147,3 +147,13 @@ def test_every_run_reports_progress_unless_told_not_to(run, kwargs, monkeypatch)
     assert calls == [True, False]
     with pytest.raises(ValueError, match="progress"):
         run(n_seeds=2, seed=0, progress="yes", **kwargs)
+
+
+def test_comparison_table_has_one_column_per_run():
+    run = icm.experiments.run_goal_oriented(n_seeds=6, n_trials=30, progress=False)
+    table = icm.experiments.comparison_table({"first": run, "second": run})
+    lines = table.splitlines()
+    assert lines[0] == "| | first | second |" and lines[2] == "| seeds | 6 | 6 |"
+    s = run.summary()
+    assert f"| red mastered first | {s['red_first']:.0%} | {s['red_first']:.0%} |" in lines
+    assert all(line.count("|") == 4 for line in lines)

@@ -14,7 +14,7 @@ from icm.envs import buttons
 from icm.experiments import _grid
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
-from icm.experiments.goal_oriented import check_results
+from icm.experiments.goal_oriented import check_results, measures_table
 from icm.learners import actor_critic, predictors
 from icm.stats import PANEL_RESAMPLES, bootstrap_band, comes_first, first_from_which
 
@@ -385,31 +385,37 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, start_s
 
 
 def comparison_table(results):
-    """A Markdown table of the numbers that tell actor-critic runs apart, one row per run.
+    """A Markdown table of the numbers that tell actor-critic runs apart, one column per
+    run.
 
     Args:
-      results: a dict {row label: ActorCriticResult}.
+      results: a dict {column label: ActorCriticResult}.
 
     Returns:
       A Markdown string (display it with `IPython.display.Markdown`); the trials
       marked † are means over the seeds whose error does reach 0.
     """
     check_results("results", results, ActorCriticResult)
-    header = ("| run | seeds | red error 0 from trial (mean†) | green error 0 from trial "
-              "(mean†) | green learned | red first | green below red at some trial "
-              f"| presses opening red / green, last {LATE_TRIALS} trials | largest abs(V) |")
-    lines = [header, "|" + "---|" * 9]
-    for label, result in results.items():
-        s = result.summary()
-        lines.append(
-            f"| {label} | {result.n_seeds} | {s['red_zero_mean']:.1f} "
-            f"| {s['green_zero_mean']:.1f} | {s['green_zero_share']:.0%} "
-            f"| {s['red_first']:.0%} | {s['green_below_red']:.0%} "
-            f"| {s['red_late_practice_share']:.0%} / {s['green_late_practice_share']:.0%} "
-            f"| {s['max_abs_value']:.3g} |")
-    lines.append("")
-    lines.append("† mean over the seeds whose error reaches 0 for good within the run.")
-    return "\n".join(lines)
+    summaries = {id(r): r.summary() for r in results.values()}
+
+    def number(key, fmt):
+        return lambda r: f"{summaries[id(r)][key]:{fmt}}"
+
+    def pair(key, fmt):
+        return lambda r: (f"{summaries[id(r)]['red_' + key]:{fmt}} / "
+                          f"{summaries[id(r)]['green_' + key]:{fmt}}")
+
+    table = measures_table(results, [
+        ("seeds", lambda r: str(r.n_seeds)),
+        ("error 0 from trial (mean†): red / green", pair("zero_mean", ".1f")),
+        ("green learned", number("green_zero_share", ".0%")),
+        ("red first", number("red_first", ".0%")),
+        ("green below red at some trial", number("green_below_red", ".0%")),
+        (f"presses opening red / green, last {LATE_TRIALS} trials",
+         pair("late_practice_share", ".0%")),
+        ("largest abs(V)", number("max_abs_value", ".3g")),
+    ])
+    return table + "\n\n† mean over the seeds whose error reaches 0 for good within the run."
 
 
 def panel_curves(result):

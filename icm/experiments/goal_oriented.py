@@ -351,31 +351,46 @@ def check_results(name, results, cls):
     return results
 
 
-def comparison_table(results):
-    """A Markdown table of the numbers that tell runs apart, one row per run.
+def measures_table(results, measures):
+    """A Markdown table with one column per run and one row per measure: narrow enough
+    for a book page however many measures there are.
 
     Args:
-      results: a dict {row label: GoalOrientedResult}.
+      results: a dict {column label: result}.
+      measures: a list of (row label, function of a result giving the cell's text).
+    """
+    labels = list(results)
+    lines = ["| | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
+    for name, cell in measures:
+        lines.append(f"| {name} | " + " | ".join(cell(r) for r in results.values()) + " |")
+    return "\n".join(lines)
+
+
+def comparison_table(results):
+    """A Markdown table of the numbers that tell runs apart, one column per run.
+
+    Args:
+      results: a dict {column label: GoalOrientedResult}.
 
     Returns:
       A Markdown string (display it with `IPython.display.Markdown`).
     """
     check_results("results", results, GoalOrientedResult)
-    header = ("| run | seeds | red mastered (mean trial) | green mastered (mean trial) "
-              "| red first | peak interest red / green | centre of interest, trial red / green "
-              "| interest < 10% of peak, trial red / green "
-              "| most practised, trial red / green |")
-    lines = [header, "|" + "---|" * 9]
-    for label, result in results.items():
-        s = result.summary()
-        lines.append(
-            f"| {label} | {result.n_seeds} | {s['red_mastery_mean']:.1f} "
-            f"| {s['green_mastery_mean']:.1f} | {s['red_first']:.0%} "
-            f"| {s['red_peak_interest']:.3f} / {s['green_peak_interest']:.3f} "
-            f"| {s['red_interest_centre']:.1f} / {s['green_interest_centre']:.1f} "
-            f"| {s['red_fade_trial']} / {s['green_fade_trial']} "
-            f"| {s['red_practice_peak_trial']} / {s['green_practice_peak_trial']} |")
-    return "\n".join(lines)
+    summaries = {id(r): r.summary() for r in results.values()}
+
+    def pair(key, fmt):
+        return lambda r: (f"{summaries[id(r)]['red_' + key]:{fmt}} / "
+                          f"{summaries[id(r)]['green_' + key]:{fmt}}")
+
+    return measures_table(results, [
+        ("seeds", lambda r: str(r.n_seeds)),
+        ("mastered, mean trial: red / green", pair("mastery_mean", ".1f")),
+        ("red mastered first", lambda r: f"{summaries[id(r)]['red_first']:.0%}"),
+        ("peak interest: red / green", pair("peak_interest", ".3f")),
+        ("centre of interest, trial: red / green", pair("interest_centre", ".1f")),
+        ("interest below 10% of its peak from trial: red / green", pair("fade_trial", "")),
+        ("most practised at trial: red / green", pair("practice_peak_trial", "")),
+    ])
 
 
 def panel_curves(result):

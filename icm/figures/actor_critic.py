@@ -119,54 +119,60 @@ def _method_source(name):
     return "\n".join(lines)
 
 
-def _split_comment(line):
-    """(code, comment) of a source line; the comment keeps its column (leading spaces)."""
-    if line.lstrip().startswith("#"):
-        return "", line
-    if "  # " in line:
-        code, comment = line.split("  # ", 1)
-        return code, " " * (len(code) + 2) + "# " + comment
-    return line, ""
+class CodeListing:
+    """Source code shown as text a reader can select and copy: Jupyter and the book
+    show it as a highlighted Python code block (Markdown), with a caption.
+
+    Attributes:
+      code: the source.
+      caption: what it is.
+      name: a label to refer to it from the text (``{numref}`name```), or None.
+    """
+
+    def __init__(self, code, caption, name=None):
+        self.code = _validate.text("code", code)
+        self.caption = _validate.text("caption", caption)
+        self.name = None if name is None else _validate.text("name", name)
+
+    def _repr_markdown_(self):
+        fence = "````"  # longer than any run of backticks in Python source
+        options = [f":caption: {' '.join(self.caption.split())}"]
+        if self.name is not None:
+            options.append(f":name: {self.name}")
+        return "\n".join([f"{fence}{{code-block}} python", *options, "", self.code, fence])
+
+    def __repr__(self):
+        return self.code
 
 
-def figure4(methods=FIGURE4_METHODS):
-    """Figure 4: the update of the intrinsic actor-critic, as the library runs it.
+def figure4(methods=FIGURE4_METHODS, caption=None, name=None):
+    """Figure 4: the update of the intrinsic actor-critic, as the library runs it, as
+    text.
 
     The code is read from `icm.learners.actor_critic.ActorCritic` with
-    `inspect.getsource` when the figure is drawn (docstrings left out), so the figure
-    can never drift from the code.
+    `inspect.getsource` when it is shown (docstrings left out), so it can never drift
+    from the code.
 
     Args:
       methods: names of `ActorCritic` methods to show, in order.
+      caption: the listing's caption (default: says where the code comes from).
+      name: a label for cross-references, or None.
 
     Returns:
-      The `Figure`: the source in a monospaced font, comments in grey.
+      A `CodeListing`.
     """
     if isinstance(methods, str) or not isinstance(methods, (tuple, list)) or not methods:
         raise _validate.ArgumentTypeError(f"methods must be a non-empty tuple of ActorCritic "
                                           f"method names, got {_validate.show(methods)}")
-    for name in methods:
-        if not isinstance(name, str) or not callable(getattr(ActorCritic, name, None)):
+    for method in methods:
+        if not isinstance(method, str) or not callable(getattr(ActorCritic, method, None)):
             raise ValueError(f"methods must name methods of ActorCritic (e.g. "
-                             f"{', '.join(FIGURE4_METHODS)}), got {name!r}")
-    blocks = [_method_source(name) for name in methods]
-    lines = "\n\n".join(blocks).splitlines()
-    fig, ax = new_figure(width=8.6, height=0.4 + 0.165 * len(lines))
-    fig.set_facecolor("#f7f7f7")
-    ax.axis("off")
-    ax.set_xlim(0, 1)
-    ax.set_ylim(len(lines), -0.5)
-    for row, line in enumerate(lines):
-        code, comment = _split_comment(line)
-        weight = "bold" if line.lstrip().startswith("def ") else "normal"
-        ax.text(0.0, row, code, family="monospace", fontsize=8, va="center",
-                weight=weight, color="#111111")
-        if comment:  # padded with spaces to its column, drawn over the code in grey
-            ax.text(0.0, row, comment, family="monospace", fontsize=8, va="center",
-                    color="#777777")
-    ax.set_title("ActorCritic in icm/learners/actor_critic.py (read from the source)",
-                 fontsize=9.5, loc="left", family="monospace")
-    return fig
+                             f"{', '.join(FIGURE4_METHODS)}), got {method!r}")
+    code = "\n\n".join(_method_source(method) for method in methods)
+    if caption is None:
+        caption = ("ActorCritic in icm/learners/actor_critic.py, read from the source "
+                   "(docstrings left out)")
+    return CodeListing(code, caption, name)
 
 
 def figure6(result, ax=None, title=None):
@@ -245,16 +251,18 @@ def practice_figure(results):
       results: a dict {panel title: ActorCriticResult}.
     """
     check_results("results", results, ActorCriticResult)
-    fig, axes = new_figure(width=4.2 * len(results), height=3.4, ncols=len(results),
-                           sharey=True, squeeze=False)
-    for ax, (title, result) in zip(axes.ravel(), results.items()):
+    # One panel under the other, at the width of the page: side by side, three panels
+    # would be shrunk to unreadable text in the book.
+    fig, axes = new_figure(width=7.2, height=0.4 + 2.3 * len(results), nrows=len(results),
+                           sharex=True, squeeze=False)
+    for ax, (title, result) in zip(axes[:, 0], results.items()):
         presses = result.settings["presses_per_trial"]
         for i, task in enumerate(_actor_critic.TASKS):
             plot_mean_band(ax, result.practice[:, :, i] / presses, TASK_COLOURS[task],
                            f"opened the {task} box")
         ax.axhline(0.2, color="#999999", linestyle=":", linewidth=1, label="chance (1 in 5)")
-        ax.set(xlabel="trial", xlim=(1, result.n_trials), ylim=(0, 1))
-        ax.set_title(title, fontsize=10)
-    axes[0, 0].set_ylabel("share of presses (mean over seeds)")
-    axes[0, 0].legend(frameon=False, loc="upper left")
+        ax.set(xlim=(1, result.n_trials), ylim=(0, 1), ylabel="share of presses")
+        ax.set_title(title, fontsize=11, loc="left")
+    axes[-1, 0].set_xlabel("trial (mean over seeds, 95% band)")
+    axes[0, 0].legend(frameon=False, loc="upper right", fontsize=9, ncols=3)
     return fig

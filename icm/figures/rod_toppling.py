@@ -250,7 +250,9 @@ def figure7(result, seed=0, reading="all", episode=None):
     q_mappable = c_mappable = None
     for j, ((title, _), snap) in enumerate(zip(columns, snapshots)):
         episode_text = "never in this run" if snap is None else f"episode {snap['episode']}"
-        axes[0, j].set_title(f"{title}\n{episode_text}", fontsize=10)
+        # A column named after its episode needs it said once.
+        heading = title if title.endswith(episode_text) else f"{title}\n{episode_text}"
+        axes[0, j].set_title(heading, fontsize=10)
         if snap is None:
             for ax in axes[:, j]:
                 ax.set_axis_off()

@@ -41,13 +41,14 @@ def sweep_heatmap(frame, x, y, value, title=None, colour_label=None):
     image = ax.imshow(table.to_numpy(), origin="lower", cmap="viridis", aspect="auto")
     ax.set_xticks(range(len(table.columns)), [f"{v:g}" for v in table.columns])
     ax.set_yticks(range(len(table.index)), [f"{v:g}" for v in table.index])
-    ax.set_xlabel(x)
-    ax.set_ylabel(y)
+    ax.set_xlabel(x.replace("_", " "))
+    ax.set_ylabel(y.replace("_", " "))
     middle = np.nanmean(table.to_numpy())
     for (i, j), number in np.ndenumerate(table.to_numpy()):
         ax.text(j, i, f"{number:.1f}", ha="center", va="center", fontsize=8,
                 color="white" if number < middle else "black")
-    fig.colorbar(image, ax=ax, label=colour_label or value)
+    readable = value.replace("_", " ")
+    fig.colorbar(image, ax=ax, label=colour_label or readable)
     n_seeds = frame["seed_index"].nunique()
-    ax.set_title(title or f"mean {value} over {n_seeds} seeds", fontsize=10)
+    ax.set_title(title or f"Mean {readable} over {n_seeds} seeds", fontsize=10)
     return fig
