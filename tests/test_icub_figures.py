@@ -19,8 +19,9 @@ from test_bad_input import refused  # noqa: E402
 
 HEIGHT, WIDTH = 240, 320  # the animations' frame size
 SEEN = 60
-"""Pixels (of 320 x 240) a geom must fill to count as clearly seen: the finger's tip
-segment fills about 130-180 from the close-up camera, 15-35 over the shoulder."""
+"""Pixels (of 320 x 240) a geom must fill to count as clearly seen: the finger (r_finger)
+fills 125-180 of them from the close-up camera at the deepest point of a press,
+15-35 from over the shoulder."""
 
 
 def robot_geoms(physics):
