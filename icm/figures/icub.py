@@ -5,6 +5,7 @@ import re
 
 import matplotlib.animation
 import matplotlib.patches
+import mujoco
 import numpy as np
 
 from icm import _validate
@@ -12,6 +13,18 @@ from icm.envs import buttons, rods
 from icm.figures._common import TASK_COLOURS, new_figure
 
 ROD_COLOURS = {"red": TASK_COLOURS["red"], "blue": "#1f5fcc"}
+
+CAMERA_TITLES = {"over_shoulder": "Over the shoulder", "side": "From the side",
+                 "eyes": "Through the robot's eyes", "front": "From the front",
+                 "close_up": "Close-up of the hand"}
+"""Readable titles of the scenes' cameras, for figures."""
+
+
+def camera_title(camera):
+    """A readable title for the camera named `camera`: from `CAMERA_TITLES`, else the
+    name with spaces for underscores and a capital first letter."""
+    camera = _validate.text("camera", camera)
+    return CAMERA_TITLES.get(camera, camera.replace("_", " ").capitalize())
 
 
 def check_camera(physics, camera):
@@ -38,40 +51,80 @@ def render(physics, camera, height=480, width=640):
     return physics.render(height, width, camera_id=camera)
 
 
-def pressing_green(seed=0, camera="front", height=480, width=640):
-    """Renders the iCub pressing the lit green button, once the green box is open.
+def visible_geoms(physics, camera, height=240, width=320):
+    """What the named `camera` sees of each geom: a dict {geom name: number of pixels
+    in which that geom is the nearest surface}, from MuJoCo's segmentation rendering.
+    Geoms hidden behind others, or outside the frame, are absent."""
+    camera = check_camera(physics, camera)
+    height, width = check_image_size(height, width)
+    segmentation = physics.render(height, width, camera_id=camera, segmentation=True)
+    ids = segmentation[..., 0][segmentation[..., 1] == mujoco.mjtObj.mjOBJ_GEOM]
+    geoms, counts = np.unique(ids, return_counts=True)
+    return {physics.model.id2name(int(g), "geom"): int(n) for g, n in zip(geoms, counts)}
 
-    Runs the press primitive's reach and push on a `PhysicsButtonConsole` and stops
-    the physics while the finger holds the button down and the lid is open.
+
+def press_moment(seed=0):
+    """The button scene at the moment of Figure 1 (a): the finger holding the lit green
+    button down and the green lid open.
+
+    Runs the press primitive's reach and push on a `PhysicsButtonConsole` (seeded with
+    `seed`, which draws the layout) and stops the physics once the green lid is open.
+
+    Returns:
+      (physics, button): the scene's physics at that moment and the pressed button.
     """
     env = buttons.PhysicsButtonConsole(seed=seed)
     env.reset()
-    check_camera(env.physics, camera)
-    check_image_size(height, width)
     green = env.green_button
     physics, task, motions = env.physics, env.task, env.motions
     watch = lambda: task.update(physics) or False
     env.arm.move(motions.above[green], env.REACH_TIME, watch)
     env.arm.move(motions.down[green], env.PUSH_TIME, watch)
     env.arm.hold(1.5, lambda: task.update(physics) or physics.lid_angles()[1] > np.deg2rad(80))
+    return physics, green
+
+
+def topple_moment(start_cell=(2, 0), action=0):
+    """The rod scene at the moment of Figure 1 (b): the hand has hit the red rod, which
+    is falling (tilted past 35 degrees; if no rod tilts that far, the end of the move).
+
+    Args:
+      start_cell: the hand's cell before the move.
+      action: the move (an index into `icm.envs.rods.ACTIONS`).
+
+    Returns:
+      The scene's physics at that moment.
+    """
+    env = rods.PhysicsRodTable(start_cell=start_cell)
+    action = _validate.integer("action", action, 0, len(rods.ACTIONS) - 1)
+    env.reset()
+    caught = []
+
+    def catch(physics):
+        if not caught and physics.rod_tilt("red") > np.deg2rad(35):
+            caught.append(physics.data.qpos.copy())
+
+    env.move(action, recorder=catch)
+    physics = env.physics
+    if caught:  # what the camera sees depends on the positions alone
+        physics.data.qpos[:] = caught[0]
+        physics.forward()
+    return physics
+
+
+def pressing_green(seed=0, camera="front", height=480, width=640):
+    """Renders the iCub pressing the lit green button, once the green box is open (the
+    moment of `press_moment`)."""
+    check_image_size(height, width)
+    physics, _ = press_moment(seed)
     return render(physics, camera, height, width)
 
 
 def toppling_rod(camera="front", height=480, width=640, start_cell=(2, 0), action=0):
-    """Renders the iCub's hand toppling the red rod, caught while the rod falls."""
-    env = rods.PhysicsRodTable(start_cell=start_cell)
-    env.reset()
-    check_camera(env.physics, camera)
+    """Renders the iCub's hand toppling the red rod, caught while the rod falls (the
+    moment of `topple_moment`)."""
     check_image_size(height, width)
-    action = _validate.integer("action", action, 0, len(rods.ACTIONS) - 1)
-    frames = []
-
-    def catch(physics):
-        if not frames and physics.rod_tilt("red") > np.deg2rad(35):
-            frames.append(render(physics, camera, height, width))
-
-    env.move(action, recorder=catch)
-    return frames[0] if frames else render(env.physics, camera, height, width)
+    return render(topple_moment(start_cell, action), camera, height, width)
 
 
 def figure1(seed=0, camera="front"):
@@ -98,7 +151,7 @@ def cameras_figure(physics, cameras, height=240, width=320):
     fig, axes = new_figure(width=3.2 * len(cameras), height=2.7, ncols=len(cameras))
     for ax, camera in zip(np.atleast_1d(axes), cameras):
         ax.imshow(render(physics, camera, height, width))
-        ax.set_title(camera, fontsize=9)
+        ax.set_title(camera_title(camera), fontsize=9)
         ax.axis("off")
     return fig
 

@@ -1,0 +1,180 @@
+"""The simulated iCub's pictures show what their captions say: the finger on the button
+at the press, the hand and the rod at the topple, the whole robot in Figure 1, no
+artefact on the elbow, and readable titles. Checked with MuJoCo's segmentation
+rendering (which geom is the nearest surface in each pixel), at small sizes."""
+
+import os
+
+os.environ.setdefault("MUJOCO_GL", "egl")  # before dm_control picks a renderer
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+import scipy.ndimage  # noqa: E402
+from dm_control.mujoco import Camera, MovableCamera  # noqa: E402
+
+import icm  # noqa: E402
+from icm.envs import buttons, rods  # noqa: E402
+from icm.figures import icub as figures_icub  # noqa: E402
+from test_bad_input import refused  # noqa: E402
+
+HEIGHT, WIDTH = 240, 320  # the animations' frame size
+SEEN = 60
+"""Pixels (of 320 x 240) a geom must fill to count as clearly seen: the finger (r_finger)
+fills 125-180 of them from the close-up camera at the deepest point of a press,
+15-35 from over the shoulder."""
+
+
+def robot_geoms(physics):
+    """Ids of the drawn geoms of the robot (the body "icub" and everything on it)."""
+    model = physics.model
+    robot = model.name2id("icub", "body")
+
+    def on_robot(body):
+        while body != 0:
+            if body == robot:
+                return True
+            body = model.body_parentid[body]
+        return False
+
+    return [g for g in range(model.ngeom) if on_robot(model.geom_bodyid[g])
+            and model.geom_group[g] < 3 and model.id2name(g, "geom") != "stool"]
+
+
+def fingertip_pixel(physics, camera):
+    """The (column, row) pixel where the fingertip site appears from `camera`."""
+    matrix = Camera(physics, HEIGHT, WIDTH, camera).matrix
+    x = matrix @ np.append(physics.named.data.site_xpos["fingertip"], 1.0)
+    return int(round(x[0] / x[2])), int(round(x[1] / x[2]))
+
+
+def deepest_press(button, seed=0):
+    """The button scene at the deepest point of a press of `button`."""
+    env = buttons.PhysicsButtonConsole(seed=seed)
+    env.reset()
+    states = []
+    env.press(button, recorder=lambda p: states.append((p.button_depths()[button],
+                                                         p.data.qpos.copy())))
+    physics = env.physics
+    physics.data.qpos[:] = max(states, key=lambda s: s[0])[1]
+    physics.forward()
+    return physics
+
+
+@pytest.mark.parametrize("button", range(buttons.N_BUTTONS))
+def test_the_close_up_sees_the_fingertip_on_the_button_it_presses(button):
+    physics = deepest_press(button)
+    seen = figures_icub.visible_geoms(physics, "close_up", HEIGHT, WIDTH)
+    assert seen.get("r_finger", 0) >= SEEN, seen
+    assert seen.get(f"button{button}_cap", 0) >= SEEN, seen
+    # the point of contact itself: where the fingertip projects, the camera sees the
+    # finger or the cap it touches, not the palm, the arm or another button
+    column, row = fingertip_pixel(physics, "close_up")
+    segmentation = physics.render(HEIGHT, WIDTH, camera_id="close_up", segmentation=True)
+    around = segmentation[row - 1:row + 2, column - 1:column + 2, 0].ravel()
+    names = {physics.model.id2name(int(g), "geom") for g in around if g >= 0}
+    assert names & {"r_finger", f"button{button}_cap"}, names
+    assert names <= {"r_finger", f"button{button}_cap", "console"}, names
+
+
+def test_the_close_up_sees_the_hand_and_both_rods_through_a_topple():
+    env = rods.PhysicsRodTable(start_cell=(2, 0))
+    env.reset()
+    states = []
+    env.move(0, recorder=lambda p: states.append((p.rod_tilt("red"), p.data.qpos.copy())))
+    tilts = np.array([tilt for tilt, _ in states])
+    assert tilts[-1] > np.deg2rad(60)  # the move does topple the red rod
+    physics = env.physics
+    hit = int(np.argmax(tilts > np.deg2rad(5)))  # the hand has just hit the rod
+    for moment in (0, hit, int(np.argmax(tilts > np.deg2rad(35))), len(states) - 1):
+        physics.data.qpos[:] = states[moment][1]
+        physics.forward()
+        seen = figures_icub.visible_geoms(physics, "close_up", HEIGHT, WIDTH)
+        for geom in ("r_finger", "r_palm", "red_rod", "blue_rod"):
+            assert seen.get(geom, 0) >= SEEN, (moment, geom, seen)
+
+
+@pytest.mark.parametrize("panel", ["a", "b"])
+def test_figure1_frames_the_whole_robot_head_included(panel):
+    if panel == "a":
+        physics, button = figures_icub.press_moment(seed=0)
+        shown = ("r_finger", f"button{button}_cap", "green_lid")
+    else:
+        physics = figures_icub.topple_moment()
+        shown = ("r_finger", "red_rod", "blue_rod")
+    height, width = 480, 640  # figure1's size
+    segmentation = physics.render(height, width, camera_id="front", segmentation=True)
+    robot = np.isin(segmentation[..., 0], robot_geoms(physics)) & (segmentation[..., 1] == 5)
+    rows, columns = np.flatnonzero(robot.any(axis=1)), np.flatnonzero(robot.any(axis=0))
+    margins = {"top": rows[0], "bottom": height - 1 - rows[-1], "left": columns[0],
+               "right": width - 1 - columns[-1]}
+    assert min(margins.values()) >= 8, margins  # not cut, and not touching the frame
+    seen = figures_icub.visible_geoms(physics, "front", height, width)
+    assert seen.get("head", 0) > 2000 and seen.get("face", 0) > 500, seen
+    for geom in shown:
+        assert seen.get(geom, 0) >= SEEN, (geom, seen)
+
+
+def test_the_elbow_has_no_z_fighting():
+    """Two coincident surfaces of different geoms draw as a stipple of both, broken into
+    many fragments; a clean elbow is a few solid regions, from any side."""
+    env = buttons.PhysicsButtonConsole(seed=0)
+    env.reset()
+    physics = env.physics
+    physics.forward()
+    elbow = physics.named.data.xpos["r_forearm"]
+    model = physics.model
+    arm_bodies = [model.name2id(b, "body") for b in ("r_upper_arm", "r_forearm")]
+    arm = [g for g in range(model.ngeom) if model.geom_bodyid[g] in arm_bodies]
+    for azimuth, elevation in [(200, -20), (250, -10), (120, -30), (300, 10)]:
+        camera = MovableCamera(physics, HEIGHT, WIDTH)
+        camera.set_pose(elbow, 0.18, azimuth, elevation)
+        ids = camera.render(segmentation=True)[..., 0]
+        fragments = {model.id2name(g, "geom"): scipy.ndimage.label(ids == g)[1]
+                     for g in arm}
+        assert max(fragments.values()) <= 3, (azimuth, elevation, fragments)
+
+
+def test_no_two_drawn_round_surfaces_coincide():
+    """The cause of a stipple, read from the model: a sphere or capsule end drawn at the
+    centre and radius of another geom's (they z-fight)."""
+    for physics in (buttons.load_physics(), rods.load_physics()):
+        physics.forward()
+        model, data = physics.model, physics.data
+        spheres = []
+        for g in range(model.ngeom):
+            if model.geom_group[g] >= 3 or model.geom_rgba[g][3] == 0:
+                continue
+            radius, centre = model.geom_size[g][0], data.geom_xpos[g]
+            if model.geom_type[g] == 2:  # sphere
+                spheres.append((g, centre, radius))
+            elif model.geom_type[g] == 3:  # capsule: its two rounded ends
+                axis = data.geom_xmat[g].reshape(3, 3)[:, 2] * model.geom_size[g][1]
+                spheres += [(g, centre + axis, radius), (g, centre - axis, radius)]
+        clashes = [(model.id2name(a, "geom"), model.id2name(b, "geom"))
+                   for i, (a, ca, ra) in enumerate(spheres) for b, cb, rb in spheres[i + 1:]
+                   if a != b and np.linalg.norm(ca - cb) < 1e-6 and abs(ra - rb) < 1e-6]
+        assert clashes == []
+
+
+def test_camera_titles_are_readable():
+    env = icm.envs.load("buttons", physics=True, seed=0)
+    env.reset()
+    cameras = [env.physics.model.id2name(i, "camera") for i in range(env.physics.model.ncam)]
+    fig = icm.figures.cameras_figure(env.physics, cameras, height=48, width=64)
+    titles = [ax.get_title() for ax in fig.axes]
+    assert titles == [figures_icub.camera_title(c) for c in cameras]
+    assert "Over the shoulder" in titles and "Close-up of the hand" in titles
+    assert not any("_" in title for title in titles), titles
+    assert figures_icub.camera_title("top_down") == "Top down"
+
+
+def test_visible_geoms_and_titles_refuse_bad_input():
+    physics = buttons.load_physics()
+    refused(lambda: figures_icub.visible_geoms(physics, "ceiling"), "camera", "'ceiling'",
+            "value")
+    refused(lambda: figures_icub.visible_geoms(physics, "side", height=4), "height", "4",
+            "value")
+    refused(lambda: figures_icub.visible_geoms("physics", "side"), "physics", "'physics'",
+            "type")
+    refused(lambda: figures_icub.camera_title(3), "camera", "3", "type")
+    refused(lambda: figures_icub.topple_moment(action=9), "action", "9", "value")
