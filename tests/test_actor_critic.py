@@ -340,3 +340,17 @@ def test_figure3_draws_and_figure4_is_the_library_source_as_text():
         figures.figure4(("fly",))
 
 
+
+
+def test_the_paid_learner_settles_on_its_box_with_either_selection_rule():
+    # Chapter 4: chosen epsilon-greedily (the paper's section 3.2) or by softmax (its
+    # Figure 4), the learner paid for green settles on green; epsilon-greedy wanders more.
+    runs = {rule: run_actor_critic(n_seeds=120, n_trials=100, seed=21, reward="extrinsic",
+                                   rewarded_box="green", action_selection=rule,
+                                   progress=False).summary()
+            for rule in ("softmax", "epsilon_greedy")}
+    for summary in runs.values():
+        assert summary["green_late_practice_share"] > 0.6
+        assert summary["green_late_practice_share"] > 3 * summary["red_late_practice_share"]
+    assert runs["epsilon_greedy"]["green_late_practice_share"] < \
+        runs["softmax"]["green_late_practice_share"] - 0.05

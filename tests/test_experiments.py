@@ -157,3 +157,16 @@ def test_comparison_table_has_one_column_per_run():
     s = run.summary()
     assert f"| red mastered first | {s['red_first']:.0%} | {s['red_first']:.0%} |" in lines
     assert all(line.count("|") == 4 for line in lines)
+
+
+def test_either_rule_for_a_task_seen_once_keeps_the_order_and_changes_the_first_peak():
+    # Chapter 2, "A task seen once": zero interest (the paper's first sentence) or half
+    # the mean (its second, our default) give the same order of learning; the bonus is
+    # part of red's first peak of interest.
+    runs = {f: run_goal_oriented(n_seeds=150, n_trials=60, seed=23, new_task_factor=f,
+                                 progress=False).summary() for f in (0.0, 0.5)}
+    for summary in runs.values():
+        assert summary["red_first"] >= 0.95
+    assert abs(runs[0.0]["red_mastery_mean"] - runs[0.5]["red_mastery_mean"]) < 1.0
+    assert abs(runs[0.0]["green_mastery_mean"] - runs[0.5]["green_mastery_mean"]) < 3.0
+    assert runs[0.0]["red_peak_interest"] < 0.8 * runs[0.5]["red_peak_interest"]
