@@ -33,6 +33,7 @@ import argparse
 import asyncio
 import concurrent.futures
 import hashlib
+import json
 import os
 import pathlib
 import shutil
@@ -182,6 +183,11 @@ def main(argv=None):
         print("book execution: every notebook from the cache (nothing changed)")
         return 0
 
+    # Longest first (the times of the last run, kept beside the cache): with two at a
+    # time, a long notebook started last would finish alone.
+    times_path = cache_path.parent / "icm-notebook-seconds.json"
+    times = json.loads(times_path.read_text()) if times_path.exists() else {}
+    todo.sort(key=lambda path: -times.get(str(_name(path)), float("inf")))
     os.environ.update(KERNEL_ENVIRONMENT)
     total, failures, start = 0.0, [], time.perf_counter()
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
@@ -195,6 +201,7 @@ def main(argv=None):
                 print(f"FAILED   {error}", file=sys.stderr)
                 continue
             total += seconds
+            times[str(_name(path))] = round(seconds, 1)
             cache.cache_notebook_bundle(
                 CacheBundleIn(nb, str(path), data={"execution_seconds": seconds}),
                 check_validity=False, overwrite=True)
@@ -203,6 +210,7 @@ def main(argv=None):
     print(f"book execution: {len(todo) - len(failures)} notebooks executed in {total:.1f} s "
           f"(sum over notebooks; {wall:.1f} s wall, {args.jobs} at a time), "
           f"{len(cached)} from the cache")
+    times_path.write_text(json.dumps(times, indent=1, sort_keys=True))
     if failures:
         return 1
     stamp.write_text(fingerprint)
