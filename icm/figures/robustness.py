@@ -39,14 +39,15 @@ def robustness_map(result, title=None):
     check_result("result", result, RobustnessResult, _MADE_BY)
     study = result.study
     pairs, claims = study.pairs(), study.claims
-    height = 2.5 * len(pairs) + 1.3
+    height = 2.5 * len(pairs) + 1.6
+    width = 3.4 * len(claims) + 0.8
     # Placed by hand, not with `new_figure`'s constrained layout, which costs a second
     # of drawing with this many texts.
-    fig = Figure(figsize=(3.3 * len(claims) + 0.6, height))
+    fig = Figure(figsize=(width, height))
     axes = fig.subplots(len(pairs) + 1, len(claims), squeeze=False,
                         gridspec_kw={"height_ratios": [1.0] * len(pairs) + [0.06]})
-    fig.subplots_adjust(left=0.75 / fig.get_figwidth(), right=0.98, bottom=0.45 / height,
-                        top=1 - 1.0 / height, wspace=0.45, hspace=0.55)
+    fig.subplots_adjust(left=1.05 / width, right=1 - 0.15 / width, bottom=0.45 / height,
+                        top=1 - 1.25 / height, wspace=0.55, hspace=0.55)
     for j, claim in enumerate(claims):
         norm = matplotlib.colors.TwoSlopeNorm(vmin=0.0, vcenter=claim.threshold, vmax=1.0)
         for i, pair in enumerate(pairs):
@@ -59,9 +60,9 @@ def robustness_map(result, title=None):
         bar.set_label("share of seeds", fontsize=8, labelpad=1)
         bar.ax.tick_params(labelsize=7)
         bar.ax.axvline(claim.threshold, color="black", linewidth=1)
-    fig.suptitle(title or f"{study.title}: {result.n_seeds} seeds per cell; ✓ holds, "
-                          f"✗ fails, ? unclear (95% interval); outlined: default",
-                 fontsize=10)
+    fig.suptitle(title or f"{study.title}, {result.n_seeds} seeds per cell\n✓ holds, ✗ fails, "
+                          f"? unclear (95% interval); outlined: the defaults", fontsize=10,
+                 y=1 - 0.08 / height, va="top")
     return fig
 
 
