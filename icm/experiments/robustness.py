@@ -86,7 +86,7 @@ class Study:
       settings: the swept `Setting`s.
       claims: the measured `Claim`s.
       per_seed: the function that turns a run into one dict per seed with a boolean
-        column per claim (for `sweep`'s `per_seed`).
+        column per claim (the `per_seed` argument of `sweep`).
     """
 
     name: str
@@ -582,7 +582,7 @@ def dependency_table(results):
     which each claim holds when only that setting changes.
 
     Args:
-      results: a list of `RobustnessResult`s.
+      results: a list of `RobustnessResult` objects.
 
     Returns:
       A Markdown string.
@@ -609,7 +609,7 @@ def interaction_table(results):
     share, with its band and where it is, and whether the pair interacts.
 
     Args:
-      results: a list of `RobustnessResult`s.
+      results: a list of `RobustnessResult` objects.
 
     Returns:
       A Markdown string.
