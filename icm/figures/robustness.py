@@ -39,15 +39,15 @@ def robustness_map(result, title=None):
     check_result("result", result, RobustnessResult, _MADE_BY)
     study = result.study
     pairs, claims = study.pairs(), study.claims
-    height = 2.5 * len(pairs) + 1.6
-    width = 3.4 * len(claims) + 0.8
+    height = 2.6 * len(pairs) + 1.9
+    width = 3.6 * len(claims) + 0.9
     # Placed by hand, not with `new_figure`'s constrained layout, which costs a second
     # of drawing with this many texts.
     fig = Figure(figsize=(width, height))
     axes = fig.subplots(len(pairs) + 1, len(claims), squeeze=False,
                         gridspec_kw={"height_ratios": [1.0] * len(pairs) + [0.06]})
-    fig.subplots_adjust(left=1.05 / width, right=1 - 0.15 / width, bottom=0.45 / height,
-                        top=1 - 1.25 / height, wspace=0.55, hspace=0.55)
+    fig.subplots_adjust(left=1.15 / width, right=1 - 0.15 / width, bottom=0.55 / height,
+                        top=1 - 1.5 / height, wspace=0.5, hspace=0.6)
     for j, claim in enumerate(claims):
         norm = matplotlib.colors.TwoSlopeNorm(vmin=0.0, vcenter=claim.threshold, vmax=1.0)
         for i, pair in enumerate(pairs):
@@ -55,14 +55,14 @@ def robustness_map(result, title=None):
             image = _draw_pair(ax, result, claim, pair, norm)
             if i == 0:
                 ax.set_title(f"{claim.text}\n(in ≥ {claim.threshold:.0%} of seeds)",
-                             fontsize=9)
+                             fontsize=12)
         bar = fig.colorbar(image, cax=axes[-1, j], orientation="horizontal")
-        bar.set_label("share of seeds", fontsize=8, labelpad=1)
-        bar.ax.tick_params(labelsize=7)
+        bar.set_label("share of seeds", fontsize=10, labelpad=1)
+        bar.ax.tick_params(labelsize=9)
         bar.ax.axvline(claim.threshold, color="black", linewidth=1)
     fig.suptitle(title or f"{study.title}, {result.n_seeds} seeds per cell\n✓ holds, ✗ fails, "
-                          f"? unclear (95% interval); outlined: the defaults", fontsize=10,
-                 y=1 - 0.08 / height, va="top")
+                          f"? unclear (95% interval); outlined: the defaults", fontsize=13,
+                 y=1 - 0.1 / height, va="top")
     return fig
 
 
@@ -72,14 +72,14 @@ def _draw_pair(ax, result, claim, pair, norm):
     table = result.pair_table(claim.name, pair)
     image = ax.imshow(table["share"], origin="lower", cmap=COLOURMAP, norm=norm,
                       aspect="auto")
-    ax.set_xticks(range(len(a.values)), [_label(v) for v in a.values], fontsize=7)
-    ax.set_yticks(range(len(b.values)), [_label(v) for v in b.values], fontsize=7)
-    ax.set_xlabel(a.label, fontsize=8)
-    ax.set_ylabel(b.label, fontsize=8)
+    ax.set_xticks(range(len(a.values)), [_label(v) for v in a.values], fontsize=9)
+    ax.set_yticks(range(len(b.values)), [_label(v) for v in b.values], fontsize=9)
+    ax.set_xlabel(a.label, fontsize=10)
+    ax.set_ylabel(b.label, fontsize=10)
     for (i, j), share in np.ndenumerate(table["share"]):
         strong = abs(norm(share) - 0.5) > 0.35
         ax.text(j, i, f"{100 * share:.0f}{MARKS[table['verdict'][i, j]]}", ha="center",
-                va="center", fontsize=7, color="white" if strong else "black")
+                va="center", fontsize=10, color="white" if strong else "black")
     ja, ib = a.values.index(a.default), b.values.index(b.default)
     ax.add_patch(matplotlib.patches.Rectangle((ja - 0.5, ib - 0.5), 1, 1, fill=False,
                                               edgecolor="black", linewidth=2))
