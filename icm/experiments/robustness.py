@@ -83,8 +83,8 @@ class Study:
       title: the learner and its task, in words.
       run_fn: the experiment (`run_goal_oriented`, ...).
       fixed: arguments held fixed in every run (the run length of its chapter).
-      settings: the swept `Setting`s.
-      claims: the measured `Claim`s.
+      settings: the swept settings (`Setting` objects).
+      claims: the measured claims (`Claim` objects).
       per_seed: the function that turns a run into one dict per seed with a boolean
         column per claim (the `per_seed` argument of `sweep`).
     """
