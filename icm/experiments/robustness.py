@@ -4,8 +4,9 @@ one pair at a time, with the paper's claims measured at every grid point.
 Each learner is a `Study`: its run function, the run length of its chapter, the
 unpublished settings (`Setting`, each with the library's default and a grid of
 values) and the claims the paper makes about it (`Claim`). `run_robustness` sweeps
-every pair of a study's settings (the others held at their defaults) with `icm.experiments.sweep`, on the same
-seeds at every point, and keeps for every seed whether each claim held in it.
+every pair of a study's settings (the others held at their defaults) with
+`icm.experiments.sweep`, on the same seeds at every point, and keeps for every seed
+whether each claim held in it.
 
 A claim *holds* at a grid point when the share of seeds in which it held is at least
 its threshold, and *fails* when the share is below it; the share is measured on a
