@@ -13,11 +13,21 @@ from icm.experiments._progress import progress_bar
 BACKENDS = ("joblib", "dask")
 
 
-def _run_point(run_fn, n_seeds, seed, fixed, point):
+def _run_point(run_fn, n_seeds, seed, fixed, point, per_seed=None):
     """Runs one grid point; returns its rows (module level, so workers can unpickle it)."""
     result = run_fn(n_seeds=n_seeds, seed=seed, progress=False, **fixed, **point)
-    return [{**point, "seed_index": i, **row}
-            for i, row in enumerate(result.seed_summaries())]
+    rows = result.seed_summaries() if per_seed is None else _per_seed_rows(per_seed, result)
+    return [{**point, "seed_index": i, **row} for i, row in enumerate(rows)]
+
+
+def _per_seed_rows(per_seed, result):
+    """The rows `per_seed` makes of `result`, checked: one dict per seed."""
+    rows = per_seed(result)
+    if not isinstance(rows, list) or len(rows) != result.n_seeds or \
+            not all(isinstance(row, dict) for row in rows):
+        raise ValueError(f"per_seed must return a list of one dict per seed "
+                         f"({result.n_seeds}), got {_validate.show(rows)}")
+    return rows
 
 
 def grid_points(grid):
@@ -63,7 +73,7 @@ def _check_grid(run_fn, grid, fixed):
 
 
 def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=None,
-          progress=True, **fixed):
+          progress=True, per_seed=None, **fixed):
     """Runs `run_fn` at every point of `grid`, each on `n_seeds` seeds.
 
     Args:
@@ -79,21 +89,27 @@ def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=N
         with `dask.distributed.get_client()`).
       client: the Dask client, for backend "dask".
       progress: show a progress bar over the grid points.
+      per_seed: None (the run's own `seed_summaries()`), or a function that takes a
+        run's result and returns one dict per seed of the numbers to keep (a
+        module-level function, so that joblib and Dask workers can unpickle it), e.g.
+        `icm.experiments.robustness.goal_oriented_claims`.
       **fixed: arguments of `run_fn` held fixed, e.g. ``n_trials=60``.
 
     Returns:
       A `pandas.DataFrame`, one row per grid point and seed: the grid values,
-      `seed_index`, and the run's per-seed summary numbers.
+      `seed_index`, and the run's per-seed summary numbers (or those of `per_seed`).
 
     Raises:
       ValueError: for an empty or unknown grid argument, a bad n_seeds, seed, n_jobs or
-        backend, or (raised by the first run that meets it) a value the run function
-        refuses.
+        backend, a `per_seed` that is not a function (or, at the first point, does not
+        return one dict per seed), or (raised by the first run that meets it) a value
+        the run function refuses.
     """
     _validate.integer_at_least("n_seeds", n_seeds, 1)
     seed = _validate.root_seed("seed", seed)
     _validate.one_of("backend", backend, BACKENDS)
     _validate.boolean("progress", progress)
+    _validate.function("per_seed", per_seed)
     if not _validate.is_integer(n_jobs) or (int(n_jobs) < 1 and int(n_jobs) != -1):
         allowed = "an integer >= 1, or -1 for one job per core"
         if not _validate.is_integer(n_jobs):
@@ -103,7 +119,7 @@ def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=N
         raise ValueError(f"client is used only with backend 'dask', got backend {backend!r}")
     grid = _check_grid(run_fn, grid, fixed)
     points = grid_points(grid)
-    job = functools.partial(_run_point, run_fn, n_seeds, seed, fixed)
+    job = functools.partial(_run_point, run_fn, n_seeds, seed, fixed, per_seed=per_seed)
     if backend == "joblib":
         import joblib
 

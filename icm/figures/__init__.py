@@ -15,6 +15,7 @@ from icm.figures.icub import (animation, animation_html, cameras_figure, figure1
                               topple_map_figure)
 from icm.figures.rod_toppling import (figure7, figure7_for, physics_comparison_figure,
                                       topple_share_figure)
+from icm.figures.robustness import robustness_map
 from icm.figures.panels import (draw_curves, figure5_panel_figure, figure6_panel_figure,
                                 figure7_panel_figure, panel_figure, sweep_figure)
 from icm.figures.sweep import sweep_heatmap
