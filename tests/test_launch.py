@@ -59,14 +59,21 @@ def test_every_notebook_starts_with_exactly_the_install_cell(path):
     assert sum(c.source == INSTALL_CELL for c in notebook.cells) == 1
 
 
+def test_contributing_shows_the_install_cell():
+    indented = "\n".join(f"  {line}" if line else "" for line in INSTALL_CELL.splitlines())
+    assert indented in (ROOT / "CONTRIBUTING.md").read_text()
+
+
 def test_the_repository_address_is_one_github_repository_everywhere():
     assert re.fullmatch(r"https://github\.com/[\w.-]+/[\w.-]+", REPOSITORY), REPOSITORY
     for path in NOTEBOOKS:
         addresses = re.findall(r'"git\+(https://[^"]+)"', nbformat.read(path, as_version=4)
                                .cells[0].source)
         assert addresses == [REPOSITORY], f"{path.name} installs from {addresses}"
-    cited = re.findall(r"url\s*=\s*\{(https://github\.com/[^}]+)\}", (ROOT / "README.md").read_text())
-    assert cited == [REPOSITORY], f"README cites {cited}"
+    readme = (ROOT / "README.md").read_text()
+    cited = re.findall(r"url\s*=\s*\{(https://github\.com/[^}]+)\}", readme)
+    installed = re.findall(r"git\+(https://github\.com/[\w./-]*\w)", readme)
+    assert cited == [REPOSITORY] and set(installed) == {REPOSITORY}, (cited, installed)
 
 
 def _run_install_cell(args, env, cwd):
