@@ -22,8 +22,10 @@ def test_notebooks_are_committed_without_outputs(path):
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
 def test_notebooks_set_mujoco_gl_only_if_unset_and_import_icm(path):
+    # The first code cell after the one that installs icm on Binder or Colab (checked
+    # by tests/test_launch.py).
     notebook = nbformat.read(path, as_version=4)
-    first_code = next(c for c in notebook.cells if c.cell_type == "code").source
+    first_code = [c for c in notebook.cells if c.cell_type == "code"][1].source
     assert 'os.environ.setdefault("MUJOCO_GL", "egl")' in first_code
     assert "import icm" in first_code
     assert "matplotlib.use(" not in "".join(c.source for c in notebook.cells)
@@ -125,6 +127,55 @@ def test_a_hanging_cell_fails_quickly_naming_the_notebook_and_the_cell(tmp_path)
     assert time.monotonic() - start < 60
     assert "hangs.ipynb: cell 2 hung (more than 3 s)" in completed.stderr
     assert "time.sleep(600)" in completed.stderr
+
+
+def test_cells_tagged_skip_execution_are_not_executed(tmp_path):
+    import subprocess
+    import sys
+
+    nb = nbformat.v4.new_notebook()
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
+                                 "language": "python"}
+    nb.cells = [nbformat.v4.new_code_cell("raise SystemExit('this cell must not run')"),
+                nbformat.v4.new_code_cell("print('ran')")]
+    nb.cells[0].metadata["tags"] = ["skip-execution", "remove-cell"]
+    path = tmp_path / "skips.ipynb"
+    nbformat.write(nb, path)
+    out = tmp_path / "out"
+    completed = subprocess.run(
+        [sys.executable, str(ROOT / "book" / "_ext" / "execute_book.py"), "--path-output",
+         str(out), str(path)], capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert completed.returncode == 0, completed.stdout + completed.stderr
+
+    from jupyter_cache import get_cache
+
+    cache = get_cache(str(out / "_build" / ".jupyter_cache"))
+    record = cache.match_cache_notebook(nbformat.read(path, as_version=4))  # the build's lookup
+    executed = cache.get_cache_bundle(record.pk).nb
+    assert executed.cells[0].execution_count is None and executed.cells[0].outputs == []
+    assert executed.cells[1].execution_count == 1
+    assert executed.cells[1].outputs[0]["text"] == "ran\n"
+
+
+@pytest.mark.book
+def test_the_install_cell_is_neither_executed_nor_shown_by_the_build(built_book):
+    from jupyter_cache import get_cache
+    from test_launch import INSTALL_CELL
+
+    # The outputs the build used: those of the execution cache (the build executed no
+    # notebook itself, built_book checks).
+    cache = get_cache(str(built_book.parent / ".jupyter_cache"))
+    for path in NOTEBOOKS:
+        record = cache.match_cache_notebook(nbformat.read(path, as_version=4))
+        executed = cache.get_cache_bundle(record.pk).nb
+        install = executed.cells[0]
+        assert install.source == INSTALL_CELL
+        assert install.execution_count is None and install.outputs == [], path.name
+        code = [c for c in executed.cells if c.cell_type == "code"]
+        assert code[1].execution_count == 1, f"{path.name}: the kernel ran something before"
+        html = (built_book / "book" / f"{path.stem}.html").read_text()
+        for line in ("install icm when it is missing", "ICM_SOURCE", "find_spec"):
+            assert line not in html, f"{path.name}: the install cell is shown"
 
 
 @pytest.mark.book

@@ -27,6 +27,9 @@ instead of executing it again. Doing the execution here, not inside Sphinx, give
   whenever a file of `icm/`, `assets/`, `requirements.txt` or `pyproject.toml`
   changes (a fingerprint of them is kept in the cache folder). `--force` (the tests,
   CI) executes everything.
+- **Launch cells skipped**: a cell tagged `skip-execution` (each notebook's first
+  cell, which installs icm on Binder or Colab) is not run, as when Jupyter Book
+  executes a notebook itself; its tag `remove-cell` keeps it out of the HTML.
 """
 
 import argparse
@@ -56,6 +59,8 @@ LIBRARY = ("icm", "assets", "requirements.txt", "pyproject.toml")
 KERNEL_ENVIRONMENT = {"ICM_STATIC_PANELS": "1", "OPENBLAS_NUM_THREADS": "1",
                       "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 """Set for the kernels (which inherit this process's environment): see above."""
+SKIP_TAG = "skip-execution"
+"""Cells with this tag are not executed (nbclient's and so Jupyter Book's convention)."""
 
 
 def notebooks():
@@ -129,6 +134,7 @@ def execute(path, timeout):
     """Executes the notebook at `path` in its folder; returns (notebook, seconds)."""
     nb = nbformat.read(path, as_version=4)
     client = BookClient(nb, path, timeout=timeout, allow_errors=False, record_timing=False,
+                        skip_cells_with_tag=SKIP_TAG,
                         resources={"metadata": {"path": str(path.parent)}})
     start = time.perf_counter()
     try:

@@ -6,8 +6,12 @@ import pathlib
 
 from icm import _validate
 
-ASSETS = pathlib.Path(__file__).resolve().parents[2] / "assets"
-"""The folder of MJCF models and data."""
+_PACKAGE = pathlib.Path(__file__).resolve().parents[1]
+ASSETS = next((folder for folder in (_PACKAGE / "assets", _PACKAGE.parent / "assets")
+               if folder.is_dir()), _PACKAGE / "assets")
+"""The folder of MJCF models and data: `icm/assets`, a copy in an installed package and
+a link to the top-level `assets/` in a checkout; the top-level folder itself in a
+checkout without symbolic links."""
 
 
 def asset_path(name):

@@ -1,0 +1,275 @@
+"""The launch buttons: every notebook's first cell (it installs icm on Binder or Colab),
+the Binder files, and a fresh launch reproduced locally.
+
+The fresh launch (marker `launch`, run by `make test`) builds a new virtual
+environment from binder/ alone, copies a notebook out of the repository and executes
+it there with the install cell run, pointed at a copy of this checkout instead of the
+repository's address.
+"""
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+import tomllib
+
+import nbformat
+import pytest
+import yaml
+
+from conftest import ROOT, toc_files
+
+CONFIG = yaml.safe_load((ROOT / "_config.yml").read_text())
+REPOSITORY = CONFIG["repository"]["url"]
+INSTALL_TAGS = ["skip-execution", "remove-cell"]
+INSTALL_CELL = f'''\
+# On Binder or Colab, install icm when it is missing. Harmless when icm is
+# installed; the book build skips this cell.
+import importlib.util
+import os
+import subprocess
+import sys
+
+if importlib.util.find_spec("icm") is None:
+    source = os.environ.get("ICM_SOURCE", "git+{REPOSITORY}")
+    subprocess.check_call([sys.executable, "-m", "pip", "install", "--quiet", source])'''
+"""The exact first cell of every notebook of the book (tags: INSTALL_TAGS)."""
+NOTEBOOKS = [ROOT / f"{name}.ipynb" for name in toc_files() if (ROOT / f"{name}.ipynb").exists()]
+LAUNCHED = ROOT / "book" / "button_experiment.ipynb"
+"""The notebook the fresh launch runs: a light one (the tabular twin, figures)."""
+BINDER = ROOT / "binder"
+
+
+def test_the_book_has_notebooks():
+    assert len(NOTEBOOKS) >= 5
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
+def test_every_notebook_starts_with_exactly_the_install_cell(path):
+    notebook = nbformat.read(path, as_version=4)
+    first = notebook.cells[0]
+    assert first.cell_type == "code", f"{path.name}: the first cell must be the install cell"
+    assert first.source == INSTALL_CELL, (
+        f"{path.name}: the first cell must be exactly the install cell of CONTRIBUTING.md "
+        f"(with the address of _config.yml, {REPOSITORY})")
+    assert dict(first.metadata) == {"tags": INSTALL_TAGS}, f"{path.name}: {first.metadata}"
+    assert sum(c.source == INSTALL_CELL for c in notebook.cells) == 1
+
+
+def test_contributing_shows_the_install_cell():
+    indented = "\n".join(f"  {line}" if line else "" for line in INSTALL_CELL.splitlines())
+    assert indented in (ROOT / "CONTRIBUTING.md").read_text()
+
+
+def test_the_repository_address_is_one_github_repository_everywhere():
+    assert re.fullmatch(r"https://github\.com/[\w.-]+/[\w.-]+", REPOSITORY), REPOSITORY
+    for path in NOTEBOOKS:
+        addresses = re.findall(r'"git\+(https://[^"]+)"', nbformat.read(path, as_version=4)
+                               .cells[0].source)
+        assert addresses == [REPOSITORY], f"{path.name} installs from {addresses}"
+    readme = (ROOT / "README.md").read_text()
+    cited = re.findall(r"url\s*=\s*\{(https://github\.com/[^}]+)\}", readme)
+    installed = re.findall(r"git\+(https://github\.com/[\w./-]*\w)", readme)
+    assert cited == [REPOSITORY] and set(installed) == {REPOSITORY}, (cited, installed)
+
+
+def _run_install_cell(args, env, cwd):
+    return subprocess.run([sys.executable, *args, "-c", INSTALL_CELL], env=env, cwd=cwd,
+                          capture_output=True, text=True, timeout=300)
+
+
+def _without_python_path():
+    return {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+
+
+def test_the_install_cell_installs_only_when_icm_is_missing(tmp_path):
+    env = _without_python_path() | {"ICM_SOURCE": str(tmp_path / "no-such-project")}
+    # icm importable (this checkout first on the path): nothing happens, even with a
+    # source that cannot be installed.
+    done = _run_install_cell([], env | {"PYTHONPATH": str(ROOT)}, tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout == "" and done.stderr == ""
+    # icm not importable (no site-packages, no path): the cell runs pip on ICM_SOURCE,
+    # which fails here because that folder does not exist.
+    done = _run_install_cell(["-S"], env, tmp_path)
+    assert done.returncode != 0
+    assert "no-such-project" in done.stderr and "CalledProcessError" in done.stderr
+
+
+def _requirement_lines(path):
+    lines = (line.split("#", 1)[0].strip() for line in path.read_text().splitlines())
+    return [line for line in lines if line]
+
+
+def test_binder_reuses_the_pinned_requirements():
+    # repo2docker runs `pip install -r binder/requirements.txt` from the repository's
+    # root after copying the whole repository (a file that refers to another one is not
+    # installed before the copy); pip reads `-r` relative to the including file.
+    assert _requirement_lines(BINDER / "requirements.txt") == ["-r ../requirements.txt"]
+    pins = _requirement_lines(ROOT / "requirements.txt")
+    assert "dm-control==1.0.50" in pins and "mujoco==3.17.0" in pins
+    assert "jupyter-book==1.0.4.post1" in pins
+
+
+def test_binder_python_is_the_projects_python():
+    # repo2docker's default Python (3.10) is older than icm's requires-python; with a
+    # binder/ folder it reads the version from binder/runtime.txt only.
+    runtime = (BINDER / "runtime.txt").read_text().strip()
+    version = re.fullmatch(r"python-(3\.\d+)", runtime).group(1)
+    assert f"PYTHON ?= python{version}" in (ROOT / "Makefile").read_text()
+    requires = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["requires-python"]
+    assert requires == ">=3.11" and tuple(map(int, version.split("."))) >= (3, 11)
+
+
+def test_binder_installs_the_system_packages_for_rendering():
+    packages = _requirement_lines(BINDER / "apt.txt")
+    for package in packages:  # repo2docker refuses anything else
+        assert re.fullmatch(r"[a-z0-9.+-]+", package), package
+    # the EGL loader, Mesa's EGL with its software driver (MUJOCO_GL=egl), OSMesa
+    assert {"libegl1", "libegl-mesa0", "libgl1-mesa-dri", "libosmesa6"} <= set(packages)
+
+
+def test_binder_post_build_installs_icm():
+    post_build = BINDER / "postBuild"
+    assert os.access(post_build, os.X_OK), "binder/postBuild must be executable"
+    text = post_build.read_text()
+    assert text.startswith("#!/bin/bash\n") and "set -euo pipefail" in text
+    assert "pip install --no-cache-dir --no-deps -e ." in text
+
+
+# --- the fresh launch -----------------------------------------------------------------
+
+RUN_NOTEBOOK = """\
+import importlib.util, pathlib, sys
+import nbformat
+spec = importlib.util.spec_from_file_location("execute_book", sys.argv[1])
+execute_book = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(execute_book)
+path, out = pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+nb = nbformat.read(path, as_version=4)
+for cell in nb.cells:  # a reader's Jupyter ignores the tag that the book build obeys
+    tags = cell.metadata.get("tags", [])
+    if execute_book.SKIP_TAG in tags:
+        tags.remove(execute_book.SKIP_TAG)
+nbformat.write(nb, path)
+executed, seconds = execute_book.execute(path, timeout=600)
+nbformat.write(executed, out)
+print(f"{seconds:.1f}")
+"""
+
+INSTALLED = """\
+import importlib.metadata, json, os
+os.environ.setdefault("MUJOCO_GL", "egl")
+import icm
+from icm.figures import icub
+url = json.loads(importlib.metadata.distribution("icm").read_text("direct_url.json"))
+env = icm.envs.load("buttons", physics=True, seed=0)
+env.reset()
+image = icub.render(env.physics, "front", 48, 64)
+print(json.dumps({"file": icm.__file__, "url": url, "image": list(image.shape),
+                  "lit": int(image.max())}))
+"""
+
+
+def _copy_checkout(destination):
+    """The files of this checkout that git tracks or would track (what a clone of the
+    repository holds, with the changes not committed yet)."""
+    listed = subprocess.run(["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
+                            cwd=ROOT, capture_output=True, check=True).stdout.decode()
+    for name in filter(None, listed.split("\0")):
+        source = ROOT / name
+        if not source.exists() and not source.is_symlink():
+            continue  # deleted, not committed yet
+        target = destination / name
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(source, target, follow_symlinks=False)
+    return destination
+
+
+def _run(command, **kwargs):
+    done = subprocess.run([str(c) for c in command], capture_output=True, text=True, **kwargs)
+    assert done.returncode == 0, f"{' '.join(map(str, command))} failed:\n" \
+        f"{(done.stdout + done.stderr)[-6000:]}"
+    return done.stdout
+
+
+@pytest.mark.launch
+def test_a_fresh_launch_installs_icm_with_the_first_cell_and_runs_a_notebook(
+        tmp_path, capsys):
+    times = {}
+    clock = time.perf_counter()
+    env = _without_python_path() | {"PIP_DISABLE_PIP_VERSION_CHECK": "1"}
+    env.pop("VIRTUAL_ENV", None)
+    venv = tmp_path / "venv"
+    python = venv / "bin" / "python"
+    _run([sys.executable, "-m", "venv", venv], env=env)
+    # The Binder files alone: the requirements as repo2docker installs them (no
+    # bytecode compiled ahead: it changes nothing but the time).
+    _run([python, "-m", "pip", "install", "--quiet", "--no-compile", "-r",
+          BINDER / "requirements.txt"], env=env, cwd=ROOT)
+    times["venv from binder/requirements.txt"] = time.perf_counter() - clock
+    where = [python, "-c", "import importlib.util; print(importlib.util.find_spec('icm'))"]
+    assert _run(where, env=env, cwd=tmp_path).strip() == "None"
+
+    # A reader's launch: the notebook alone in a folder outside the repository, every
+    # cell run, the first one installing icm from ICM_SOURCE (the repository's address
+    # on Colab; here a copy of this checkout, as a clone would hold it).
+    clock = time.perf_counter()
+    source = _copy_checkout(tmp_path / "clone")
+    launch = tmp_path / "launch"
+    launch.mkdir()
+    notebook = launch / LAUNCHED.name
+    shutil.copy(LAUNCHED, notebook)
+    executed_path = tmp_path / "executed.ipynb"
+    _run([python, "-c", RUN_NOTEBOOK, ROOT / "book" / "_ext" / "execute_book.py", notebook,
+          executed_path], env=env | {"ICM_SOURCE": str(source)}, cwd=launch)
+    executed = nbformat.read(executed_path, as_version=4)
+    code = [c for c in executed.cells if c.cell_type == "code"]
+    assert code[0].source == INSTALL_CELL and code[0].execution_count == 1
+    assert [c.execution_count for c in code] == list(range(1, len(code) + 1))
+    assert not [o for c in code for o in c.outputs if o.output_type == "error"]
+    times["notebook, the install cell included"] = time.perf_counter() - clock
+
+    # The icm that the cell installed: in the new environment, from ICM_SOURCE, with the
+    # models (physics) and the system's rendering working.
+    clock = time.perf_counter()
+    installed = json.loads(_run([python, "-c", INSTALLED], env=env, cwd=tmp_path))
+    assert installed["file"].startswith(str(venv / "lib")), installed["file"]
+    assert installed["url"]["url"] == source.as_uri()
+    assert installed["url"].get("dir_info", {}).get("editable") is not True
+    assert installed["image"] == [48, 64, 3] and installed["lit"] > 0
+    times["physics and rendering in the installed icm"] = time.perf_counter() - clock
+
+    # Binder: postBuild installs icm (editable) from the repository's root; the
+    # notebook's first cell then does nothing (ICM_SOURCE cannot be installed).
+    clock = time.perf_counter()
+    _run(["bash", source / "binder" / "postBuild"], cwd=source,
+         env=env | {"PATH": f"{venv / 'bin'}{os.pathsep}{env['PATH']}"})
+    icm_file = _run([python, "-c", "import icm; print(icm.__file__)"], env=env, cwd=tmp_path)
+    assert icm_file.strip() == str(source / "icm" / "__init__.py")
+    shutil.copy(LAUNCHED, notebook)
+    _run([python, "-c", RUN_NOTEBOOK, ROOT / "book" / "_ext" / "execute_book.py", notebook,
+          executed_path], env=env | {"ICM_SOURCE": str(tmp_path / "no-such-project")},
+         cwd=launch)
+    times["postBuild, then the notebook again"] = time.perf_counter() - clock
+
+    # Colab: its own Python gets icm's declared dependencies, not requirements.txt:
+    # they must resolve to the MuJoCo major version that dm-control is pinned with.
+    clock = time.perf_counter()
+    report = tmp_path / "report.json"
+    _run([python, "-m", "pip", "install", "--quiet", "--dry-run", "--ignore-installed",
+          "--report", report, source], env=env, cwd=tmp_path)
+    resolved = {re.sub(r"[-_.]+", "-", item["metadata"]["name"]).lower():
+                item["metadata"]["version"]
+                for item in json.loads(report.read_text())["install"]}
+    pinned = dict(line.split("==") for line in _requirement_lines(ROOT / "requirements.txt")
+                  if "==" in line)
+    assert resolved["mujoco"].split(".")[0] == pinned["mujoco"].split(".")[0], resolved
+    assert "dm-control" in resolved
+    times["what pip resolves for icm on a bare Python"] = time.perf_counter() - clock
+
+    with capsys.disabled():  # shown in the test run's output, as the book's times are
+        print("\nfresh launch: " + ", ".join(f"{k} {v:.0f} s" for k, v in times.items()))
