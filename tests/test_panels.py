@@ -161,7 +161,7 @@ def test_thinning_keeps_every_nth_point_and_the_last():
 
 
 def test_the_specifications_are_valid_vega_lite(small_grid):
-    alt = pytest.importorskip("altair")
+    import altair as alt  # a test requirement (requirements.txt)
     name, grid = small_grid
     panels_ = [interactive.curves_panel(grid)]
     if name == "figure5":
