@@ -31,8 +31,9 @@ class MovementLab:
     scene's own model) and measures from the simulated states what each reached:
 
     - the outcome: the lowest point of the finger's surface at the end of the hold,
-      where the movement brought the fingertip: on the console's top, in a cap
-      pushed in, on the table, or in the air;
+      where the movement brought the fingertip: on the console's top, on a cap as
+      far as it is pushed in, on the table, or in the air (never below the top of
+      the console or of a cap under it: see `surface_below`);
     - whether the finger then touches the console or a button;
     - the first button pushed past `buttons.PRESS_DEPTH`, read at every 20 ms
       update as the task reads it (-1 for none), during the reach and the hold
@@ -81,6 +82,9 @@ class MovementLab:
         self.radius, self.half_length = model.geom_size[self.finger][:2]
         self.console_geoms = {geom("console")} | {geom(f"button{b}_cap")
                                                    for b in range(buttons.N_BUTTONS)}
+        # The surfaces the finger can rest on: the console's top and each cap's top.
+        self.console_geom = geom("console")
+        self.cap_geoms = np.array([geom(f"button{b}_cap") for b in range(buttons.N_BUTTONS)])
         # Where qpos sits in a rollout's state vector (time first, then qpos).
         self.qpos_slice = slice(1, 1 + model.nq)
         self.datas = [mujoco.MjData(model) for _ in range(threads)]
@@ -163,10 +167,33 @@ class MovementLab:
         point = lowest_capsule_point(data.geom_xpos[self.finger],
                                      data.geom_xmat[self.finger].reshape(3, 3)[:, 2],
                                      self.radius, self.half_length)
+        point[2] = max(point[2], self.surface_below(point))
         pairs = data.contact.geom[:data.ncon]
         touched = any((a == self.finger and b in self.console_geoms)
                       or (b == self.finger and a in self.console_geoms) for a, b in pairs)
         return point, touched
+
+
+    def surface_below(self, point):
+        """The height of the top surface under `point` in the scene as last computed
+        (the console's top, or a cap's top as far as it is pushed in), -inf where
+        there is none.
+
+        The outcome is never lower than this: soft contacts let a finger driven hard
+        sink a few millimetres into the console, and one swept fast sideways into a
+        cap pass into it without pushing it down. Read as a position on the surfaces,
+        such a finger is on the console or on an unpressed cap, not in them."""
+        data, model = self._scratch, self.model
+        top = -np.inf
+        centre = data.geom_xpos[self.console_geom]
+        half = model.geom_size[self.console_geom]
+        if np.all(np.abs(point[:2] - centre[:2]) <= half[:2]):
+            top = centre[2] + half[2]
+        for cap in self.cap_geoms:
+            radius, half_height = model.geom_size[cap][:2]
+            if np.hypot(*(point[:2] - data.geom_xpos[cap][:2])) <= radius:
+                top = max(top, data.geom_xpos[cap][2] + half_height)
+        return top
 
 
 def lowest_capsule_point(centre, axis, radius, half_length):

@@ -36,7 +36,7 @@ from icm.stats import mean_band
 
 STRATEGIES = ("random_motor", "random_goal", "learning_progress")
 """How the next movement is chosen (see the module docstring)."""
-DEFAULT_N_ROLLOUTS = 600
+DEFAULT_N_ROLLOUTS = 1000
 """Rollouts per run: the budget at which learning progress presses at least 4 of
 the 5 buttons on average (measured; see the chapter "Forming actions")."""
 DEFAULT_EXPLORATION_NOISE = 0.05
