@@ -161,7 +161,8 @@ def _goal_babbling(args):
             exploration_noise=args.exploration_noise, epsilon=args.epsilon,
             window=args.window)
     print(goal_babbling.comparison_table(results))
-    return figures.test_error_figure(results)
+    labels = figures.forming_actions.STRATEGY_LABELS
+    return figures.test_error_figure({labels[s]: r for s, r in results.items()})
 
 
 def _goal_babbling_options(parser):
@@ -175,8 +176,9 @@ def _goal_babbling_options(parser):
                              f"(default {goal_babbling.DEFAULT_N_ROLLOUTS})")
     parser.add_argument("--exploration-noise", type=_number,
                         default=goal_babbling.DEFAULT_EXPLORATION_NOISE,
-                        help="the inverse model's noise far from a goal, a share of each joint's range in "
-                             f"(0, 1] (default {goal_babbling.DEFAULT_EXPLORATION_NOISE})")
+                        help="the inverse model's noise far from a goal, a share of each "
+                             "joint's range in (0, 1] "
+                             f"(default {goal_babbling.DEFAULT_EXPLORATION_NOISE})")
     parser.add_argument("--epsilon", type=_number, default=goal_babbling.DEFAULT_EPSILON,
                         help="learning progress: share of goals in a region drawn "
                              f"uniformly, in [0, 1] (default {goal_babbling.DEFAULT_EPSILON})")

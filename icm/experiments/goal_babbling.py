@@ -37,8 +37,11 @@ from icm.stats import mean_band
 STRATEGIES = ("random_motor", "random_goal", "learning_progress")
 """How the next movement is chosen (see the module docstring)."""
 DEFAULT_N_ROLLOUTS = 1000
-"""Rollouts per run: the budget at which learning progress presses at least 4 of
-the 5 buttons on average (measured; see the chapter "Forming actions")."""
+"""Rollouts per run. Measured on 8 seeds of root seed 0 (`python -m icm goal-babbling
+--seeds 8`): learning progress ends at 1.4 cm of test error against 3.3 cm for random
+motor babbling and presses 4.1 of the 5 buttons on average; on 8 seeds of root seed
+11 it presses 3.4 (3.6 after 1,600 rollouts): "at least 4 of 5" is not reached on
+every set of seeds. The lower test error holds on both."""
 DEFAULT_EXPLORATION_NOISE = 0.05
 """Standard deviation of the inverse model's exploration noise, as a share of each
 joint's range (Forestier, Mollard and Oudeyer's 0.05; about 5 to 8 degrees), while
@@ -378,8 +381,9 @@ def _babble(settings, lab, seeds, progress):
     regions = np.full((n_seeds, n_rollouts), -1, dtype=np.int64)
     interest_log = np.zeros((n_seeds, n_rollouts, n_regions))
 
-    for i in progress_bar(range(n_rollouts), n_rollouts, f"goal babbling ({strategy})",
-                          progress, unit="rollout"):
+    for i in progress_bar(range(n_rollouts), n_rollouts,
+                          f"goal babbling ({strategy}, {n_seeds} seeds at once)", progress,
+                          unit="rollout"):
         targets = np.empty((n_seeds, 7))
         values = learning.values() if strategy == "learning_progress" and i >= n_boot \
             else None

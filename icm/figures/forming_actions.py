@@ -3,6 +3,7 @@ strategies, coverage of the console, where learning progress put its goals, and 
 learned presses rendered from the simulation."""
 
 import matplotlib.patches
+import matplotlib.ticker
 import numpy as np
 
 from icm import _validate
@@ -145,9 +146,14 @@ def goal_choice_figure(result, n_stretches=8):
                             cmap="Oranges", vmin=0, shading="flat")
     fig.colorbar(mesh, ax=right, shrink=0.85, label="share of goals")
     right.set_title(f"Share of goals in each column, {result.n_seeds} seeds", fontsize=9)
+    ticks = [t for t in (20, 50, 100, 200, 500, 1000, 2000, 5000, 10000)
+             if start <= t <= result.n_rollouts]
     for ax in (left, right):
         ax.set_xscale("log")
         ax.set_xlim(max(start, 1), result.n_rollouts)
+        ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator(ticks))
+        ax.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_yticks(range(len(names)), names, fontsize=7)
         ax.set_ylim(len(names) - 0.5, -0.5)
         ax.set_xlabel("rollouts (log scale)")
