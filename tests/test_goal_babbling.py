@@ -335,3 +335,17 @@ def test_learning_progress_beats_random_motor_babbling_at_the_default_budget():
     assert progress.n_rollouts == motor.n_rollouts == goal_babbling.DEFAULT_N_ROLLOUTS
     assert progress.final_test_error().max() < motor.final_test_error().min()
     assert progress.buttons_pressed.sum() > motor.buttons_pressed.sum()
+
+
+def test_no_outcome_lies_inside_the_console(lab):
+    # Soft contacts let a finger driven hard sink into the console's top; the outcome
+    # is read on the surface. Movements into the console from random targets, seeded.
+    rng = np.random.default_rng(2)
+    geometry = goal_babbling.console_geometry()
+    downs = np.array(buttons.ButtonsTask().motions(lab.physics).down)
+    targets = downs[rng.integers(5, size=60)] + rng.normal(0, 0.15, (60, 7))
+    done = lab.perform(targets)
+    centre, half = geometry["console_centre"], geometry["console_half"]
+    over = np.all(np.abs(done["outcome"][:, :2] - centre[:2]) <= half[:2], axis=1)
+    assert over.sum() >= 10
+    assert np.all(done["outcome"][over, 2] >= geometry["console_top"] - 1e-9)

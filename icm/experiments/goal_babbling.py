@@ -27,7 +27,8 @@ import numpy as np
 from icm import _validate
 from icm.envs import buttons
 from icm.experiments import goal_oriented as _goal_oriented
-from icm.experiments._babbling_physics import (HOLD_TIME, REACH_TIME, RETRACT_TIME,
+from icm.experiments._babbling_physics import (  # noqa: F401 (the times are re-exported)
+    HOLD_TIME, REACH_TIME, RETRACT_TIME,
                                                MovementLab)
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
