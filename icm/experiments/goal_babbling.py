@@ -28,8 +28,7 @@ from icm import _validate
 from icm.envs import buttons
 from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments._babbling_physics import (  # noqa: F401 (the times are re-exported)
-    HOLD_TIME, REACH_TIME, RETRACT_TIME,
-                                               MovementLab)
+    HOLD_TIME, REACH_TIME, RETRACT_TIME, MovementLab)
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
 from icm.learners import goal_oriented, interest, predictors
