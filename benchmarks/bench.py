@@ -117,6 +117,64 @@ def primitive_against_c(make_env, actions, repeats=5):
             min(raws) / n * 1e3)
 
 
+def babbling_against_raw(repeats=5, n_movements=40):
+    """Goal-babbling rollouts per second against raw stepping.
+
+    Three figures, each the best of `repeats`: `MovementLab.perform` (the rollouts of
+    a run: reach and hold, stepped in C by mujoco.rollout, then measured), the same
+    with the return home, and a whole `run_goal_babbling` (learning progress, 5 seeds,
+    inverse model and goal choice included, without the final press test). Each is
+    set against mujoco.mj_step(model, data, nstep=n) from the same initial state with
+    the controls held, for the same number of physics steps: the arm at rest, no
+    contacts, so the ratio is an upper bound on the cost of everything but stepping.
+
+    Returns [(name, rollouts per second, raw rollouts per second)].
+    """
+    import mujoco
+
+    from icm.experiments import goal_babbling
+    from icm.experiments._babbling_physics import MovementLab
+
+    lab = MovementLab()
+    targets = np.random.default_rng(0).uniform(lab.lower, lab.upper, (n_movements, 7))
+    scratch = mujoco.MjData(lab.model)
+    spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
+
+    def raw(n_steps):
+        mujoco.mj_setState(lab.model, scratch, lab.initial_state, spec)
+        scratch.ctrl[:] = lab.initial_ctrl
+        mujoco.mj_step(lab.model, scratch, nstep=n_steps)
+
+    def best(function):
+        times = []
+        for _ in range(repeats):
+            start = time.perf_counter()
+            function()
+            times.append(time.perf_counter() - start)
+        return min(times)
+
+    settings = goal_babbling._check_run_arguments(
+        "learning_progress", 5, n_movements // 5, 0, False,
+        goal_babbling.DEFAULT_EXPLORATION_NOISE, goal_babbling.DEFAULT_EPSILON,
+        goal_babbling.DEFAULT_WINDOW)
+
+    def whole_run():  # the rollouts of a run, without the final press test
+        goal_babbling._babble(settings, lab, [1, 2, 3, 4, 5], progress=False)
+
+    short, full = lab.outcome_step + 1, lab.n_steps
+    out = []
+    for name, go, steps in [
+            ("rollouts, reach and hold", lambda: lab.perform(targets), short),
+            ("rollouts with the return home", lambda: lab.perform(targets, retract=True),
+             full),
+            ("the rollouts of run_goal_babbling, 5 seeds", whole_run, short)]:
+        go()
+        seconds = best(go)
+        raw_seconds = best(lambda: raw(steps * n_movements))
+        out.append((name, n_movements / seconds, n_movements / raw_seconds))
+    return out
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="fewer repeats")
@@ -202,6 +260,13 @@ def main(argv=None):
               f"controls replayed in C (mujoco.rollout) {replay:.2f} ms: {wall / replay:.2f} x "
               f"{verdict}; mj_step(nstep={steps:.0f}) with the arm at rest {raw:.2f} ms: "
               f"{wall / raw:.2f} x")
+
+    print("\nGoal babbling: movements stepped in C (mujoco.rollout) against raw "
+          "mj_step(nstep) of the same steps:")
+    for name, per_second, raw_per_second in babbling_against_raw(3 if args.quick else 5):
+        print(f"  {name}: {per_second:.0f} rollouts/s; mj_step(nstep) of the same number "
+              f"of steps, arm at rest, {raw_per_second:.0f} rollouts/s: "
+              f"{raw_per_second / per_second:.2f} x the time")
 
     env = icm.envs.load("buttons", physics=True, seed=0)
     env.reset()

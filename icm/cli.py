@@ -1,6 +1,7 @@
 """The command line: rebuild the paper's figures without Jupyter.
 
     python -m icm figure5 --seeds 200 --out fig5.png
+    python -m icm goal-babbling --seeds 10 --out babbling.png
     python -m icm --help
 """
 
@@ -9,7 +10,7 @@ import pathlib
 import sys
 
 from icm import experiments
-from icm.experiments import rod_toppling
+from icm.experiments import goal_babbling, rod_toppling
 from icm.learners import actor_critic, goal_oriented, interest, predictors, q_learning
 
 
@@ -150,6 +151,43 @@ def _figure7_options(parser):
                              "has toppled it from, or on all (default toppled)")
 
 
+def _goal_babbling(args):
+    figures = _figures()
+    strategies = goal_babbling.STRATEGIES if args.strategy == "all" else (args.strategy,)
+    results = {}
+    for strategy in strategies:
+        results[strategy] = experiments.run_goal_babbling(
+            strategy=strategy, n_seeds=args.seeds, n_rollouts=args.rollouts, seed=args.seed,
+            exploration_noise=args.exploration_noise, epsilon=args.epsilon,
+            window=args.window)
+    print(goal_babbling.comparison_table(results))
+    labels = figures.forming_actions.STRATEGY_LABELS
+    return figures.test_error_figure({labels[s]: r for s, r in results.items()})
+
+
+def _goal_babbling_options(parser):
+    parser.add_argument("--strategy", choices=goal_babbling.STRATEGIES + ("all",),
+                        default="all", help="which strategy to run (default all three)")
+    parser.add_argument("--seeds", type=_positive_int, default=5,
+                        help="number of independent runs per strategy (default 5)")
+    parser.add_argument("--rollouts", type=_positive_int,
+                        default=goal_babbling.DEFAULT_N_ROLLOUTS,
+                        help="movements per run, each simulated "
+                             f"(default {goal_babbling.DEFAULT_N_ROLLOUTS})")
+    parser.add_argument("--exploration-noise", type=_number,
+                        default=goal_babbling.DEFAULT_EXPLORATION_NOISE,
+                        help="the inverse model's noise far from a goal, a share of each "
+                             "joint's range in (0, 1] "
+                             f"(default {goal_babbling.DEFAULT_EXPLORATION_NOISE})")
+    parser.add_argument("--epsilon", type=_number, default=goal_babbling.DEFAULT_EPSILON,
+                        help="learning progress: share of goals in a region drawn "
+                             f"uniformly, in [0, 1] (default {goal_babbling.DEFAULT_EPSILON})")
+    parser.add_argument("--window", type=_integer_at_least(2),
+                        default=goal_babbling.DEFAULT_WINDOW,
+                        help="learning progress: distances per region in the slope, >= 2 "
+                             f"(default {goal_babbling.DEFAULT_WINDOW})")
+
+
 COMMANDS = {
     "figure1": ("Figure 1: the two scenes, rendered from the simulated iCub",
                 _figure1, _no_options),
@@ -159,6 +197,9 @@ COMMANDS = {
                 _figure6, _figure6_options),
     "figure7": ("Figure 7: Q-learning on the rods, the paper's three moments in one run",
                 _figure7, _figure7_options),
+    "goal-babbling": ("Forming actions: goal babbling on the simulated iCub; prints the "
+                      "strategies' numbers and draws their test error",
+                      _goal_babbling, _goal_babbling_options),
 }
 """name -> (help text, function(args) -> Figure, function(subparser) adding options)."""
 

@@ -36,6 +36,9 @@ def test_help_documents_every_figure_and_option(capsys):
     assert "--epsilon" in in_process(["figure5", "--help"], capsys)[1]
     assert "--temperature" in in_process(["figure6", "--help"], capsys)[1]
     assert "--predictor-lr" in in_process(["figure7", "--help"], capsys)[1]
+    babbling_help = in_process(["goal-babbling", "--help"], capsys)[1]
+    for option in ("--strategy", "--rollouts", "--exploration-noise", "--window"):
+        assert option in babbling_help
 
 
 @pytest.mark.parametrize("args", [["figure6", "--seeds", "3", "--trials", "10"],
@@ -67,6 +70,11 @@ def test_figure5_is_written_as_an_image(tmp_path):
     (["figure6", "--lr-actor", "0"], "lr_actor must be"),
     (["figure6", "--variant", "backwards"], "--variant"),
     (["figure7", "--predictor-lr", "1.5"], "predictor_lr"),
+    (["goal-babbling", "--rollouts", "0"], "--rollouts: must be an integer >= 1"),
+    (["goal-babbling", "--strategy", "curious"], "--strategy"),
+    (["goal-babbling", "--exploration-noise", "0"], "exploration_noise must be"),
+    (["goal-babbling", "--epsilon", "x"], "--epsilon: must be a number"),
+    (["goal-babbling", "--window", "1"], "--window: must be an integer >= 2"),
 ])
 def test_bad_options_fail_with_a_clear_message(args, message, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
@@ -86,6 +94,16 @@ def test_error_messages_name_the_option_and_leak_no_internal_names(args, tmp_pat
     assert status == 2 and args[1] in err
     assert "_positive_int" not in err and "_seed" not in err and "parse" not in err
     assert "_number" not in err and "invalid" not in err
+
+
+def test_goal_babbling_prints_the_numbers_and_writes_the_test_error(tmp_path, capsys):
+    out = tmp_path / "babbling.png"
+    status, stdout, _ = in_process(["goal-babbling", "--strategy", "random_goal", "--seeds",
+                                    "1", "--rollouts", "25", "--out", str(out)], capsys)
+    assert status == 0 and "wrote" in stdout
+    assert "| random_goal | 1 | 25 |" in stdout
+    image = matplotlib.image.imread(out)
+    assert image.shape[0] > 100 and image.std() > 0.01
 
 
 def test_figure7_of_run_n_computes_that_run_alone(tmp_path, monkeypatch, capsys):

@@ -3,13 +3,18 @@ sweeps of settings times seeds; the interactive panels' numbers (`panels`)."""
 
 from icm.experiments.actor_critic import ActorCriticResult, run_actor_critic, run_actor_critic_grid
 from icm.experiments.actor_critic import comparison_table as actor_critic_table
+from icm.experiments.goal_babbling import (FormedActionsResult, GoalBabblingResult,
+                                          run_formed_actions, run_goal_babbling)
+from icm.experiments.goal_babbling import comparison_table as goal_babbling_table
 from icm.experiments.goal_oriented import (GoalOrientedResult, comparison_table,
                                           run_goal_oriented, run_goal_oriented_grid)
 from icm.experiments.rod_toppling import RodTopplingResult, run_rod_toppling
 from icm.experiments.sweep import sweep
 from icm.experiments import panels  # noqa: E402 (after the experiments it runs)
 
-__all__ = ["ActorCriticResult", "GoalOrientedResult", "RodTopplingResult",
-           "actor_critic_table", "comparison_table", "panels", "run_actor_critic",
-           "run_actor_critic_grid", "run_goal_oriented", "run_goal_oriented_grid",
+__all__ = ["ActorCriticResult", "FormedActionsResult", "GoalBabblingResult",
+           "GoalOrientedResult", "RodTopplingResult", "actor_critic_table",
+           "comparison_table", "goal_babbling_table", "panels", "run_actor_critic",
+           "run_actor_critic_grid", "run_formed_actions", "run_goal_babbling",
+           "run_goal_oriented", "run_goal_oriented_grid",
            "run_rod_toppling", "sweep"]

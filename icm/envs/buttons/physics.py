@@ -248,6 +248,39 @@ def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
                                        time_limit)
 
 
+def check_press_motions(press_motions):
+    """`press_motions` checked: None, or for each of the `N_BUTTONS` buttons a non-empty
+    sequence of (joint targets, seconds) pairs, returned as tuples of read-only (7,)
+    arrays and floats.
+
+    Raises:
+      ValueError: for anything else, naming the button and the step.
+    """
+    if press_motions is None:
+        return None
+    if isinstance(press_motions, (str, bytes)) or not hasattr(press_motions, "__len__") \
+            or len(press_motions) != N_BUTTONS:
+        raise ValueError(f"press_motions must be None or one motion per button "
+                         f"({N_BUTTONS}), got {_validate.show(press_motions)}")
+    checked = []
+    for button, motion in enumerate(press_motions):
+        if isinstance(motion, (str, bytes)) or not hasattr(motion, "__len__") or not motion:
+            raise ValueError(f"press_motions[{button}] must be a non-empty sequence of "
+                             f"(joint targets, seconds) pairs, got {_validate.show(motion)}")
+        steps = []
+        for i, step in enumerate(motion):
+            if not isinstance(step, (list, tuple)) or len(step) != 2:
+                raise ValueError(f"press_motions[{button}][{i}] must be a (joint targets, "
+                                 f"seconds) pair, got {_validate.show(step)}")
+            target = _validate.finite_array(f"press_motions[{button}][{i}] joint targets",
+                                            step[0], shape=(len(icub.ARM_JOINTS),)).copy()
+            target.flags.writeable = False
+            steps.append((target, _validate.positive(f"press_motions[{button}][{i}] seconds",
+                                                     step[1])))
+        checked.append(tuple(steps))
+    return tuple(checked)
+
+
 class PhysicsButtonConsole(ButtonTrials):
     """The paper's button experiment on the simulated iCub, with discrete actions.
 
@@ -260,7 +293,11 @@ class PhysicsButtonConsole(ButtonTrials):
     its colour. The observation is taken once the motion is over and, if a lid was
     opened, once it is open at least 30 degrees: `boxes` is read from the lids.
 
-    Args: as `ButtonConsole` (red_button, presses_per_trial, rewarded_box, seed).
+    Args: as `ButtonConsole` (red_button, presses_per_trial, rewarded_box, seed), and
+      press_motions: None for the scripted primitive (default), or the movement that
+        presses each button instead: one sequence per button of (joint targets (7,),
+        seconds) pairs, each a minimum-jerk motion of the arm (`icub.Arm.move`), e.g.
+        movements the robot formed itself (`icm.experiments.run_goal_babbling`).
 
     Attributes:
       physics: the `ButtonsPhysics`, to inspect or render.
@@ -273,7 +310,9 @@ class PhysicsButtonConsole(ButtonTrials):
     """Longest wait (seconds) for a lid to open or shut."""
 
     def __init__(self, red_button=DEFAULT_RED_BUTTON,
-                 presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, rewarded_box=None, seed=None):
+                 presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, rewarded_box=None, seed=None,
+                 press_motions=None):
+        self.press_motions = check_press_motions(press_motions)
         self.task = ButtonsTask(red_button=red_button, rewarded_box=rewarded_box,
                                 random=seed)
         self.red_button = self.task.red_button
@@ -329,11 +368,15 @@ class PhysicsButtonConsole(ButtonTrials):
                 task.update(physics)
                 recorder(physics)
 
-        arm.move(motions.above[button], self.REACH_TIME, watch)
-        arm.move(motions.down[button], self.PUSH_TIME, watch)
-        arm.hold(self.HOLD_TIME, watch)
-        arm.move(motions.above[button], self.LIFT_TIME, watch)
-        arm.move(motions.home, self.RETURN_TIME, watch)
+        if self.press_motions is None:
+            arm.move(motions.above[button], self.REACH_TIME, watch)
+            arm.move(motions.down[button], self.PUSH_TIME, watch)
+            arm.hold(self.HOLD_TIME, watch)
+            arm.move(motions.above[button], self.LIFT_TIME, watch)
+            arm.move(motions.home, self.RETURN_TIME, watch)
+        else:
+            for target, duration in self.press_motions[button]:
+                arm.move(target, duration, watch)
         opened = [before is None and after is not None
                   for before, after in zip(opened_before, task._lid_opened_at)]
         waiting = [lids[i] for i in range(2) if opened[i]]
@@ -352,13 +395,22 @@ class PhysicsButtonConsoleBatch:
       seeds: one integer seed per row.
       red_button: the button that is always red.
       presses_per_trial: presses in a trial (the consoles' own episode length).
+      press_motions: None (the scripted presses), or one `press_motions` of
+        `PhysicsButtonConsole` per row.
     """
 
     def __init__(self, seeds, red_button=DEFAULT_RED_BUTTON,
-                 presses_per_trial=DEFAULT_PRESSES_PER_TRIAL):
+                 presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, press_motions=None):
+        seeds = list(seeds)
+        if press_motions is None:
+            press_motions = [None] * len(seeds)
+        elif not isinstance(press_motions, (list, tuple)) or len(press_motions) != len(seeds):
+            raise ValueError(f"press_motions must be None or one entry per row "
+                             f"({len(seeds)}), got {_validate.show(press_motions)}")
         self.consoles = [PhysicsButtonConsole(red_button=red_button,
-                                              presses_per_trial=presses_per_trial, seed=s)
-                         for s in seeds]
+                                              presses_per_trial=presses_per_trial, seed=s,
+                                              press_motions=motions)
+                         for s, motions in zip(seeds, press_motions)]
         self.red_button = check_red_button(red_button)
         self.noisy_button = False
         self.n_actions = N_BUTTONS

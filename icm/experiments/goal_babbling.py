@@ -1,0 +1,552 @@
+"""Forming actions: the simulated iCub learns to press the buttons itself, by goal
+babbling (Rolf, Steil and Gienger 2010) with goals chosen by learning progress
+(SAGG-RIAC, Baranes and Oudeyer 2013; IMGEP, Forestier, Mollard and Oudeyer 2017).
+
+A movement is the arm's 7 final joint targets, reached along a minimum-jerk path from
+home, held, and retracted (`_babbling_physics.MovementLab`); its outcome, measured in
+physics, is the lowest point of the finger at the end of the hold. An inverse model
+(the nearest reached outcome's movement, plus local exploration noise, as explauto's
+nearest-neighbour model) turns goals into movements. Three strategies spend the same
+budget of rollouts:
+
+- "random_motor": uniform random joint targets within the joint ranges;
+- "random_goal": uniform random goals in the goal space, through the inverse model;
+- "learning_progress": goals in regions chosen by learning progress, the decrease of
+  the distance between goals and outcomes in each region, measured as the paper's
+  interest (`icm.learners.interest.InterestTable`).
+
+All seeds run at once: rollout k of every seed is stepped in one call of
+`mujoco.rollout`, and seed k of a batch is seed k run alone.
+"""
+
+import dataclasses
+import functools
+
+import numpy as np
+
+from icm import _validate
+from icm.envs import buttons
+from icm.experiments import goal_oriented as _goal_oriented
+from icm.experiments._babbling_physics import (  # noqa: F401 (the times are re-exported)
+    HOLD_TIME, REACH_TIME, RETRACT_TIME, MovementLab)
+from icm.experiments._progress import progress_bar
+from icm.experiments._seeding import check_run_size, run_seeds
+from icm.learners import goal_oriented, interest, predictors
+from icm.stats import mean_band
+
+STRATEGIES = ("random_motor", "random_goal", "learning_progress")
+"""How the next movement is chosen (see the module docstring)."""
+DEFAULT_N_ROLLOUTS = 1000
+"""Rollouts per run. Measured on 8 seeds of root seed 0 (`python -m icm goal-babbling
+--seeds 8`): learning progress ends at 1.4 cm of test error against 3.3 cm for random
+motor babbling and presses 4.1 of the 5 buttons on average; on 8 seeds of root seed
+11 it presses 3.4 (3.6 after 1,600 rollouts): "at least 4 of 5" is not reached on
+every set of seeds. The lower test error holds on both."""
+DEFAULT_EXPLORATION_NOISE = 0.05
+"""Standard deviation of the inverse model's exploration noise, as a share of each
+joint's range (Forestier, Mollard and Oudeyer's 0.05; about 5 to 8 degrees), while
+the nearest outcome is `NOISE_DISTANCE` or more from the goal."""
+NOISE_DISTANCE = 0.05
+"""Below this distance (m) between the goal and the nearest outcome, the noise
+shrinks in proportion: local exploration gets finer as the goal gets closer, as in
+SAGG-RIAC's low-level exploration (a fixed noise of 0.02 left the presses about 2 cm
+off their goals after 1,000 rollouts)."""
+DEFAULT_EPSILON = 0.3
+"""Share of learning-progress goals drawn in a region chosen uniformly (explauto's
+default for its discretised progress)."""
+DEFAULT_WINDOW = 10
+"""Distances per region in the learning-progress slope (explauto's window)."""
+N_BOOTSTRAP = 20
+"""The goal strategies start with this many random motor commands (the inverse model
+needs outcomes to start from)."""
+GOAL_LOW = np.array([0.22, -0.375, 0.45])
+"""Lower corner of the goal space (m, world frame): the console (x 0.28 to 0.38, y
+-0.315 to 0.055, top at 0.485), the table around it (top at 0.45) and the air above."""
+GOAL_HIGH = np.array([0.44, 0.115, 0.60])
+"""Upper corner of the goal space (m)."""
+REGION_GRID = (1, 7, 2)
+"""Fixed regions of the goal space for learning progress: cells along x, y and z. The
+7 columns along y are 7 cm wide, the buttons' spacing, centred on the five buttons
+and one beyond each end; the 2 layers split at z = 0.525 m, 1 cm above the caps: at
+the console, and in the air."""
+N_CHECKPOINTS = 20
+"""Checkpoints of the test error, evenly spread over a run."""
+DEFAULT_TRIALS = 30
+"""Trials of the goal-oriented learner on the formed actions (`run_formed_actions`)."""
+
+
+def region_bounds():
+    """The fixed regions' corners, [region, 2, 3] (low, high), numbered x-major as
+    `region_of` numbers them."""
+    cells = np.array(REGION_GRID)
+    size = (GOAL_HIGH - GOAL_LOW) / cells
+    out = []
+    for index in np.ndindex(*REGION_GRID):
+        low = GOAL_LOW + np.array(index) * size
+        out.append((low, low + size))
+    return np.array(out)
+
+
+def region_of(points):
+    """The region of each point [..., 3] (points outside the goal space fall in the
+    nearest region), an int array [...]."""
+    points = _validate.finite_array("points", points)
+    if points.ndim < 1 or points.shape[-1] != 3:
+        raise ValueError(f"points must be an array [..., 3], got shape {points.shape}")
+    cells = np.array(REGION_GRID)
+    index = np.floor((points - GOAL_LOW) / (GOAL_HIGH - GOAL_LOW) * cells).astype(np.int64)
+    index = np.clip(index, 0, cells - 1)
+    return np.ravel_multi_index(tuple(np.moveaxis(index, -1, 0)), REGION_GRID)
+
+
+@functools.lru_cache(maxsize=1)
+def _geometry():
+    physics = buttons.load_physics()
+    physics.forward()
+    named = physics.named
+    console = named.data.geom_xpos["console"].copy()
+    half = named.model.geom_size["console"].copy()
+    top = console[2] + half[2]
+    caps = np.array([named.data.geom_xpos[f"button{b}_cap"] for b in range(buttons.N_BUTTONS)])
+    cap_radius, cap_half = named.model.geom_size["button0_cap"][:2]
+    travel = -named.model.jnt_range["button0"][0]
+    press = caps.copy()
+    press[:, 2] = caps[:, 2] + cap_half - travel
+    # The console's top between and beside the caps: a row in front of them and one
+    # behind (4 cm from their centres), at the midpoints between neighbours and one
+    # spacing out from the end buttons (1 cm inside the console's edge); and the
+    # midpoints along the caps' own row.
+    ys = caps[:, 1]
+    spacing = abs(ys[1] - ys[0])
+    between = (ys[:-1] + ys[1:]) / 2
+    row = np.concatenate([[ys[0] + spacing / 2], between, [ys[-1] - spacing / 2]])
+    grid = [(console[0] + dx, y, top) for dx in (-0.04, 0.04) for y in row]
+    grid += [(console[0], y, top) for y in between]
+    return {"console_centre": console, "console_half": half, "console_top": float(top),
+            "caps": caps, "cap_radius": float(cap_radius),
+            "cap_top": float(caps[0, 2] + cap_half), "press_goals": press,
+            "test_goals": np.concatenate([press, np.array(grid)])}
+
+
+def console_geometry():
+    """The console as the model builds it, for goals and figures: a dict with
+    "console_centre", "console_half" (its box), "console_top" (z), "caps" [5, 3]
+    (cap centres), "cap_radius", "cap_top" (z at rest), "press_goals" [5, 3] (each
+    cap's top centre pushed all the way in) and "test_goals" [21, 3] (the five press
+    goals, then 16 points on the console's top between and beside the caps)."""
+    return {key: value.copy() if isinstance(value, np.ndarray) else value
+            for key, value in _geometry().items()}
+
+
+@dataclasses.dataclass(frozen=True)
+class GoalBabblingResult:
+    """What `run_goal_babbling` measured. Rollouts are counted from 1 in
+    `checkpoints`; the rollout axis of the arrays holds rollout 1 at index 0.
+
+    Attributes:
+      settings: the arguments of the run, as a dict.
+      checkpoints: [checkpoint], the rollouts done at each checkpoint.
+      test_goals: [goal, 3], the fixed test goals (m): the five press goals, then
+        points on the console's top (`console_geometry`).
+      test_error: [seed, checkpoint], the mean distance (m) between the test goals
+        and the outcomes the inverse model reaches for them (with no exploration
+        noise: the nearest outcome's movement, which the deterministic physics
+        reproduces exactly).
+      buttons_pressed: [seed, button], whether the learned movement for the button
+        (the inverse model's, for its press goal) presses it, and only it, in a
+        trial on the physics console where it is lit red, and opens the red box.
+      press_movements: [seed, button, 7], those learned movements (joint targets).
+      press_outcomes: [seed, button, 3], what each of them reached.
+      movements: [seed, rollout, 7], the joint targets of every rollout.
+      outcomes: [seed, rollout, 3], where each rollout brought the finger's lowest
+        point at the end of its hold (m).
+      touched: [seed, rollout], whether the finger then touched the console.
+      pressed: [seed, rollout], the first button pushed past the press depth in the
+        rollout, -1 for none.
+      goals: [seed, rollout, 3], the goal of each rollout (NaN for random motor
+        commands).
+      regions: [seed, rollout], the region of each goal (-1 for none).
+      interest: [seed, rollout, region], the interest (learning progress) of each
+        region after each rollout (learning_progress only; zeros otherwise).
+    """
+
+    settings: dict
+    checkpoints: np.ndarray
+    test_goals: np.ndarray
+    test_error: np.ndarray
+    buttons_pressed: np.ndarray
+    press_movements: np.ndarray
+    press_outcomes: np.ndarray
+    movements: np.ndarray
+    outcomes: np.ndarray
+    touched: np.ndarray
+    pressed: np.ndarray
+    goals: np.ndarray
+    regions: np.ndarray
+    interest: np.ndarray
+
+    @property
+    def n_seeds(self):
+        return self.test_error.shape[0]
+
+    @property
+    def n_rollouts(self):
+        return self.outcomes.shape[1]
+
+    @property
+    def strategy(self):
+        return self.settings["strategy"]
+
+    def final_test_error(self):
+        """The test error at the end of each seed's run, [seed] (m)."""
+        return self.test_error[:, -1].copy()
+
+    def summary(self):
+        """The numbers the book quotes, as a dict: the final test error (mean over
+        seeds and its 95% band, in m), the buttons pressed (mean number of the 5,
+        and the share of seeds that press all 5), the share of rollouts that touched
+        the console and that pressed a button."""
+        mean, low, high = mean_band(self.final_test_error()[:, None])
+        return {"test_error": float(mean[0]), "test_error_low": float(low[0]),
+                "test_error_high": float(high[0]),
+                "buttons_pressed": float(self.buttons_pressed.sum(axis=1).mean()),
+                "all_pressed_share": float(self.buttons_pressed.all(axis=1).mean()),
+                "touched_share": float(self.touched.mean()),
+                "press_share": float((self.pressed >= 0).mean())}
+
+    def seed_summaries(self):
+        """One dict per seed: its final test error (m), the number of buttons its
+        learned movements press, and its share of rollouts that pressed a button."""
+        return [{"test_error": float(error), "buttons_pressed": int(pressed.sum()),
+                 "press_share": float((presses >= 0).mean())}
+                for error, pressed, presses in zip(self.final_test_error(),
+                                                   self.buttons_pressed, self.pressed)]
+
+    def goal_shares(self, edges):
+        """The share of goals in each column of regions (along y, `REGION_GRID[1]` of
+        them, the robot's right first) between rollout edges, over all seeds:
+        [stretch, column]; rollouts without a goal are left out (a stretch with none
+        has shares 0).
+
+        Args:
+          edges: increasing rollout counts from 0 to `n_rollouts`, e.g. [0, 100, 200].
+        """
+        edges = _validate.finite_array("edges", edges, ndim=1)
+        if len(edges) < 2 or np.any(np.diff(edges) <= 0) or edges[0] < 0 \
+                or edges[-1] > self.n_rollouts:
+            raise ValueError(f"edges must be increasing rollout counts in 0.."
+                             f"{self.n_rollouts}, got {_validate.show(edges)}")
+        edges = edges.round().astype(np.int64)
+        columns = _region_columns()
+        shares = np.zeros((len(edges) - 1, REGION_GRID[1]))
+        for i, (start, stop) in enumerate(zip(edges[:-1], edges[1:])):
+            regions = self.regions[:, start:stop]
+            chosen = regions[regions >= 0]
+            if len(chosen):
+                shares[i] = np.bincount(columns[chosen], minlength=REGION_GRID[1]) / len(chosen)
+        return shares
+
+    def interest_peaks(self):
+        """The rollout (counted from 1) at which the mean interest of each column of
+        regions peaks, as a dict {column name: rollout} (`COLUMN_NAMES`; 0 for a
+        column never interesting)."""
+        interest = self.column_interest()
+        return {name: int(np.argmax(interest[:, c]) + 1) if interest[:, c].any() else 0
+                for c, name in enumerate(COLUMN_NAMES)}
+
+    def column_interest(self):
+        """The interest of each column of regions (summed over its regions) after each
+        rollout, mean over seeds: [rollout, column], the robot's right first."""
+        columns = _region_columns()
+        out = np.zeros((self.n_rollouts, REGION_GRID[1]))
+        mean = self.interest.mean(axis=0)
+        for column in range(REGION_GRID[1]):
+            out[:, column] = mean[:, columns == column].sum(axis=1)
+        return out
+
+
+COLUMN_NAMES = ("beyond button 4", "button 4", "button 3", "button 2", "button 1",
+                "button 0", "beyond button 0")
+"""The columns of regions along y (`REGION_GRID[1]` of them), the robot's right first:
+one centred on each button and one beyond each end button."""
+
+
+def _region_columns():
+    """The column (index along y) of every region, [region]."""
+    return np.array([index[1] for index in np.ndindex(*REGION_GRID)])
+
+
+def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, exploration_noise,
+                         epsilon, window):
+    checked = dict(
+        strategy=_validate.one_of("strategy", strategy, STRATEGIES),
+        n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
+        n_rollouts=_validate.integer_at_least("n_rollouts", n_rollouts, 1),
+        seed=_validate.root_seed("seed", seed),
+        exploration_noise=_validate.real("exploration_noise", exploration_noise, 0.0, 1.0,
+                                         low_open=True),
+        epsilon=_validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0),
+        window=_validate.integer_at_least("window", window, 2))
+    _validate.boolean("progress", progress)
+    n_goals = len(_geometry()["test_goals"])
+    # Per rollout: movement, outcome, goal, flags and two distances per test goal; per
+    # seed: one rollout's simulated states.
+    check_run_size("run_goal_babbling", checked["n_seeds"], checked["n_rollouts"],
+                   8 * (7 + 3 + 3 + 3 + 2 * n_goals + int(np.prod(REGION_GRID))),
+                   bytes_per_seed=150_000)
+    return checked
+
+
+def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAULT_N_ROLLOUTS,
+                      seed=0, progress=True, exploration_noise=DEFAULT_EXPLORATION_NOISE,
+                      epsilon=DEFAULT_EPSILON, window=DEFAULT_WINDOW):
+    """Runs goal babbling on the simulated iCub, all seeds at once.
+
+    Every rollout is a movement performed in physics from the start of a trial
+    (`mujoco.rollout`, in C). The goal strategies start with `N_BOOTSTRAP` random
+    motor commands; then each rollout has a goal, drawn uniformly in the goal space
+    ("random_goal") or in a region chosen by learning progress
+    ("learning_progress": with probability `epsilon` a region drawn uniformly,
+    otherwise one drawn with probability proportional to its interest, uniformly
+    while every interest is 0). The inverse model takes the movement whose outcome is
+    nearest the goal and adds Gaussian noise to each joint target: standard deviation
+    `exploration_noise` times the joint's range, times min(1, distance from that
+    outcome to the goal / `NOISE_DISTANCE`).
+
+    At the end, each seed's inverse model is asked to press each button (its press
+    goal, with no noise) and the movement is run on the physics console, the button
+    lit red.
+
+    Args:
+      strategy: one of `STRATEGIES`.
+      n_seeds: independent runs (>= 1).
+      n_rollouts: movements per run (>= 1).
+      seed: the root seed: an integer >= 0, a `numpy.random.Generator` or None; run
+        i's seeds depend only on it and i (kept in `settings["seed"]`).
+      progress: show a progress bar over the rollouts when the run lasts over a
+        second.
+      exploration_noise: the noise's standard deviation as a share of each joint's
+        range, far from the goal, in (0, 1].
+      epsilon: learning progress's share of uniformly drawn regions, in [0, 1].
+      window: distances per region in the learning-progress slope (>= 2).
+
+    Returns:
+      A `GoalBabblingResult`.
+
+    Raises:
+      ValueError: for any argument outside its allowed range, or a run too large for
+        this machine's memory.
+    """
+    settings = _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress,
+                                    exploration_noise, epsilon, window)
+    lab = MovementLab()
+    seeds = run_seeds(settings["seed"], n_seeds, 2)
+    arrays = _babble(settings, lab, [s[0] for s in seeds], progress)
+    geometry = _geometry()
+    outcomes, movements = arrays["outcomes"], arrays["movements"]
+    checkpoints = np.unique(np.linspace(0, n_rollouts, N_CHECKPOINTS + 1)[1:].round()
+                            .astype(np.int64))
+    test_goals = geometry["test_goals"]
+    distance = np.sqrt(((outcomes[:, :, None, :] - test_goals[None, None]) ** 2).sum(axis=3))
+    best = np.minimum.accumulate(distance, axis=1)  # [seed, rollout, goal]
+    test_error = best[:, checkpoints - 1].mean(axis=2)
+    to_press = np.sqrt(((outcomes[:, :, None, :] - geometry["press_goals"][None, None]) ** 2)
+                       .sum(axis=3)).argmin(axis=1)  # [seed, button]
+    press_movements = np.take_along_axis(movements, to_press[:, :, None], axis=1)
+    press_outcomes = np.take_along_axis(outcomes, to_press[:, :, None], axis=1)
+    buttons_pressed = _press_each_button(lab, press_movements, [s[1] for s in seeds])
+    return GoalBabblingResult(settings, checkpoints, test_goals.copy(), test_error,
+                              buttons_pressed, press_movements, press_outcomes, movements,
+                              outcomes, arrays["touched"], arrays["pressed"], arrays["goals"],
+                              arrays["regions"], arrays["interest"])
+
+
+def _babble(settings, lab, seeds, progress):
+    """The rollouts of a run, all seeds at once (one generator per seed, from `seeds`):
+    a dict of the arrays `GoalBabblingResult` keeps per rollout."""
+    strategy, n_rollouts = settings["strategy"], settings["n_rollouts"]
+    n_seeds, epsilon = len(seeds), settings["epsilon"]
+    generators = [np.random.default_rng(s) for s in seeds]
+    n_regions = int(np.prod(REGION_GRID))
+    bounds = region_bounds()
+    noise = settings["exploration_noise"] * (lab.upper - lab.lower)
+    n_boot = n_rollouts if strategy == "random_motor" else min(N_BOOTSTRAP, n_rollouts)
+    learning = interest.InterestTable(n_seeds, n_regions, "learning_progress",
+                                      window=settings["window"])
+    movements = np.zeros((n_seeds, n_rollouts, 7))
+    outcomes = np.zeros((n_seeds, n_rollouts, 3))
+    touched = np.zeros((n_seeds, n_rollouts), dtype=bool)
+    pressed = np.zeros((n_seeds, n_rollouts), dtype=np.int64)
+    goals = np.full((n_seeds, n_rollouts, 3), np.nan)
+    regions = np.full((n_seeds, n_rollouts), -1, dtype=np.int64)
+    interest_log = np.zeros((n_seeds, n_rollouts, n_regions))
+
+    for i in progress_bar(range(n_rollouts), n_rollouts,
+                          f"goal babbling ({strategy}, {n_seeds} seeds at once)", progress,
+                          unit="rollout"):
+        targets = np.empty((n_seeds, 7))
+        values = learning.values() if strategy == "learning_progress" and i >= n_boot \
+            else None
+        for k, rng in enumerate(generators):
+            if i < n_boot:
+                targets[k] = rng.uniform(lab.lower, lab.upper)
+                continue
+            if strategy == "random_goal":
+                goal = rng.uniform(GOAL_LOW, GOAL_HIGH)
+                region = int(region_of(goal))
+            else:
+                region = _choose_region(values[k], epsilon, rng)
+                goal = rng.uniform(*bounds[region])
+            squared = ((outcomes[k, :i] - goal) ** 2).sum(axis=1)
+            nearest = np.argmin(squared)
+            scale = min(1.0, np.sqrt(squared[nearest]) / NOISE_DISTANCE)
+            targets[k] = movements[k, nearest] + rng.normal(0.0, noise) * scale
+            goals[k, i], regions[k, i] = goal, region
+        done = lab.perform(targets)
+        movements[:, i] = lab.check_targets(targets)
+        outcomes[:, i], touched[:, i], pressed[:, i] = (done["outcome"], done["touched"],
+                                                        done["pressed"])
+        if strategy == "learning_progress" and i >= n_boot:
+            distance = np.sqrt(((goals[:, i] - outcomes[:, i]) ** 2).sum(axis=1))
+            learning.record(None, regions[:, i], distance)
+            interest_log[:, i] = learning.values()
+    return {"movements": movements, "outcomes": outcomes, "touched": touched,
+            "pressed": pressed, "goals": goals, "regions": regions, "interest": interest_log}
+
+
+def _choose_region(values, epsilon, rng):
+    """A region: uniformly with probability `epsilon` (or while every interest is 0),
+    else with probability proportional to its interest. Draws two numbers."""
+    explore, draw = rng.random(2)
+    total = values.sum()
+    if explore < epsilon or not total > 0:
+        return min(int(draw * len(values)), len(values) - 1)
+    return min(int(np.searchsorted(np.cumsum(values), draw * total, side="right")),
+               len(values) - 1)
+
+
+def _press_each_button(lab, press_movements, seeds):
+    """[seed, button]: whether the movement for each button, run on a physics console
+    where that button is lit red (one console per button), presses that button and
+    no other, and opens the red box only."""
+    n_seeds = len(press_movements)
+    out = np.zeros((n_seeds, buttons.N_BUTTONS), dtype=bool)
+    check = buttons.physics.check_press_motions
+    for button in range(buttons.N_BUTTONS):
+        console = buttons.PhysicsButtonConsole(red_button=button)
+        for k in range(n_seeds):
+            console.press_motions = check([lab.phases(m) for m in press_movements[k]])
+            console.reseed(seeds[k])
+            console.reset()
+            boxes = console.press(button)
+            out[k, button] = (set(console.task.press_log) == {button}
+                              and boxes.tolist() == [1, 0])
+    return out
+
+
+@dataclasses.dataclass(frozen=True)
+class FormedActionsResult:
+    """What `run_formed_actions` measured.
+
+    Attributes:
+      settings: the arguments of the run, as a dict.
+      learner: the goal-oriented learner's `GoalOrientedResult` on the console whose
+        five actions are the formed movements.
+      as_scripted: the share of the learner's presses whose effect (which box
+        opened) is what the scripted press of the same button gives in that layout.
+      n_presses: the presses the learner made, over all seeds.
+    """
+
+    settings: dict
+    learner: _goal_oriented.GoalOrientedResult
+    as_scripted: float
+    n_presses: int
+
+    def red_first_fraction(self):
+        """Share of seeds in which red is mastered strictly before green (see
+        `GoalOrientedResult.red_first_fraction`)."""
+        return self.learner.red_first_fraction()
+
+
+class _Recorder:
+    """The physics console batch, keeping every (layout, action, effect)."""
+
+    def __init__(self, env):
+        self.env, self.log = env, []
+        self.n_actions, self.red_button = env.n_actions, env.red_button
+
+    def __len__(self):
+        return len(self.env)
+
+    def new_trials(self):
+        self.layout = self.env.new_trials()
+        return self.layout
+
+    def press(self, actions):
+        effects = self.env.press(actions)
+        self.log.append((self.layout.copy(), np.asarray(actions).copy(), effects.copy()))
+        return effects
+
+
+def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True):
+    """Runs the paper's goal-oriented learner on the physics console, with the movements
+    the robot formed by goal babbling as its five press actions.
+
+    Row k of the learner uses seed k's learned movements (`press_movements`) and the
+    seeds `run_goal_oriented(n_seeds, n_trials, seed=seed)` gives its run k, so the two
+    can be compared seed by seed. The learner keeps its defaults (the paper's).
+
+    Args:
+      babbling: a `GoalBabblingResult`.
+      n_trials: trials per run (>= 1).
+      seed: the root seed of the learner's runs (as in `run_goal_oriented`).
+      progress: show a progress bar over the trials.
+
+    Returns:
+      A `FormedActionsResult`.
+
+    Raises:
+      ValueError: for a bad argument.
+    """
+    _validate.instance("babbling", babbling, GoalBabblingResult,
+                       "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
+    n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
+    settings = _goal_oriented._check_run_arguments(
+        babbling.n_seeds, n_trials, goal_oriented.DEFAULT_EPSILON, interest.DEFAULT_WINDOW,
+        interest.DEFAULT_NEW_TASK_FACTOR, "progress", predictors.DEFAULT_ACTION_WEIGHT,
+        buttons.DEFAULT_PRESSES_PER_TRIAL, buttons.DEFAULT_RED_BUTTON, "learning_progress",
+        "task", False, True, seed, progress)
+    settings["formed_by"] = babbling.strategy
+    seeds = run_seeds(settings["seed"], babbling.n_seeds, 2)
+    lab = MovementLab()
+    motions = [[lab.phases(m) for m in movements] for movements in babbling.press_movements]
+    red = buttons.DEFAULT_RED_BUTTON
+    env = _Recorder(buttons.PhysicsButtonConsoleBatch(
+        [s[0] for s in seeds], red, buttons.DEFAULT_PRESSES_PER_TRIAL, press_motions=motions))
+    agent = goal_oriented.GoalOrientedBatch(
+        [s[1] for s in seeds], np.array(buttons.layouts(red)), buttons.EFFECTS,
+        env.n_actions)
+    learner = _goal_oriented._play(settings, env, agent, n_trials,
+                                   buttons.DEFAULT_PRESSES_PER_TRIAL, red, progress)
+    table = buttons.outcome_table(red)
+    matches = [table[layout, actions] == effects for layout, actions, effects in env.log]
+    return FormedActionsResult(settings, learner, float(np.mean(matches)), int(np.size(matches)))
+
+
+def comparison_table(results):
+    """A Markdown table of the three strategies' numbers, one row per run.
+
+    Args:
+      results: a dict {row label: GoalBabblingResult}.
+    """
+    _goal_oriented.check_results("results", results, GoalBabblingResult)
+    lines = ["| strategy | seeds | rollouts | test error at the end, cm (95% band) "
+             "| buttons pressed (of 5) | seeds pressing all 5 | rollouts that pressed a button |",
+             "|---|---|---|---|---|---|---|"]
+    for label, result in results.items():
+        s = result.summary()
+        lines.append(f"| {label} | {result.n_seeds} | {result.n_rollouts} "
+                     f"| {100 * s['test_error']:.1f} ({100 * s['test_error_low']:.1f} to "
+                     f"{100 * s['test_error_high']:.1f}) | {s['buttons_pressed']:.1f} "
+                     f"| {s['all_pressed_share']:.0%} | {s['press_share']:.1%} |")
+    return "\n".join(lines)

@@ -1,0 +1,223 @@
+"""Figures of the chapter "Forming actions": test error of the three goal-babbling
+strategies, coverage of the console, where learning progress put its goals, and the
+learned presses rendered from the simulation."""
+
+import matplotlib.patches
+import matplotlib.ticker
+import numpy as np
+
+from icm import _validate
+from icm.envs import buttons
+from icm.experiments import goal_babbling as _babbling
+from icm.experiments.goal_babbling import GoalBabblingResult
+from icm.experiments.goal_oriented import check_results
+from icm.figures._common import check_result, new_figure, plot_mean_band
+
+_MADE_BY = "icm.experiments.run_goal_babbling"
+STRATEGY_COLOURS = {"random_motor": "#7f7f7f", "random_goal": "#1f77b4",
+                    "learning_progress": "#e66101"}
+"""One colour per strategy."""
+STRATEGY_LABELS = {"random_motor": "random motor babbling",
+                   "random_goal": "random goal babbling",
+                   "learning_progress": "goals by learning progress"}
+"""How the figures name the strategies."""
+_OUTCOME_COLOURS = {"touched": "#1f77b4", "other": "#b0b0b0"}
+
+
+def _label(result):
+    return STRATEGY_LABELS.get(result.strategy, result.strategy)
+
+
+def test_error_figure(results):
+    """The test error against rollouts, one curve per run: the mean over seeds with
+    its 95% band, in centimetres.
+
+    Args:
+      results: a dict {label: GoalBabblingResult}, e.g. one per strategy.
+    """
+    check_results("results", results, GoalBabblingResult)
+    fig, ax = new_figure(width=6.8, height=3.8)
+    for label, result in results.items():
+        plot_mean_band(ax, 100 * result.test_error,
+                       STRATEGY_COLOURS.get(result.strategy, "black"),
+                       f"{label} ({result.n_seeds} seeds)", x=result.checkpoints)
+    ax.set_xlabel("rollouts")
+    ax.set_ylabel("test error (cm, mean over seeds)")
+    ax.set_ylim(bottom=0)
+    ax.set_xlim(left=0)
+    ax.set_title("Distance from the test goals to what the inverse model reaches, "
+                 "95% band", fontsize=10)
+    ax.legend(frameon=False, fontsize=8)
+    return fig
+
+
+def _draw_console(ax, geometry):
+    """The console's top, seen from above: robot's left (+y) on the left, away from
+    the robot (+x) up; the caps as circles numbered 0 to 4."""
+    centre, half = geometry["console_centre"], geometry["console_half"]
+    ax.add_patch(matplotlib.patches.Rectangle(
+        (centre[1] - half[1], centre[0] - half[0]), 2 * half[1], 2 * half[0],
+        facecolor="#f4f4f4", edgecolor="#555555", linewidth=1, zorder=0))
+    for b, cap in enumerate(geometry["caps"]):
+        ax.add_patch(matplotlib.patches.Circle((cap[1], cap[0]), geometry["cap_radius"],
+                                               facecolor="white", edgecolor="#555555",
+                                               linewidth=0.8, zorder=0))
+        ax.text(cap[1], cap[0] - half[0] - 0.012, str(b), ha="center", va="top",
+                fontsize=7, color="#555555")
+    ax.set_xlim(_babbling.GOAL_HIGH[1], _babbling.GOAL_LOW[1])  # robot's left on the left
+    ax.set_ylim(_babbling.GOAL_LOW[0], _babbling.GOAL_HIGH[0])
+    ax.set_aspect("equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+
+
+def coverage_figure(results, early=0.2):
+    """Where the finger went, seen from above, per run: the outcomes of the first
+    `early` share of the rollouts (left) and of all of them (right), over every seed.
+    Blue: the finger ended touching the console or a cap; grey: in the air or on the
+    table. Crosses: the press goals.
+
+    Args:
+      results: a dict {label: GoalBabblingResult}.
+      early: the share of rollouts in the left column, in (0, 1).
+    """
+    check_results("results", results, GoalBabblingResult)
+    early = _validate.real("early", early, 0.0, 1.0, low_open=True, high_open=True)
+    geometry = _babbling.console_geometry()
+    fig, axes = new_figure(width=7.6, height=2.35 * len(results) + 0.4, ncols=2,
+                           nrows=len(results), squeeze=False)
+    for row, (label, result) in zip(axes, results.items()):
+        stops = (max(1, int(round(early * result.n_rollouts))), result.n_rollouts)
+        for ax, stop in zip(row, stops):
+            _draw_console(ax, geometry)
+            outcomes = result.outcomes[:, :stop].reshape(-1, 3)
+            touched = result.touched[:, :stop].reshape(-1)
+            for kind, mask in (("other", ~touched), ("touched", touched)):
+                ax.scatter(outcomes[mask, 1], outcomes[mask, 0], s=3, linewidths=0,
+                           color=_OUTCOME_COLOURS[kind], alpha=0.6,
+                           label={"touched": "ended on the console",
+                                  "other": "ended elsewhere"}[kind])
+            goals = geometry["press_goals"]
+            ax.scatter(goals[:, 1], goals[:, 0], marker="x", s=18, color="black",
+                       linewidths=1, label="press goals")
+            pressed = (result.pressed[:, :stop] >= 0).mean()
+            ax.set_title(f"{label}: first {stop} rollouts, {result.n_seeds} seeds\n"
+                         f"{touched.mean():.0%} ended on the console, {pressed:.0%} pressed "
+                         "a button", fontsize=8)
+    axes[0, 0].legend(frameon=False, fontsize=7, loc="lower left", markerscale=2)
+    return fig
+
+
+def goal_choice_figure(result, n_stretches=8):
+    """Where learning progress put its interest and its goals over the run: the
+    interest of each column of regions after each rollout (left, mean over seeds),
+    and the share of goals in each column per stretch of the run (right), both on a
+    logarithmic scale of rollouts. Columns are listed from the robot's left (button
+    0) down to its right, each the console and the air above it.
+
+    Args:
+      result: a `GoalBabblingResult` of the "learning_progress" strategy.
+      n_stretches: stretches of the run on the right (>= 1), of equal length on the
+        logarithmic scale, from the end of the random start.
+    """
+    check_result("result", result, GoalBabblingResult, _MADE_BY)
+    if result.strategy != "learning_progress":
+        raise ValueError(f"result must come from the learning_progress strategy, got "
+                         f"{result.strategy!r}")
+    n_stretches = _validate.integer_at_least("n_stretches", n_stretches, 1)
+    start = min(_babbling.N_BOOTSTRAP, result.n_rollouts - 1)
+    if result.n_rollouts - start < n_stretches:
+        raise ValueError(f"n_stretches must be at most the {result.n_rollouts - start} "
+                         f"rollouts with goals, got {n_stretches}")
+    order = list(reversed(range(len(_babbling.COLUMN_NAMES))))  # the robot's left on top
+    names = [_babbling.COLUMN_NAMES[c] for c in order]
+    fig, (left, right) = new_figure(width=10.5, height=3.6, ncols=2)
+    interest = result.column_interest()[start:, order]  # [rollout, column]
+    x = np.arange(start, result.n_rollouts + 1) + 0.5
+    mesh = left.pcolormesh(x, np.arange(len(order) + 1) - 0.5, interest.T, cmap="Purples",
+                           vmin=0, shading="flat")
+    fig.colorbar(mesh, ax=left, shrink=0.85, label="interest (m per goal)")
+    left.set_title(f"Interest of each column of regions, mean of {result.n_seeds} seeds",
+                   fontsize=9)
+    edges = np.unique(np.geomspace(start, result.n_rollouts, n_stretches + 1).round())
+    edges[0], edges[-1] = start, result.n_rollouts
+    shares = result.goal_shares(edges)[:, order]
+    mesh = right.pcolormesh(edges, np.arange(len(order) + 1) - 0.5, shares.T,
+                            cmap="Oranges", vmin=0, shading="flat")
+    fig.colorbar(mesh, ax=right, shrink=0.85, label="share of goals")
+    right.set_title(f"Share of goals in each column, {result.n_seeds} seeds", fontsize=9)
+    ticks = [t for t in (20, 50, 100, 200, 500, 1000, 2000, 5000, 10000)
+             if start <= t <= result.n_rollouts]
+    for ax in (left, right):
+        ax.set_xscale("log")
+        ax.set_xlim(max(start, 1), result.n_rollouts)
+        ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator(ticks))
+        ax.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.set_yticks(range(len(names)), names, fontsize=7)
+        ax.set_ylim(len(names) - 0.5, -0.5)
+        ax.set_xlabel("rollouts (log scale)")
+    return fig
+
+
+def record_learned_press(result, seed=0, button=0, camera="over_shoulder", height=240,
+                         width=320):
+    """Runs one learned press on the physics console (the button lit red) and renders
+    the scene at the end of the hold, when the finger is at its outcome.
+
+    Args:
+      result: a `GoalBabblingResult`.
+      seed: which of its seeds' movements.
+      button: the button to press (0-4).
+      camera, height, width: the view (see `icm.figures.icub.render`).
+
+    Returns:
+      A dict: "frame" (RGB image), "pressed" (the buttons pushed past the press
+      depth, in order), "boxes" (the boxes seen after the press: red, green).
+    """
+    from icm.experiments._babbling_physics import MovementLab
+    from icm.figures.icub import check_camera, check_image_size, render
+
+    check_result("result", result, GoalBabblingResult, _MADE_BY)
+    seed = _validate.integer("seed", seed, 0, result.n_seeds - 1)
+    button = _validate.integer("button", button, 0, buttons.N_BUTTONS - 1)
+    height, width = check_image_size(height, width)
+    lab = MovementLab()
+    console = buttons.PhysicsButtonConsole(
+        red_button=button, seed=0,
+        press_motions=[lab.phases(m) for m in result.press_movements[seed]])
+    check_camera(console.physics, camera)
+    console.reset()
+    frames, updates = [], []
+    outcome_update = sum(lab.n_updates[:2])
+
+    def recorder(physics):
+        updates.append(None)
+        if len(updates) == outcome_update:
+            frames.append(render(physics, camera, height, width))
+
+    boxes = console.press(button, recorder=recorder)
+    return {"frame": frames[0], "pressed": list(console.task.press_log), "boxes": boxes}
+
+
+def learned_presses_figure(result, seed=0, camera="over_shoulder"):
+    """Each button pressed by the movement the robot learned for it (one seed), seen
+    at the end of the hold, each in a trial where that button is lit red.
+
+    Args:
+      result: a `GoalBabblingResult`.
+      seed: which of its seeds.
+      camera: the camera to render from.
+    """
+    check_result("result", result, GoalBabblingResult, _MADE_BY)
+    fig, axes = new_figure(width=13, height=2.9, ncols=buttons.N_BUTTONS)
+    for button, ax in enumerate(axes):
+        record = record_learned_press(result, seed, button, camera)
+        ax.imshow(record["frame"])
+        ax.axis("off")
+        pressed = ", ".join(map(str, record["pressed"])) or "none"
+        opened = "red box open" if record["boxes"][0] else "red box shut"
+        ax.set_title(f"button {button}: pressed {pressed}\n{opened}", fontsize=8)
+    fig.suptitle(f"The learned presses ({_label(result)}, seed {seed}), at the end of "
+                 "the hold", fontsize=10)
+    return fig
