@@ -12,6 +12,7 @@ others, whose outcome the task draws from its random state (`rules.noisy_effect`
 
 import collections
 
+import mujoco
 import numpy as np
 from dm_env import specs
 
@@ -55,7 +56,8 @@ class ButtonsPhysics(icub.ArmPhysics):
         if getattr(self, "_cached_model", None) is not self.model.ptr:
             model = self.model
             joint = lambda name: model.jnt_qposadr[model.name2id(name, "joint")]
-            present = [name for name in _BUTTON_JOINTS if model.name2id(name, "joint") >= 0]
+            present = [name for name in _BUTTON_JOINTS  # button5 only with the noisy button
+                       if mujoco.mj_name2id(model.ptr, mujoco.mjtObj.mjOBJ_JOINT, name) >= 0]
             self._button_qpos = np.array([joint(name) for name in present])
             self._lid_qpos = np.array([joint(name) for name in _LIDS])
             self._lid_ctrl = np.array([model.name2id(name, "actuator") for name in _LIDS])
@@ -190,7 +192,7 @@ class ButtonsTask(icub.ArmTask):
         green = draw_green(self.generator, self.red_button)
         self.lights = lights_for(self.red_button, green)
         physics.set_lights(self.lights)
-        physics.named.data.qpos[_BUTTON_JOINTS] = 0.0
+        physics.data.qpos[physics._indices()._button_qpos] = 0.0
         physics.named.data.qpos[_LIDS] = 0.0
         physics._set_lid_targets(0.0, 0.0)
         self._lid_targets = (0.0, 0.0)

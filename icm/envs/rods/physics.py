@@ -10,6 +10,7 @@ same table plus the wobbly rod, which the task watches (see `RodsTask`).
 
 import collections
 
+import mujoco
 import numpy as np
 from dm_env import specs
 
@@ -44,7 +45,8 @@ class RodsPhysics(icub.ArmPhysics):
     def rod_names(self):
         """The rods of the scene: red, blue, and the wobbly one if it is there."""
         if getattr(self, "_rod_model", None) is not self.model.ptr:
-            self._has_wobbly = self.model.name2id(_WOBBLY_ROD, "body") >= 0
+            self._has_wobbly = mujoco.mj_name2id(self.model.ptr, mujoco.mjtObj.mjOBJ_BODY,
+                                                 _WOBBLY_ROD) >= 0
             self._rod_model = self.model.ptr
         return rod_names(self._has_wobbly)
 
