@@ -82,6 +82,9 @@ GOAL_CASES = [
     {"interest_per": "region"}, {"interest_per": "region", "signal": "prediction_error"},
     {"noisy_button": True}, {"noisy_button": True, "interest_per": "region",
                              "signal": "prediction_error"},
+    {"noisy_button": True, "interest_per": "region"},
+    {"noisy_button": True, "interest_per": "region", "signal": "novelty"},
+    {"noisy_button": True, "signal": "random", "red_button": 4},
 ]
 
 

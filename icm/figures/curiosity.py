@@ -36,8 +36,9 @@ def signal_mastery_figure(comparison):
     check_result("comparison", comparison, SignalComparison,
                  "icm.experiments.run_signal_comparison")
     worlds = comparison.settings["noisy"]
-    fig, axes = new_figure(width=5.2 * len(worlds), height=3.9, ncols=len(worlds),
+    fig, axes = new_figure(width=5.2 * len(worlds), height=4.2, ncols=len(worlds),
                            sharex=True, sharey=True, squeeze=False)
+    right_end = 0.0
     rows = [(s, d) for s in comparison.settings["signals"]
             for d in comparison.settings["designs"]]
     for ax, noisy in zip(axes[0], worlds):
@@ -47,6 +48,7 @@ def signal_mastery_figure(comparison):
                 mean, low, high = numbers[f"{task}_mastery"]
                 share = numbers[f"{task}_mastered"][0]
                 colour = TASK_COLOURS[task]
+                right_end = max(right_end, high)
                 ax.errorbar(mean, y + offset, xerr=[[mean - low], [high - mean]], fmt="o",
                             color=colour, mfc=colour if share >= 0.95 else "white",
                             markersize=6, capsize=2)
@@ -57,10 +59,10 @@ def signal_mastery_figure(comparison):
         ax.set_yticks(range(len(rows)))
         ax.set_yticklabels([f"{_label(s)}, per {d}" for s, d in rows], fontsize=8)
         ax.set_xlabel("mastery trial (mean, 95% band)")
-        ax.set_xlim(left=0)
         ax.grid(axis="x", alpha=0.3)
         ax.set_title(("with the noisy button" if noisy else "five buttons") +
                      f", {comparison.settings['n_seeds']} seeds", fontsize=10)
+    axes[0][0].set_xlim(0, 1.3 * right_end)  # the axes share x: room for every band
     axes[0][0].invert_yaxis()  # the axes share y: once for all
     axes[0][0].plot([], [], "o", color=TASK_COLOURS["red"], label="red task")
     axes[0][0].plot([], [], "o", color=TASK_COLOURS["green"], label="green task")

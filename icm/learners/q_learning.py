@@ -34,7 +34,7 @@ REWARDS = ("prediction_error",) + tuple(s for s in SIGNALS if s != "prediction_e
 """The intrinsic rewards, by name: the interest signals of `icm.learners.interest`,
 each kept per (state, action) pair and fed the predictor's error on every move:
 
-- "prediction_error" (the paper's, default): the error itself, r = sum_i |o_i - p_i|;
+- "prediction_error" (the paper's, default): the error itself, ``r = sum_i abs(o_i - p_i)``;
 - "learning_progress": how fast the pair's errors fall, max(0, -slope) of its last
   `window` errors (a least-squares slope; 0 until the pair was tried twice);
 - "novelty": 1 / sqrt(1 + n), n the times the pair was tried, this move included;
