@@ -82,6 +82,9 @@ GOAL_CASES = [
     {"interest_per": "region"}, {"interest_per": "region", "signal": "prediction_error"},
     {"noisy_button": True}, {"noisy_button": True, "interest_per": "region",
                              "signal": "prediction_error"},
+    {"noisy_button": True, "interest_per": "region"},
+    {"noisy_button": True, "interest_per": "region", "signal": "novelty"},
+    {"noisy_button": True, "signal": "random", "red_button": 4},
 ]
 
 
@@ -195,55 +198,62 @@ def test_actor_critic_batch_equals_the_per_agent_learner(case):
 
 def reference_rod_toppling(n_seeds, n_episodes, seed=0, epsilon=0.1, alpha=0.5, gamma=0.9,
                            predictor_lr=0.2, initial_q=0.1, max_moves=30, start_cell=(0, 0),
-                           snapshot_episodes=()):
+                           snapshot_episodes=(), reward="prediction_error", window=5,
+                           wobbly_rod=False):
     """run_rod_toppling's arrays, from the per-agent QLearner and LinearPredictor on one
     RodTable per seed, each run kept whole and its moments found afterwards (the
     package's earlier implementation)."""
     n_states, n_actions, grid = rods.N_CELLS, len(rods.ACTIONS), (rods.N_COLUMNS, rods.N_ROWS)
+    n_rods = 3 if wobbly_rod else 2
     names = rod_experiment.MOMENTS + tuple(f"episode {e}" for e in snapshot_episodes)
     truth = rod_experiment.true_outcomes()
+    if wobbly_rod:  # no red or blue pair topples the wobbly rod
+        truth = np.concatenate([truth, np.where(np.isnan(truth[..., :1]), np.nan, 0.0)], axis=-1)
     standing = ~np.isnan(truth[..., 0, 0])
     topples = np.nan_to_num(truth) == 1
     to_grid = lambda h: np.swapaxes(h.reshape((h.shape[0], rods.N_ROWS, rods.N_COLUMNS)
                                               + h.shape[2:]), 1, 2)
     out = {"toppled": np.full((n_seeds, n_episodes), -1),
            "episode_length": np.zeros((n_seeds, n_episodes), dtype=np.int64),
-           "prediction_error": np.zeros((n_seeds, n_episodes, 2)),
+           "prediction_error": np.zeros((n_seeds, n_episodes, n_rods)),
            "rod_error": np.zeros((n_seeds, n_episodes, 2)),
            "rod_error_toppled": np.full((n_seeds, n_episodes, 2), np.nan),
            "predicted_well_toppled": np.full((n_seeds, 2), -1),
            "snapshot_episode": np.full((n_seeds, len(names)), -1),
            "q_table": np.full((n_seeds, len(names)) + grid + (n_actions,), np.nan),
-           "predictions": np.full((n_seeds, len(names)) + grid + (n_actions, 2), np.nan),
+           "predictions": np.full((n_seeds, len(names)) + grid + (n_actions, n_rods), np.nan),
            "confidence": np.full((n_seeds, len(names)) + grid, np.nan)}
     for run, (env_seed, agent_seed) in enumerate(run_seeds(seed, n_seeds, 2)):
-        env = rods.RodTable(start_cell, max_moves, seed=env_seed)
-        predictor = LinearPredictor(n_actions, 2, lr=predictor_lr)
+        env = rods.RodTable(start_cell, max_moves, wobbly_rod=wobbly_rod, seed=env_seed)
+        predictor = LinearPredictor(n_actions, n_rods, lr=predictor_lr)
         agent = QLearner(n_states, n_actions, predictor, alpha, gamma, epsilon, initial_q,
-                         seed=agent_seed)
+                         reward=reward, window=window, seed=agent_seed)
         q_history = np.zeros((n_episodes, n_states, n_actions))
-        p_history = np.zeros((n_episodes, n_states, n_actions, 2))
+        p_history = np.zeros((n_episodes, n_states, n_actions, n_rods))
         c_history = np.zeros((n_episodes, n_states))
-        found = np.full((n_states, n_actions, 2), n_episodes)
+        found = np.full((n_states, n_actions, n_rods), n_episodes)
         for episode in range(n_episodes):
             state = rods.cell_number(env.reset().observation["hand"])
-            red_error = blue_error = 0.0
+            episode_errors = np.zeros(n_rods)
             moves = 0
             while True:
                 action = agent.select_action(state)
                 step = env.step(action)
                 observed = step.observation["rods"].tolist()
                 next_state = rods.cell_number(step.observation["hand"])
-                red, blue = predictor.update_per_output(state, action, observed)
-                agent.update(state, action, red + blue, next_state, step.discount)
-                red_error += red
-                blue_error += blue
+                if reward == "prediction_error":  # the package's earlier implementation
+                    errors = predictor.update_per_output(state, action, observed)
+                    agent.update(state, action, sum(errors), next_state, step.discount)
+                else:  # the per-agent learner's own step
+                    errors = [abs(o - p) for o, p in zip(observed, predictor.predict(state, action))]
+                    agent.learn(state, action, observed, next_state, step.discount)
+                episode_errors += errors
                 moves += 1
                 if step.last():
                     break
                 state = next_state
             out["episode_length"][run, episode] = moves
-            out["prediction_error"][run, episode] = red_error, blue_error
+            out["prediction_error"][run, episode] = episode_errors
             if any(observed):
                 rod = observed.index(1)
                 out["toppled"][run, episode] = rod
@@ -283,7 +293,11 @@ def reference_rod_toppling(n_seeds, n_episodes, seed=0, epsilon=0.1, alpha=0.5, 
 
 ROD_CASES = [{}, {"epsilon": 0.0}, {"initial_q": 0.0}, {"initial_q": 1.0},
              {"predictor_lr": 1.0}, {"gamma": 0.0, "alpha": 1.0}, {"epsilon": 1.0},
-             {"max_moves": 5}, {"start_cell": (4, 0)}, {"snapshot_episodes": (1, 17, 60)}]
+             {"max_moves": 5}, {"start_cell": (4, 0)}, {"snapshot_episodes": (1, 17, 60)},
+             {"reward": "learning_progress"}, {"reward": "learning_progress", "window": 3},
+             {"reward": "novelty"}, {"reward": "random"}, {"wobbly_rod": True},
+             {"wobbly_rod": True, "reward": "learning_progress"},
+             {"wobbly_rod": True, "reward": "random", "max_moves": 5}]
 
 
 @pytest.mark.parametrize("case", ROD_CASES, ids=lambda c: ",".join(f"{k}={v}" for k, v in c.items()) or "default")

@@ -332,3 +332,112 @@ def test_goal_oriented_learner_gives_identical_results_on_the_physics_console():
     physics = icm.experiments.run_goal_oriented(n_seeds=2, n_trials=8, seed=5, physics=True)
     for field in ("interest", "prediction_error", "mastery_trial", "practice"):
         np.testing.assert_array_equal(getattr(tabular, field), getattr(physics, field))
+
+
+# --- the noisy button and the wobbly rod (chapter "Which curiosity?") -------------------
+
+def _geometry(physics, kind, names):
+    model = physics.model
+    out = {}
+    for name in names:
+        i = model.name2id(name, kind)
+        if kind == "body":
+            out[name] = np.concatenate([model.body_pos[i], model.body_quat[i]])
+        else:
+            out[name] = np.concatenate([model.geom_pos[i], model.geom_size[i],
+                                        [model.geom_type[i], model.geom_contype[i]]])
+    return out
+
+
+@pytest.mark.parametrize("module, flag", [(buttons, "noisy_button"), (rods, "wobbly_rod")])
+def test_the_noisy_scenes_leave_every_original_body_and_geom_as_it_was(module, flag):
+    plain, noisy = module.load_physics(), module.load_physics(**{flag: True})
+    model = plain.model
+    for kind, count in (("body", model.nbody), ("geom", model.ngeom)):
+        names = [model.id2name(i, kind) for i in range(count) if model.id2name(i, kind)]
+        before, after = _geometry(plain, kind, names), _geometry(noisy, kind, names)
+        for name in names:
+            np.testing.assert_array_equal(before[name], after[name], err_msg=name)
+    assert noisy.model.nbody == model.nbody + 1 + (flag == "noisy_button")  # stand, button
+
+
+def test_the_noisy_button_is_pressed_by_contact_and_opens_what_the_task_draws():
+    env = buttons.PhysicsButtonConsole(seed=4, presses_per_trial=12, noisy_button=True)
+    twin = buttons.ButtonConsole(seed=4, presses_per_trial=12, noisy_button=True)
+    env.reset(), twin.reset()
+    seen = set()
+    for _ in range(9):
+        boxes = env.press(buttons.NOISY_BUTTON)
+        assert env.task.press_log == [buttons.NOISY_BUTTON]
+        assert env.task.deepest[buttons.NOISY_BUTTON] > buttons.PRESS_DEPTH
+        assert env.task.deepest[:buttons.N_BUTTONS].max() < buttons.PRESS_DEPTH / 4
+        lids = env.physics.lid_angles() >= buttons.BOX_OPEN_ANGLE
+        assert boxes.tolist() == lids.astype(int).tolist()
+        expected = twin.step(buttons.NOISY_BUTTON).observation["boxes"]
+        assert boxes.tolist() == expected.tolist()
+        seen.add(tuple(boxes.tolist()))
+    assert seen == {(1, 0), (0, 1), (0, 0)}  # all three outcomes in 9 presses, seed 4
+
+
+def test_compare_twins_agrees_with_the_noisy_button():
+    same = icm.envs.compare_twins("buttons", n_steps=60, seed=2, action_seed=3,
+                                  noisy_button=True)
+    assert same["steps"] == 60 and same["mismatches"] == 0
+    other = icm.envs.compare_twins("buttons", n_steps=60, seed=2, action_seed=3, twin_seed=9,
+                                   noisy_button=True)
+    assert other["mismatches"] > 0
+
+
+def _walk_beside_the_wobbly_rod(seed, twin_seed):
+    """Steps both twins along column 0 back and forth (past the wobbly rod) and
+    sideways; returns (steps that differ, wobbly topples seen)."""
+    physics_env = icm.envs.load("rods", physics=True, seed=seed, wobbly_rod=True, max_moves=12)
+    tabular_env = icm.envs.load("rods", seed=twin_seed, wobbly_rod=True, max_moves=12)
+    physics_env.reset(), tabular_env.reset()
+    differ = falls = 0
+    for action in [0, 0, 1, 0, 1, 3, 0, 2, 0, 1, 0, 1] * 4:
+        a, b = physics_env.step(action), tabular_env.step(action)
+        differ += not (a.step_type == b.step_type and a.discount == b.discount and all(
+            np.array_equal(a.observation[k], b.observation[k]) for k in a.observation))
+        falls += int(a.observation["rods"][2])
+    return differ, falls
+
+
+def test_the_twins_agree_step_for_step_beside_the_wobbly_rod():
+    differ, falls = _walk_beside_the_wobbly_rod(seed=6, twin_seed=6)
+    assert differ == 0 and falls >= 3
+    differ, _ = _walk_beside_the_wobbly_rod(seed=6, twin_seed=7)
+    assert differ > 0
+
+
+def test_stored_wobble_map_equals_a_fresh_physics_measurement():
+    measured = rods.measure_wobble_map()
+    stored = rods.load_topple_map()["topples"]
+    beside = set()
+    for pair in measured["pairs"]:
+        cell, action = tuple(pair["cell"]), pair["action"]
+        assert not pair["touched"], (cell, action)  # the arm never touches the wobbly rod
+        assert pair["disturbance"] < 1e-3
+        if pair["wobbles"]:
+            beside.add((cell, action))
+            assert stored[(cell, action)] is None and pair["topples"] in (None, "wobbly")
+        else:
+            assert pair["topples"] == stored[(cell, action)], (cell, action)
+    assert beside == rods.load_wobble_map()
+
+
+def test_learners_give_identical_results_on_the_noisy_physics():
+    tabular = icm.experiments.run_goal_oriented(n_seeds=2, n_trials=5, seed=5, noisy_button=True,
+                                                interest_per="region", progress=False)
+    physics = icm.experiments.run_goal_oriented(n_seeds=2, n_trials=5, seed=5, noisy_button=True,
+                                                interest_per="region", physics=True,
+                                                progress=False)
+    for field in ("interest", "prediction_error", "mastery_trial", "practice", "button_share"):
+        np.testing.assert_array_equal(getattr(tabular, field), getattr(physics, field))
+    settings = dict(n_seeds=2, n_episodes=6, max_moves=8, seed=3, wobbly_rod=True,
+                    reward="learning_progress", start_cell=(0, 1), progress=False)
+    tabular = icm.experiments.run_rod_toppling(**settings)
+    physics = icm.experiments.run_rod_toppling(physics=True, **settings)
+    assert (tabular.toppled == 2).any()
+    for field in ("toppled", "episode_length", "prediction_error", "q_table"):
+        np.testing.assert_array_equal(getattr(tabular, field), getattr(physics, field))

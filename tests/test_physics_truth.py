@@ -316,3 +316,85 @@ def test_liars_are_caught(scenario, liar, checks):
         except AssertionError:
             caught.append(check.__name__)
     assert len(caught) >= 2, f"{liar.__name__} passed all but {caught}"
+
+
+# --- the noisy button (chapter "Which curiosity?") -----------------------------------------
+
+NOISY_CAP_PAIRS = CAP_PAIRS + (("r_finger", f"button{buttons.NOISY_BUTTON}_cap"),)
+
+
+@functools.lru_cache(maxsize=None)
+def play_noisy(make, presses=6):
+    """Presses the noisy button `presses` times (a fresh trial before each), observing."""
+    env = make(seed=0, presses_per_trial=1, noisy_button=True)
+    played = []
+    for _ in range(presses):
+        env.reset()
+        with observing(env.physics, NOISY_CAP_PAIRS) as seen:
+            step = env.step(buttons.NOISY_BUTTON)
+        data = env.physics.data
+        lids = np.array([data.qpos[qpos_of(env.physics, name)] for name in ("red_lid", "green_lid")])
+        played.append(dict(boxes=step.observation["boxes"], lids=lids, seen=seen,
+                           joints=[qpos_of(env.physics, f"button{b}") for b in range(6)]))
+    return played
+
+
+def check_noisy_presses_take_simulated_time(make):
+    for press in play_noisy(make):
+        assert press["seen"].elapsed() > 1.0, "no time passed"
+
+
+def check_fingertip_touches_the_noisy_button_only(make):
+    for press in play_noisy(make):
+        assert press["seen"].touched(NOISY_CAP_PAIRS[-1]), "the finger never touched it"
+        assert not any(press["seen"].touched(pair) for pair in CAP_PAIRS)
+
+
+def check_noisy_button_passes_the_press_depth(make):
+    for press in play_noisy(make):
+        assert press["seen"].qpos, "no physics step was taken"
+        depths = -np.array(press["seen"].qpos)[:, press["joints"]]
+        assert depths[:, buttons.NOISY_BUTTON].max() > buttons.PRESS_DEPTH
+        assert depths[:, :buttons.N_BUTTONS].max() < buttons.PRESS_DEPTH / 2
+
+
+def check_noisy_boxes_are_open_lids(make):
+    opened = 0
+    for press in play_noisy(make):
+        lid_open = press["lids"] >= buttons.BOX_OPEN_ANGLE
+        assert press["boxes"].tolist() == lid_open.astype(int).tolist()
+        opened += int(lid_open.any())
+    assert opened >= 2
+
+
+NOISY_CHECKS = [check_noisy_presses_take_simulated_time,
+                check_fingertip_touches_the_noisy_button_only,
+                check_noisy_button_passes_the_press_depth, check_noisy_boxes_are_open_lids]
+
+
+@pytest.mark.parametrize("check", NOISY_CHECKS, ids=lambda c: c.__name__)
+def test_noisy_button_physics(check):
+    check(physics_buttons)
+
+
+class RulesOnlyNoisyConsole(buttons.PhysicsButtonConsole):
+    """Answers the noisy button from the task's generator and never steps the physics."""
+
+    def _press(self, button):
+        return buttons.noisy_outcome(self.task.generator.random())
+
+
+def test_a_noisy_liar_is_caught():
+    twin = icm.envs.load("buttons", seed=0, presses_per_trial=1, noisy_button=True)
+    lying = RulesOnlyNoisyConsole(seed=0, presses_per_trial=1, noisy_button=True)
+    twin.reset(), lying.reset()
+    for _ in range(6):
+        a, b = lying.step(buttons.NOISY_BUTTON), twin.step(buttons.NOISY_BUTTON)
+        np.testing.assert_array_equal(a.observation["boxes"], b.observation["boxes"])
+    caught = []
+    for check in NOISY_CHECKS:
+        try:
+            check(RulesOnlyNoisyConsole)
+        except AssertionError:
+            caught.append(check.__name__)
+    assert len(caught) >= 2, f"the liar passed all but {caught}"

@@ -3,6 +3,8 @@ sweeps of settings times seeds; the interactive panels' numbers (`panels`)."""
 
 from icm.experiments.actor_critic import ActorCriticResult, run_actor_critic, run_actor_critic_grid
 from icm.experiments.actor_critic import comparison_table as actor_critic_table
+from icm.experiments.curiosity import (RewardComparison, SignalComparison,
+                                      run_reward_comparison, run_signal_comparison)
 from icm.experiments.goal_babbling import (FormedActionsResult, GoalBabblingResult,
                                           run_formed_actions, run_goal_babbling)
 from icm.experiments.goal_babbling import comparison_table as goal_babbling_table
@@ -13,8 +15,9 @@ from icm.experiments.sweep import sweep
 from icm.experiments import panels  # noqa: E402 (after the experiments it runs)
 
 __all__ = ["ActorCriticResult", "FormedActionsResult", "GoalBabblingResult",
-           "GoalOrientedResult", "RodTopplingResult", "actor_critic_table",
-           "comparison_table", "goal_babbling_table", "panels", "run_actor_critic",
-           "run_actor_critic_grid", "run_formed_actions", "run_goal_babbling",
-           "run_goal_oriented", "run_goal_oriented_grid",
-           "run_rod_toppling", "sweep"]
+           "GoalOrientedResult", "RewardComparison", "RodTopplingResult",
+           "SignalComparison", "actor_critic_table", "comparison_table",
+           "goal_babbling_table", "panels", "run_actor_critic", "run_actor_critic_grid",
+           "run_formed_actions", "run_goal_babbling", "run_goal_oriented",
+           "run_goal_oriented_grid", "run_reward_comparison", "run_rod_toppling",
+           "run_signal_comparison", "sweep"]

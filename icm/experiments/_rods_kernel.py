@@ -8,34 +8,57 @@ is played through in a loop compiled once (Numba caches it on disk), following t
 per-agent `QLearner` and `LinearPredictor` operation for operation, so it gives the
 same numbers (a test compares them seed by seed). The physics runs, whose cost is the
 physics itself, use the numpy `QLearnerBatch` instead.
+
+The reward is one of `icm.learners.q_learning.REWARDS` (`SIGNAL_CODES`), kept per
+(cell, action) pair as the per-agent classes keep it; with the wobbly rod, a move
+beside it draws one number from the row's environment stream and topples it below
+1/2, as `RodTable` does.
 """
 
 import numba
 import numpy as np
 
+SIGNAL_CODES = {"prediction_error": 0, "learning_progress": 1, "novelty": 2, "random": 3}
+"""The reward signals by name, as the compiled loop numbers them."""
+
+
+def slope_weights(window):
+    """weights[m, :m], the least-squares slope weights of m equally spaced values (m = 2
+    .. window), as `icm.learners.interest` computes them."""
+    weights = np.zeros((window + 1, max(window, 1)))
+    for m in range(2, window + 1):
+        x = np.arange(m) - (m - 1) / 2.0
+        weights[m, :m] = x / (x @ x)
+    return weights
+
 
 @numba.njit(cache=True, nogil=True)
 def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_sum,
          epsilon, alpha, gamma, lr, next_cell, topples, start, max_moves, n_episodes,
-         toppled_out, length_out, errors_out, found, keep, q_after, p_after, e_after):
+         toppled_out, length_out, errors_out, found, keep, q_after, p_after, e_after,
+         signal, window, weights, history, count, wobbly, wobbles, env_draws, env_cursor):
     """Plays every row on, move by move, until it has played its episodes or used its
-    buffer of uniform numbers (three a move); returns True if every row is done.
+    buffer of uniform numbers (three a move, and with the wobbly rod one from the
+    environment's buffer at a move beside it); returns True if every row is done.
 
     All arrays are updated in place: the learner (q [row, cell, action], predictions
-    [row, cell, action, rod], last_error [row, cell, action]), the play's state (cell,
-    episode, moves, error_sum, cursor), and the record of each episode (toppled_out,
+    [row, cell, action, rod], last_error [row, cell, action], and for the reward
+    signals the last `window` errors of each pair, history [row, cell, action, window],
+    newest last, and its count of tries), the play's state (cell, episode, moves,
+    error_sum, cursor, env_cursor), and the record of each episode (toppled_out,
     length_out, errors_out, found [row, cell, action, rod], and, if `keep`, the
     learner after it in q_after, p_after and e_after [row, episode, ...]).
     """
     n, n_cells, n_actions = q.shape
     n_rods = predictions.shape[3]
     chunk = draws.shape[1]
+    env_chunk = env_draws.shape[1]
     done = True
     for r in range(n):
         while episode[r] < n_episodes:
             k = cursor[r]
-            if k + 3 > chunk:  # the row needs new numbers
-                done = False
+            if k + 3 > chunk or (wobbly and env_cursor[r] + 1 > env_chunk):
+                done = False  # the row needs new numbers
                 break
             cursor[r] = k + 3
             c = cell[r]
@@ -61,8 +84,13 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
                         pick -= 1
             following = next_cell[c, a]
             rod = topples[c, a]
-            # The predictor: p <- p + lr (o - p); the reward is its absolute error.
-            reward = 0.0
+            if wobbly and wobbles[c, a]:  # beside the wobbly rod: it falls half the time
+                u = env_draws[r, env_cursor[r]]
+                env_cursor[r] += 1
+                if u < 0.5:
+                    rod = n_rods - 1
+            # The predictor: p <- p + lr (o - p); its absolute error, summed over rods.
+            total = 0.0
             for i in range(n_rods):
                 observed = 1.0 if rod == i else 0.0
                 predicted = predictions[r, c, a, i]
@@ -70,17 +98,40 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
                 predictions[r, c, a, i] = predicted + lr[r] * difference
                 error = abs(difference)
                 error_sum[r, i] += error
-                reward = error if i == 0 else reward + error
-            last_error[r, c, a] = reward
-            # Equation 3; a topple ends the episode, so nothing follows it.
-            target = reward
-            if rod < 0:
-                best = q[r, following, 0]
-                for b in range(1, n_actions):
-                    if q[r, following, b] > best:
-                        best = q[r, following, b]
-                target += gamma[r] * 1.0 * best
-            q[r, c, a] += alpha[r] * (target - q[r, c, a])
+                total = error if i == 0 else total + error
+            last_error[r, c, a] = total
+            # The reward: the error (the paper's), or another signal of the pair.
+            reward = total
+            if signal != 0:
+                tries = count[r, c, a] + 1
+                count[r, c, a] = tries
+                for i in range(window - 1):  # the pair's last errors, newest last
+                    history[r, c, a, i] = history[r, c, a, i + 1]
+                history[r, c, a, window - 1] = total
+                if signal == 1:  # learning progress: max(0, -slope), from 2 errors on
+                    reward = 0.0
+                    m = min(tries, window)
+                    if m >= 2:
+                        slope = 0.0
+                        for i in range(m):
+                            slope += weights[m, i] * history[r, c, a, window - m + i]
+                        if -slope > 0.0:
+                            reward = -slope
+                elif signal == 2:  # novelty
+                    reward = 1.0 / np.sqrt(1.0 + tries)
+                else:
+                    reward = 0.0
+            # Equation 3; a topple ends the episode, so nothing follows it. The random
+            # walker learns no Q: every move stays a tie.
+            if signal != 3:
+                target = reward
+                if rod < 0:
+                    best = q[r, following, 0]
+                    for b in range(1, n_actions):
+                        if q[r, following, b] > best:
+                            best = q[r, following, b]
+                    target += gamma[r] * 1.0 * best
+                q[r, c, a] += alpha[r] * (target - q[r, c, a])
             moves[r] += 1
             cell[r] = following
             if rod >= 0 or moves[r] >= max_moves:
@@ -103,10 +154,14 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
 
 
 def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, next_cell,
-             topples, start, max_moves, n_episodes, keep=True, bar=None):
+             topples, start, max_moves, n_episodes, keep=True, bar=None,
+             reward="prediction_error", window=5, wobbles=None, env_streams=None):
     """Plays `n_episodes` episodes of every row (see `play`), refilling the rows'
     streams of uniform numbers whenever they run out; `bar`, a tqdm progress bar over
-    all rows' episodes, is moved on between the compiled loop's runs.
+    all rows' episodes, is moved on between the compiled loop's runs. `reward` names
+    the reward signal, `window` its slope's length; with the wobbly rod, `wobbles`
+    [cell, action] marks the moves beside it and `env_streams` are the tables' own
+    streams (`icm.envs.rods.RodTableBatch.streams`).
 
     Returns:
       A dict: "toppled", "length" [row, episode], "errors" [row, episode, rod],
@@ -130,14 +185,30 @@ def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, nex
     per_row = lambda value: np.ascontiguousarray(np.broadcast_to(
         np.asarray(value, dtype=float), (n,)))
     epsilon, alpha, gamma, lr = per_row(epsilon), per_row(alpha), per_row(gamma), per_row(lr)
+    signal = SIGNAL_CODES[reward]
+    window = int(window) if signal == 1 else 1
+    weights = slope_weights(window)
+    history = np.zeros((n, n_cells, n_actions, window) if signal else (0, 0, 0, window))
+    count = np.zeros((n, n_cells, n_actions) if signal else (0, 0, 0), dtype=np.int64)
+    wobbly = wobbles is not None
+    if wobbly:
+        env_draws, env_cursor = env_streams.buffer, env_streams.cursor
+        wobbles = np.ascontiguousarray(wobbles, dtype=np.bool_)
+    else:
+        env_draws, env_cursor = np.zeros((n, 1)), np.zeros(n, dtype=np.int64)
+        wobbles = np.zeros(next_cell.shape, dtype=np.bool_)
     while True:
         finished = play(q, predictions, last_error, streams.buffer, streams.cursor, cell,
                         episode, moves, error_sum, epsilon, alpha, gamma, lr, next_cell,
                         topples, start, max_moves, n_episodes, out["toppled"],
                         out["length"], out["errors"], out["found"], keep, out["q_after"],
-                        out["p_after"], out["e_after"])
+                        out["p_after"], out["e_after"], signal, window, weights, history,
+                        count, wobbly, wobbles, env_draws, env_cursor)
         if bar is not None:
             bar.update(int(episode.sum()) - bar.n)
         if finished:
             return out
-        streams.refill(np.flatnonzero(episode < n_episodes), 3)
+        unfinished = np.flatnonzero(episode < n_episodes)
+        streams.refill(unfinished, 3)
+        if wobbly:
+            env_streams.refill(unfinished, 1)

@@ -166,8 +166,6 @@ def _check_run_arguments(n_seeds, n_trials, epsilon, window, new_task_factor, re
         physics=_validate.boolean("physics", physics),
         seed=_validate.root_seed("seed", seed))
     _validate.boolean("progress", progress)
-    if checked["physics"] and checked["noisy_button"]:
-        raise ValueError("noisy_button=True runs on the tabular console only (physics=False)")
     check_run_size("run_goal_oriented", checked["n_seeds"], checked["n_trials"], 160,
                    bytes_per_seed=8 * (600 + 8 * checked["window"]))
     return checked
@@ -209,7 +207,9 @@ def run_goal_oriented(n_seeds=100, n_trials=100,
         "prediction_error", "novelty" or "random" (see `icm.learners.interest`).
       interest_per: "task" (the paper's, default) or "region" (each button's own
         interest); see `icm.learners.goal_oriented.INTEREST_PER`.
-      noisy_button: add the noisy button, action 5 (tabular console only).
+      noisy_button: add the noisy button, action 5: never lit, each press opens the red
+        box, the green box or neither, 1/3 each (on the tabular console and on the
+        simulated one alike).
       physics: False for the tabular console (default), True for the simulated iCub
         (about 11 ms of computing per press). The same seeds give the same layouts
         and, the physics agreeing with its twin, the same results.
@@ -277,7 +277,8 @@ def run_goal_oriented_grid(grid, **arguments):
     env_seeds, agent_seeds = [s[0] for s in seeds], [s[1] for s in seeds]
     red_button, presses = first["red_button"], first["presses_per_trial"]
     if first["physics"]:
-        env = buttons.PhysicsButtonConsoleBatch(env_seeds, red_button, presses)
+        env = buttons.PhysicsButtonConsoleBatch(env_seeds, red_button, presses,
+                                                first["noisy_button"])
     else:
         env = buttons.ButtonConsoleBatch(env_seeds, red_button, first["noisy_button"])
     rows = {name: _grid.per_row(settings, name, n) for name in GRID_ARGUMENTS}

@@ -1,5 +1,6 @@
 """Q-learning paid by a linear predictor's errors on the rods, over many seeds (paper
-sections 2.2, 3.3 and 4.2, Figure 7)."""
+sections 2.2, 3.3 and 4.2, Figure 7); with other intrinsic rewards (`reward=`) and the
+wobbly rod (`wobbly_rod=True`) for the chapter "Which curiosity?"."""
 
 import dataclasses
 
@@ -9,11 +10,13 @@ from icm import _validate
 from icm.envs import rods
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
-from icm.learners import predictors, q_learning
+from icm.learners import interest, predictors, q_learning
 from icm.stats import PANEL_RESAMPLES, bootstrap_band, comes_first, first_from_which
 
 RODS = rods.ROD_NAMES
-"""Order of the rod axis in the result arrays: red, blue."""
+"""Order of the rod axis in the result arrays: red, blue (with the wobbly rod, the
+arrays of what the robot predicted and was paid, `prediction_error` and
+`predictions`, have a third entry, wobbly; see `RodTopplingResult.rod_names`)."""
 WELL_PREDICTED_ERROR = 0.1
 """A rod is *predicted well* when the predictor's error on its pairs is below this."""
 READINGS = ("all", "toppled")
@@ -73,12 +76,13 @@ class RodTopplingResult:
 
     Attributes:
       settings: the arguments of the run, as a dict.
-      toppled: [seed, episode], the rod that ended the episode: 0 red, 1 blue, -1 none
-        (a time limit). Should the physics topple both at once, 0.
+      toppled: [seed, episode], the rod that ended the episode: 0 red, 1 blue, 2 the
+        wobbly rod, -1 none (a time limit). Should the physics topple two at once, the
+        first.
       episode_length: [seed, episode], moves in the episode.
       prediction_error: [seed, episode, rod], the predictor's absolute errors on each
-        rod summed over the episode's moves: the intrinsic reward the robot was paid,
-        split by rod.
+        rod (of `rod_names`) summed over the episode's moves: with the paper's reward,
+        the intrinsic reward the robot was paid, split by rod.
       rod_error: [seed, episode, rod], after each episode, the largest error the
         predictor would make on a (cell, action) pair that topples that rod (per the
         stored topple map).
@@ -95,7 +99,8 @@ class RodTopplingResult:
       snapshot_episode: [seed, snapshot], the episode after which each snapshot was
         taken; -1 where the moment never came.
       q_table: [seed, snapshot, column, row, action], the Q-table.
-      predictions: [seed, snapshot, column, row, action, rod], the predictor.
+      predictions: [seed, snapshot, column, row, action, rod], the predictor (rods of
+        `rod_names`).
       confidence: [seed, snapshot, column, row], the state confidence
         (`LinearPredictor.confidence`).
     """
@@ -120,6 +125,11 @@ class RodTopplingResult:
         return self.toppled.shape[0]
 
     @property
+    def rod_names(self):
+        """The rods of the run: red, blue, and wobbly with the wobbly rod."""
+        return rods.rod_names(self.settings.get("wobbly_rod", False))
+
+    @property
     def n_episodes(self):
         """Episodes per run."""
         return self.toppled.shape[1]
@@ -136,15 +146,28 @@ class RodTopplingResult:
                     predictions=self.predictions[seed, k], confidence=self.confidence[seed, k])
 
     def first_topple(self, rod):
-        """[seed], the first episode that ended with `rod` ("red" or "blue") toppled;
-        -1 if none did."""
-        hit = self.toppled == RODS.index(_validate.one_of("rod", rod, RODS))
+        """[seed], the first episode that ended with `rod` ("red", "blue", or "wobbly"
+        in a run with the wobbly rod) toppled; -1 if none did."""
+        hit = self.toppled == self.rod_names.index(_validate.one_of("rod", rod, self.rod_names))
         return np.where(hit.any(axis=1), np.argmax(hit, axis=1) + 1, -1)
+
+    def topple_shares(self, rod, episodes=slice(None)):
+        """[seed], in each run the share of episodes (in `episodes`, a slice of the
+        episode axis) that ended with `rod` toppled ("red", "blue", "wobbly" with the
+        wobbly rod, or None for no topple)."""
+        names = self.rod_names + (None,)
+        index = dict(zip(names, list(range(len(self.rod_names))) + [-1]))[
+            _validate.one_of("rod", rod, names)]
+        _validate.instance("episodes", episodes, slice, "a slice of episodes, e.g. slice(0, 10)")
+        if not np.any(np.ones(self.n_episodes, dtype=bool)[episodes]):
+            raise ValueError(f"episodes must select at least one of the {self.n_episodes} "
+                             f"episodes, got {episodes!r}")
+        return np.mean(self.toppled[:, episodes] == index, axis=1)
 
     def topple_share(self, rod, episodes=slice(None)):
         """The share of episodes (in `episodes`, a slice of the episode axis) that
         ended with `rod` toppled, over all seeds."""
-        index = RODS.index(_validate.one_of("rod", rod, RODS))
+        index = self.rod_names.index(_validate.one_of("rod", rod, self.rod_names))
         _validate.instance("episodes", episodes, slice, "a slice of episodes, e.g. slice(0, 10)")
         if not np.any(np.ones(self.n_episodes, dtype=bool)[episodes]):
             raise ValueError(f"episodes must select at least one of the {self.n_episodes} "
@@ -203,7 +226,7 @@ class RodTopplingResult:
             for i, rod in enumerate(RODS):
                 out[f"{rod}_well_median{suffix}"] = _median_of_found(well[:, i])
                 out[f"{rod}_well_share{suffix}"] = float(np.mean(well[:, i] >= 1))
-        for rod in RODS:
+        for rod in self.rod_names:
             out[f"first_{rod}_median"] = _median_of_found(self.first_topple(rod))
             out[f"{rod}_share_first_10"] = self.topple_share(rod, slice(0, 10))
             out[f"{rod}_share_second_half"] = self.topple_share(
@@ -221,8 +244,8 @@ def _median_of_found(episodes):
 
 
 def _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma, predictor_lr,
-                         initial_q, physics, start_cell, max_moves, snapshot_episodes, seed,
-                         first_run, progress):
+                         initial_q, reward, window, wobbly_rod, physics, start_cell,
+                         max_moves, snapshot_episodes, seed, first_run, progress):
     """The arguments of `run_rod_toppling`, checked and normalised, as a dict."""
     n_episodes = _validate.integer_at_least("n_episodes", n_episodes, 1)
     if isinstance(snapshot_episodes, (str, bytes)) or \
@@ -240,6 +263,9 @@ def _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma, predictor_l
         gamma=_validate.in_closed_interval("gamma", gamma, 0.0, 1.0),
         predictor_lr=_validate.learning_rate("predictor_lr", predictor_lr),
         initial_q=_validate.non_negative("initial_q", initial_q),
+        reward=_validate.one_of("reward", reward, q_learning.REWARDS),
+        window=_validate.integer_at_least("window", window, 2),
+        wobbly_rod=_validate.boolean("wobbly_rod", wobbly_rod),
         physics=_validate.boolean("physics", physics),
         start_cell=rods.check_start_cell(start_cell, rods.load_topple_map()["standable"]),
         max_moves=_validate.integer_at_least("max_moves", max_moves, 1),
@@ -261,6 +287,9 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
                      gamma=q_learning.DEFAULT_GAMMA,
                      predictor_lr=predictors.DEFAULT_LINEAR_LR,
                      initial_q=q_learning.DEFAULT_INITIAL_Q,
+                     reward="prediction_error",
+                     window=interest.DEFAULT_WINDOW,
+                     wobbly_rod=False,
                      physics=False,
                      start_cell=rods.DEFAULT_START_CELL,
                      max_moves=rods.DEFAULT_MAX_MOVES,
@@ -284,6 +313,12 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
       gamma: discount, in [0, 1].
       predictor_lr: the linear predictor's learning rate, in (0, 1] (paper: 0.2).
       initial_q: Q of every pair before it is tried (>= 0).
+      reward: the intrinsic reward: "prediction_error" (the paper's, default),
+        "learning_progress", "novelty" or "random" (see
+        `icm.learners.q_learning.REWARDS`).
+      window: errors in the learning-progress slope (>= 2).
+      wobbly_rod: add the wobbly rod, which a move beside it topples half of the time
+        (see `icm.envs.rods.rules`); the predictor then predicts three rods.
       physics: False for the tabular twin, True for the simulated iCub (each move
         runs the physics: about 6 ms; the errors in `rod_error` are still measured
         against the stored topple map).
@@ -307,33 +342,39 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
         this machine's memory.
     """
     settings = _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma,
-                                    predictor_lr, initial_q, physics, start_cell, max_moves,
-                                    snapshot_episodes, seed, first_run, progress)
+                                    predictor_lr, initial_q, reward, window, wobbly_rod,
+                                    physics, start_cell, max_moves, snapshot_episodes, seed,
+                                    first_run, progress)
     extra, seed, start_cell = (settings["snapshot_episodes"], settings["seed"],
                                settings["start_cell"])
     names = MOMENTS + tuple(f"episode {e}" for e in extra)
     truth = true_outcomes()
 
     seeds = run_seeds(seed, n_seeds, 2, first=first_run)
-    agent = q_learning.QLearnerBatch([s[1] for s in seeds], N_STATES, N_ACTIONS, len(RODS),
+    env_seeds = [s[0] for s in seeds]
+    n_rods = len(rods.rod_names(wobbly_rod))
+    agent = q_learning.QLearnerBatch([s[1] for s in seeds], N_STATES, N_ACTIONS, n_rods,
                                      alpha=alpha, gamma=gamma, epsilon=epsilon,
-                                     initial_q=initial_q, predictor_lr=predictor_lr)
+                                     initial_q=initial_q, predictor_lr=predictor_lr,
+                                     reward=reward, window=window)
     if physics:
-        env = rods.PhysicsRodTableBatch(n_seeds, start_cell)
+        env = rods.PhysicsRodTableBatch(n_seeds, start_cell, wobbly_rod, env_seeds)
         played = play_episodes(env, agent, n_episodes, max_moves, extra, progress)
     else:
         from icm.experiments import _rods_kernel  # here: it loads Numba
 
-        next_cell, topples = rods.transition_tables()
+        env = rods.RodTableBatch(n_seeds, start_cell, wobbly_rod, env_seeds)
         bar = progress_bar(None, n_seeds * n_episodes, "Q-learner on the rods", progress,
                            unit="episode")
         raw = _rods_kernel.play_all(
             agent.streams, agent.q, agent.predictor.predictions, agent.predictor.last_error,
-            epsilon, alpha, gamma, predictor_lr, next_cell, topples,
-            rods.cell_number(start_cell), max_moves, n_episodes, bar=bar)
+            epsilon, alpha, gamma, predictor_lr, env.next_cell, env.topples,
+            rods.cell_number(start_cell), max_moves, n_episodes, bar=bar, reward=reward,
+            window=window, wobbles=env.wobbles if wobbly_rod else None,
+            env_streams=env.streams)
         if bar is not None:
             bar.close()
-        played = summarize(raw, N_STATES, N_ACTIONS, len(RODS), extra)
+        played = summarize(raw, N_STATES, N_ACTIONS, n_rods, extra)
     rod_error = played["rod_error"]
     predicted_well = first_from_which(np.moveaxis(rod_error < WELL_PREDICTED_ERROR, 1, 2))
     predicted_well = np.where(predicted_well >= 0, predicted_well + 1, -1)
@@ -453,10 +494,11 @@ def summarize(raw, n_states, n_actions, n_rods, snapshot_episodes=()):
         pair_error = pair_error + difference[..., r]
     found = raw["found"].reshape(n, n_states * n_actions, n_rods)[:, pairs, pair_rods]
     known = found[:, None, :] <= np.arange(n_episodes)[None, :, None]  # [row, ep, pair]
-    out["rod_error"] = np.zeros((n, n_episodes, n_rods))
-    out["rod_error_toppled"] = np.full((n, n_episodes, n_rods), np.nan)
-    out["predicted_well_toppled"] = np.full((n, n_rods), -1, dtype=np.int64)
-    for r in range(n_rods):
+    n_fixed = len(RODS)  # the rods that a move topples always or never: red and blue
+    out["rod_error"] = np.zeros((n, n_episodes, n_fixed))
+    out["rod_error_toppled"] = np.full((n, n_episodes, n_fixed), np.nan)
+    out["predicted_well_toppled"] = np.full((n, n_fixed), -1, dtype=np.int64)
+    for r in range(n_fixed):
         mine = pair_rods == r
         out["rod_error"][..., r] = pair_error[..., mine].max(axis=2)
         # Reading "toppled": only the map's pairs that have toppled the rod so far.

@@ -1,11 +1,16 @@
 """Tabular one-step Q-learning (paper section 3.3, equation 3), paid by a predictor's
-errors: the learner of the rod-toppling experiment (section 4.2, Figure 7)."""
+errors: the learner of the rod-toppling experiment (section 4.2, Figure 7).
+
+The intrinsic reward is the paper's, the predictor's error, or one of the other
+interest signals of `icm.learners.interest`, computed per (state, action) pair from
+the same errors (`REWARDS`)."""
 
 
 import numpy as np
 
 from icm import _streams, _validate
 from icm.learners.goal_oriented import DRAWS_PER_CHOICE, epsilon_greedy, epsilon_greedy_rows
+from icm.learners.interest import DEFAULT_WINDOW, SIGNALS, InterestTable, make_interest
 from icm.learners.predictors import LinearPredictor, LinearPredictorTable
 
 DEFAULT_ALPHA = 0.5
@@ -25,6 +30,16 @@ the book calls "predicted well". So the robot gets *bored* of a rod once its
 errors there have fallen to about that level, and goes looking elsewhere; with 0 the
 smallest leftover error would keep it at the first rod it found (the errors shrink by
 a factor 0.8 per topple and never reach 0)."""
+REWARDS = ("prediction_error",) + tuple(s for s in SIGNALS if s != "prediction_error")
+"""The intrinsic rewards, by name: the interest signals of `icm.learners.interest`,
+each kept per (state, action) pair and fed the predictor's error on every move:
+
+- "prediction_error" (the paper's, default): the error itself, ``r = sum_i abs(o_i - p_i)``;
+- "learning_progress": how fast the pair's errors fall, max(0, -slope) of its last
+  `window` errors (a least-squares slope; 0 until the pair was tried twice);
+- "novelty": 1 / sqrt(1 + n), n the times the pair was tried, this move included;
+- "random": no reward and no learning of Q: every move is a tie, so the hand walks at
+  random (the baseline); the predictor still learns."""
 
 
 
@@ -40,10 +55,11 @@ class QLearner:
     where d is the environment's discount: 0 when the move ended the episode (a rod
     toppled: nothing follows), 1 otherwise (a time limit does not end the world).
 
-    The reward (`learn`) is intrinsic: the absolute error of the predictor's guess of
-    what the move would do, ``r = sum_i abs(o_i - p_i(s, a))``, computed before the predictor
-    learns from the move. A move the predictor already knows pays nothing; a surprise
-    pays up to 1.
+    The reward (`learn`) is intrinsic: by default (the paper's) the absolute error of
+    the predictor's guess of what the move would do, ``r = sum_i abs(o_i - p_i(s, a))``,
+    computed before the predictor learns from the move. A move the predictor already
+    knows pays nothing; a surprise pays up to 1. `reward` chooses another signal
+    computed from the same errors (see `REWARDS`).
 
     Actions: with probability epsilon a uniformly random action, otherwise one of the
     actions with the largest Q(s, .), ties broken at random.
@@ -60,22 +76,31 @@ class QLearner:
       gamma: discount in [0, 1].
       epsilon: probability of a random action, in [0, 1].
       initial_q: Q of every pair before it is tried (a finite number >= 0).
+      reward: the intrinsic reward, one of `REWARDS` (default "prediction_error").
+      window: errors in the learning-progress slope (integer >= 2).
       seed: None, an integer >= 0 or a `numpy.random.Generator`.
 
     Raises:
-      ValueError: for any argument outside its range, or a state or action outside
-        the table.
+      ValueError: for any argument outside its range, an unknown reward (the message
+        lists the known ones), or a state or action outside the table.
     """
 
     def __init__(self, n_states, n_actions, predictor=None, alpha=DEFAULT_ALPHA,
                  gamma=DEFAULT_GAMMA, epsilon=DEFAULT_EPSILON, initial_q=DEFAULT_INITIAL_Q,
-                 seed=None):
+                 reward="prediction_error", window=DEFAULT_WINDOW, seed=None):
         self.n_states = _validate.integer_at_least("n_states", n_states, 1)
         self.n_actions = _validate.integer_at_least("n_actions", n_actions, 1)
         self.alpha = _validate.learning_rate("alpha", alpha)
         self.gamma = _validate.in_closed_interval("gamma", gamma, 0.0, 1.0)
         self.epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
         self.initial_q = _validate.non_negative("initial_q", initial_q)
+        self.reward = _validate.one_of("reward", reward, REWARDS)
+        self.window = _validate.integer_at_least("window", window, 2)
+        # The reward signal, kept per (state, action) pair: the paper's error is the
+        # mean of the last one error.
+        self.reward_signal = make_interest(
+            self.reward, 1 if self.reward == "prediction_error" else self.window,
+            new_task_factor=0.0)
         self.predictor = LinearPredictor(n_actions, 1) if predictor is None else predictor
         if not callable(getattr(self.predictor, "update", None)):
             raise _validate.ArgumentTypeError(f"predictor must have a method update, got "
@@ -132,7 +157,7 @@ class QLearner:
         return td_error
 
     def learn(self, state, action, observed, next_state, discount=1.0):
-        """Pays itself the predictor's surprise, teaches the predictor, updates Q.
+        """Pays itself its intrinsic reward, teaches the predictor, updates Q.
 
         Args:
           state: the state the action was taken in.
@@ -142,12 +167,16 @@ class QLearner:
           discount: 0 if the action ended the episode, else 1.
 
         Returns:
-          The intrinsic reward: the absolute error of the prediction for
-          (state, action) before this observation.
+          The intrinsic reward: by default the absolute error of the prediction for
+          (state, action) before this observation; with another `reward`, that
+          signal of the pair after recording this error (see `REWARDS`).
         """
         state, action = self._check(state, action)
-        reward = self.predictor.update(state, action, observed)
-        self.update(state, action, reward, next_state, discount)
+        error = self.predictor.update(state, action, observed)
+        self.reward_signal.record((state, action), error)
+        reward = self.reward_signal.interest((state, action))
+        if self.reward != "random":
+            self.update(state, action, reward, next_state, discount)
         return reward
 
 
@@ -164,11 +193,13 @@ class QLearnerBatch:
       seeds: one seed per row.
       n_states, n_actions, n_outputs: the tables' size.
       alpha, gamma, epsilon, initial_q, predictor_lr: per row or one for all.
+      reward: the intrinsic reward, one of `REWARDS`, one for all.
+      window: errors in the learning-progress slope, per row or one for all.
     """
 
     def __init__(self, seeds, n_states, n_actions, n_outputs, alpha=DEFAULT_ALPHA,
                  gamma=DEFAULT_GAMMA, epsilon=DEFAULT_EPSILON, initial_q=DEFAULT_INITIAL_Q,
-                 predictor_lr=0.2):
+                 predictor_lr=0.2, reward="prediction_error", window=DEFAULT_WINDOW):
         self.streams = _streams.Streams(seeds)
         n = len(self.streams)
         per_row = lambda value: np.broadcast_to(np.asarray(value, dtype=float), (n,))
@@ -176,6 +207,11 @@ class QLearnerBatch:
         self.q = np.empty((n, n_states, n_actions))
         self.q[:] = per_row(initial_q)[:, None, None]
         self.predictor = LinearPredictorTable(n, n_states, n_actions, n_outputs, predictor_lr)
+        self.reward = _validate.one_of("reward", reward, REWARDS)
+        self.window = np.broadcast_to(np.asarray(window, dtype=np.int64), (n,))
+        self.reward_signal = InterestTable(
+            n, n_states * n_actions, self.reward,
+            1 if self.reward == "prediction_error" else self.window, 0.0)
         self._rows = np.arange(n)
         self._q_by_state = self.q.reshape(n * n_states, n_actions)  # views of q
         self._q_flat = self.q.reshape(-1)
@@ -206,13 +242,20 @@ class QLearnerBatch:
         return td_error
 
     def learn(self, rows, states, actions, observed, next_states, discounts):
-        """Each of `rows` pays itself its predictor's absolute error on the move (summed
-        over the outputs, in order), teaches the predictor and updates Q; returns the
-        errors per output [len(rows), n_outputs]."""
+        """Each of `rows` teaches its predictor, pays itself its intrinsic reward (by
+        default the predictor's absolute error on the move, summed over the outputs in
+        order) and updates Q; returns the errors per output [len(rows), n_outputs]."""
         pairs = self.predictor.pair_index(rows, states, actions)
         errors = self.predictor.update(rows, states, actions, observed, pairs)
-        reward = errors[:, 0]
+        error = errors[:, 0]
         for i in range(1, errors.shape[1]):
-            reward = reward + errors[:, i]
-        self.update(rows, states, actions, reward, next_states, discounts, pairs)
+            error = error + errors[:, i]
+        if self.reward == "prediction_error":
+            reward = error
+        else:
+            keys = states * self.q.shape[2] + actions
+            self.reward_signal.record(rows, keys, error)
+            reward = self.reward_signal.values(rows)[np.arange(len(rows)), keys]
+        if self.reward != "random":
+            self.update(rows, states, actions, reward, next_states, discounts, pairs)
         return errors

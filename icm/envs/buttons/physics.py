@@ -5,11 +5,14 @@
 past `PRESS_DEPTH` opens the lid of its light's colour), `load_continuous`, and
 `PhysicsButtonConsole`, the paper's discrete actions as motor primitives on top of the
 same task; `PhysicsButtonConsoleBatch` runs one console per row for the batched
-learners.
+learners. With `noisy_button=True` the scene is assets/buttons_noisy.xml: the same
+console plus a sixth button (action 5, `NOISY_BUTTON`), pressed by contact like the
+others, whose outcome the task draws from its random state (`rules.noisy_effect`).
 """
 
 import collections
 
+import mujoco
 import numpy as np
 from dm_env import specs
 
@@ -17,10 +20,12 @@ from icm import _validate
 from icm.envs import icub
 from icm.envs._common import check_discrete_action, check_seed, dm_control_random
 from icm.envs.buttons.rules import (BOX_NAMES, DEFAULT_PRESSES_PER_TRIAL,
-                                        DEFAULT_RED_BUTTON, EFFECTS, GREEN, N_BUTTONS, OFF,
-                                        RED, check_lights, check_red_button,
+                                        DEFAULT_RED_BUTTON, EFFECTS, GREEN, GREEN_BOX,
+                                        N_BUTTONS, NOISY_BUTTON, OFF, RED, RED_BOX,
+                                        check_lights, check_red_button,
                                         check_rewarded_box, draw_green, extrinsic_reward,
-                                        green_candidates, lights_for)
+                                        green_candidates, lights_for, n_actions,
+                                        noisy_effect)
 from icm.envs.buttons.twin import ButtonTrials
 
 PRESS_DEPTH = 0.008
@@ -33,7 +38,7 @@ BOX_OPEN_ANGLE = np.deg2rad(30.0)
 LID_OPEN_TIME = 2.0
 """Seconds a lid stays open in the continuous task before the task shuts it again."""
 _LIGHT_MATERIALS = {OFF: "light_off", RED: "red", GREEN: "green"}
-_BUTTON_JOINTS = [f"button{b}" for b in range(N_BUTTONS)]
+_BUTTON_JOINTS = [f"button{b}" for b in range(N_BUTTONS + 1)]  # button5: the noisy one
 _LIDS = [f"{name}_lid" for name in BOX_NAMES]
 
 
@@ -51,7 +56,9 @@ class ButtonsPhysics(icub.ArmPhysics):
         if getattr(self, "_cached_model", None) is not self.model.ptr:
             model = self.model
             joint = lambda name: model.jnt_qposadr[model.name2id(name, "joint")]
-            self._button_qpos = np.array([joint(name) for name in _BUTTON_JOINTS])
+            present = [name for name in _BUTTON_JOINTS  # button5 only with the noisy button
+                       if mujoco.mj_name2id(model.ptr, mujoco.mjtObj.mjOBJ_JOINT, name) >= 0]
+            self._button_qpos = np.array([joint(name) for name in present])
             self._lid_qpos = np.array([joint(name) for name in _LIDS])
             self._lid_ctrl = np.array([model.name2id(name, "actuator") for name in _LIDS])
             self._cached_model = model.ptr
@@ -59,13 +66,18 @@ class ButtonsPhysics(icub.ArmPhysics):
             self._raw_data = self.data.ptr
         return self
 
+    @property
+    def n_buttons(self):
+        """Buttons in the scene: 5, or 6 with the noisy button."""
+        return len(self._indices()._button_qpos)
+
     def button_depths(self):
-        """How far each button is pushed in (metres, 0 at rest), shape (5,)."""
+        """How far each button is pushed in (metres, 0 at rest), shape (n_buttons,)."""
         return -self.data.qpos[self._indices()._button_qpos]
 
     def button_depth(self, button):
-        """How far button `button` (0-4) is pushed in, in metres."""
-        button = _validate.integer("button", button, 0, N_BUTTONS - 1)
+        """How far button `button` (0-4, or 5 the noisy one) is pushed in, in metres."""
+        button = _validate.integer("button", button, 0, self.n_buttons - 1)
         return -float(self.named.data.qpos[_BUTTON_JOINTS[button]][0])
 
     def lid_angles(self):
@@ -92,9 +104,12 @@ class ButtonsPhysics(icub.ArmPhysics):
                 _LIGHT_MATERIALS[int(light)], "material")
 
 
-def load_physics():
-    """A fresh `ButtonsPhysics` of assets/buttons.xml."""
-    return ButtonsPhysics.from_xml_path(str(icub.asset_path("buttons.xml")))
+def load_physics(noisy_button=False):
+    """A fresh `ButtonsPhysics` of assets/buttons.xml (or, with `noisy_button`, of
+    assets/buttons_noisy.xml: the same scene plus the noisy button)."""
+    scene = "buttons_noisy.xml" if _validate.boolean("noisy_button", noisy_button) \
+        else "buttons.xml"
+    return ButtonsPhysics.from_xml_path(str(icub.asset_path(scene)))
 
 
 class ButtonMotions:
@@ -114,7 +129,7 @@ class ButtonMotions:
         arm = icub.Arm(physics)
         self.home = arm.solve(self.HOME)
         self.above, self.down = [], []
-        for b in range(N_BUTTONS):
+        for b in range(physics.n_buttons):
             cap = physics.named.data.geom_xpos[f"button{b}_cap"].copy()
             top = cap[2] + physics.named.model.geom_size[f"button{b}_cap"][1]
             self.above.append(arm.solve([cap[0], cap[1], top + self.ABOVE], start=self.home))
@@ -132,25 +147,34 @@ class ButtonsTask(icub.ArmTask):
     shuts again `lid_open_time` seconds later. Reward 0.0, or 1.0 while `rewarded_box`
     is open.
 
+    With `noisy_button`, the scene has a sixth button (5), never lit: a press of it
+    (detected the same way) draws one number u from the task's generator and opens the
+    red box (u < 1/3), the green box (u < 2/3) or nothing (`rules.noisy_effect`), as
+    `ButtonConsole` does; the physics must be `load_physics(noisy_button=True)`.
+
     Args:
       red_button: index of the red button (default 2).
       rewarded_box: None, "red" or "green".
       lid_open_time: seconds a lid stays open (> 0).
+      noisy_button: the scene has the noisy button (default False).
       random: None, an integer >= 0 or a `numpy.random.Generator`: draws the layouts,
-        one number per episode, as `ButtonConsole` does.
+        one number per episode, and the noisy button's outcomes, one per press, as
+        `ButtonConsole` does.
     """
 
     def __init__(self, red_button=DEFAULT_RED_BUTTON, rewarded_box=None,
-                 lid_open_time=LID_OPEN_TIME, random=None):
+                 lid_open_time=LID_OPEN_TIME, noisy_button=False, random=None):
         self.generator = check_seed(random, "random")
         super().__init__(random=dm_control_random(self.generator))
         self.red_button = check_red_button(red_button)
         self.rewarded_box = check_rewarded_box(rewarded_box)
         self.lid_open_time = _validate.positive("lid_open_time", lid_open_time)
+        self.noisy_button = _validate.boolean("noisy_button", noisy_button)
+        self.n_buttons = n_actions(self.noisy_button)
         self.lights = None
         self.press_log = []
-        self.deepest = np.zeros(N_BUTTONS)
-        self._down = np.zeros(N_BUTTONS, dtype=bool)
+        self.deepest = np.zeros(self.n_buttons)
+        self._down = np.zeros(self.n_buttons, dtype=bool)
         self._lid_opened_at = [None, None]
         self._lid_targets = (0.0, 0.0)
         self._motions = None
@@ -162,10 +186,13 @@ class ButtonsTask(icub.ArmTask):
         return self._motions
 
     def initialize_episode(self, physics):
+        if physics.n_buttons != self.n_buttons:
+            raise ValueError(f"the task has {self.n_buttons} buttons (noisy_button="
+                             f"{self.noisy_button}) but the scene {physics.n_buttons}")
         green = draw_green(self.generator, self.red_button)
         self.lights = lights_for(self.red_button, green)
         physics.set_lights(self.lights)
-        physics.named.data.qpos[_BUTTON_JOINTS] = 0.0
+        physics.data.qpos[physics._indices()._button_qpos] = 0.0
         physics.named.data.qpos[_LIDS] = 0.0
         physics._set_lid_targets(0.0, 0.0)
         self._lid_targets = (0.0, 0.0)
@@ -177,7 +204,7 @@ class ButtonsTask(icub.ArmTask):
     def clear_log(self):
         """Forgets the presses and depths seen so far (`press_log`, `deepest`)."""
         self.press_log = []
-        self.deepest = np.zeros(N_BUTTONS)
+        self.deepest = np.zeros(self.n_buttons)
 
     def after_step(self, physics):
         self.update(physics)
@@ -195,9 +222,13 @@ class ButtonsTask(icub.ArmTask):
         if new.any():
             for b in np.flatnonzero(new):
                 self.press_log.append(int(b))
-                light = self.lights[b]
-                if light != OFF:
-                    box = 0 if light == RED else 1
+                if b == NOISY_BUTTON:  # its outcome: one draw from the task's generator
+                    effect = noisy_effect(self.generator.random())
+                    box = {RED_BOX: 0, GREEN_BOX: 1}.get(effect)
+                else:
+                    light = self.lights[b]
+                    box = None if light == OFF else 0 if light == RED else 1
+                if box is not None:
                     self._lid_opened_at[box] = now
             self._down |= pressed
         if self._down.any():
@@ -218,7 +249,7 @@ class ButtonsTask(icub.ArmTask):
     def observation_spec(self, physics):
         return collections.OrderedDict(
             **self.arm_observation_spec(),
-            button_depths=specs.Array((N_BUTTONS,), np.float64, name="button_depths"),
+            button_depths=specs.Array((self.n_buttons,), np.float64, name="button_depths"),
             lights=specs.BoundedArray((N_BUTTONS,), np.float64, OFF, GREEN, name="lights"),
             lid_angles=specs.Array((2,), np.float64, name="lid_angles"),
         )
@@ -240,12 +271,14 @@ def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
     """The continuous button task: a dm_control `control.Environment`.
 
     Args:
-      seed: None, an integer >= 0 or a `numpy.random.Generator` (the layouts).
+      seed: None, an integer >= 0 or a `numpy.random.Generator` (the layouts, and the
+        noisy button's outcomes).
       time_limit: seconds per episode (> 0; float('inf') for no limit).
-      **task_kwargs: `ButtonsTask` arguments (red_button, rewarded_box, lid_open_time).
+      **task_kwargs: `ButtonsTask` arguments (red_button, rewarded_box, lid_open_time,
+        noisy_button).
     """
-    return icub.continuous_environment(load_physics(), ButtonsTask(random=seed, **task_kwargs),
-                                       time_limit)
+    task = ButtonsTask(random=seed, **task_kwargs)
+    return icub.continuous_environment(load_physics(task.noisy_button), task, time_limit)
 
 
 def check_press_motions(press_motions):
@@ -293,11 +326,18 @@ class PhysicsButtonConsole(ButtonTrials):
     its colour. The observation is taken once the motion is over and, if a lid was
     opened, once it is open at least 30 degrees: `boxes` is read from the lids.
 
-    Args: as `ButtonConsole` (red_button, presses_per_trial, rewarded_box, seed), and
+    With `noisy_button`, action 5 presses the noisy button on its stand (scene
+    assets/buttons_noisy.xml); the task draws its outcome from the same generator as
+    the layouts, in the same order as `ButtonConsole`, so the twins stay in step.
+
+    Args: as `ButtonConsole` (red_button, presses_per_trial, rewarded_box,
+      noisy_button, seed), and
       press_motions: None for the scripted primitive (default), or the movement that
-        presses each button instead: one sequence per button of (joint targets (7,),
-        seconds) pairs, each a minimum-jerk motion of the arm (`icub.Arm.move`), e.g.
-        movements the robot formed itself (`icm.experiments.run_goal_babbling`).
+        presses each of the five buttons instead: one sequence per button of (joint
+        targets (7,), seconds) pairs, each a minimum-jerk motion of the arm
+        (`icub.Arm.move`), e.g. movements the robot formed itself
+        (`icm.experiments.run_goal_babbling`); the noisy button keeps the scripted
+        press.
 
     Attributes:
       physics: the `ButtonsPhysics`, to inspect or render.
@@ -310,14 +350,14 @@ class PhysicsButtonConsole(ButtonTrials):
     """Longest wait (seconds) for a lid to open or shut."""
 
     def __init__(self, red_button=DEFAULT_RED_BUTTON,
-                 presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, rewarded_box=None, seed=None,
-                 press_motions=None):
+                 presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, rewarded_box=None,
+                 noisy_button=False, seed=None, press_motions=None):
         self.press_motions = check_press_motions(press_motions)
         self.task = ButtonsTask(red_button=red_button, rewarded_box=rewarded_box,
-                                random=seed)
+                                noisy_button=noisy_button, random=seed)
         self.red_button = self.task.red_button
-        super().__init__(presses_per_trial, rewarded_box)
-        self.physics = load_physics()
+        super().__init__(presses_per_trial, rewarded_box, noisy_button)
+        self.physics = load_physics(self.noisy_button)
         self.arm = icub.Arm(self.physics)
         self.motions = self.task.motions(self.physics)
 
@@ -340,7 +380,7 @@ class PhysicsButtonConsole(ButtonTrials):
         """Runs the press primitive on `button`; returns the boxes seen after it.
 
         Args:
-          button: index of the button (0-4).
+          button: index of the button (0-4, or 5 with the noisy button).
           recorder: optional function of the physics, called after every update of
             the actuators' targets (every 20 ms of simulated time), e.g. to record a
             time series or render frames.
@@ -348,7 +388,7 @@ class PhysicsButtonConsole(ButtonTrials):
         Raises:
           ValueError: if `button` is not a button index or `recorder` not a function.
         """
-        button = check_discrete_action(button, N_BUTTONS, "button")
+        button = check_discrete_action(button, self.n_actions, "button")
         _validate.function("recorder", recorder)
         physics, task, motions, arm = self.physics, self.task, self.motions, self.arm
         lids = physics._indices()._lid_qpos
@@ -368,7 +408,7 @@ class PhysicsButtonConsole(ButtonTrials):
                 task.update(physics)
                 recorder(physics)
 
-        if self.press_motions is None:
+        if self.press_motions is None or button >= N_BUTTONS:  # scripted
             arm.move(motions.above[button], self.REACH_TIME, watch)
             arm.move(motions.down[button], self.PUSH_TIME, watch)
             arm.hold(self.HOLD_TIME, watch)
@@ -395,12 +435,14 @@ class PhysicsButtonConsoleBatch:
       seeds: one integer seed per row.
       red_button: the button that is always red.
       presses_per_trial: presses in a trial (the consoles' own episode length).
+      noisy_button: add the noisy button, action 5.
       press_motions: None (the scripted presses), or one `press_motions` of
         `PhysicsButtonConsole` per row.
     """
 
     def __init__(self, seeds, red_button=DEFAULT_RED_BUTTON,
-                 presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, press_motions=None):
+                 presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, noisy_button=False,
+                 press_motions=None):
         seeds = list(seeds)
         if press_motions is None:
             press_motions = [None] * len(seeds)
@@ -408,12 +450,13 @@ class PhysicsButtonConsoleBatch:
             raise ValueError(f"press_motions must be None or one entry per row "
                              f"({len(seeds)}), got {_validate.show(press_motions)}")
         self.consoles = [PhysicsButtonConsole(red_button=red_button,
-                                              presses_per_trial=presses_per_trial, seed=s,
+                                              presses_per_trial=presses_per_trial,
+                                              noisy_button=noisy_button, seed=s,
                                               press_motions=motions)
                          for s, motions in zip(seeds, press_motions)]
         self.red_button = check_red_button(red_button)
-        self.noisy_button = False
-        self.n_actions = N_BUTTONS
+        self.noisy_button = _validate.boolean("noisy_button", noisy_button)
+        self.n_actions = n_actions(self.noisy_button)
         self._greens = green_candidates(self.red_button)
         self.layout = np.zeros(len(self.consoles), dtype=np.int64)
 

@@ -3,7 +3,8 @@
 The robot's right hand moves between the cells of a 5 x 3 grid over a table (actions
 forward, backward, left, right; a move off the grid leaves the hand where it is). Two
 rods stand on the table: the red one is toppled from many (cell, action) pairs, the
-blue one from few. An episode ends when a rod topples.
+blue one from few. An episode ends when a rod topples. With `wobbly_rod=True` a third
+rod stands beside the grid and falls, at random, half of the times the hand passes it.
 
 One module per concept:
 
@@ -14,7 +15,8 @@ One module per concept:
 - `physics`: the simulated iCub: `RodsPhysics`, `RodsTask` (continuous control),
   `load_continuous` and `PhysicsRodTable`, the discrete moves as arm motions
   (imported on first use: it loads dm_control and MuJoCo);
-- `measure`: measuring the topple map in physics (`python -m icm.envs.rods`).
+- `measure`: measuring the topple map (and the wobble map) in physics
+  (`python -m icm.envs.rods`).
 
 Every public name of these is also available here, e.g. `rods.RodTable`.
 """
@@ -27,7 +29,8 @@ from icm.envs.rods.twin import RodEpisodes, RodTable, RodTableBatch
 
 _LAZY = {"physics": ("RodsPhysics", "load_physics", "GridMotions", "RodsTask",
                      "load_continuous", "PhysicsRodTable", "PhysicsRodTableBatch"),
-         "measure": ("arm_touches_a_rod", "measure_pair", "measure_topple_map", "main")}
+         "measure": ("arm_touches_a_rod", "measure_pair", "measure_topple_map",
+                     "measure_wobble_map", "write_wobble_map", "main")}
 
 __all__ = list(_rules_all) + ["RodEpisodes", "RodTable", "RodTableBatch",
                               *_LAZY["physics"], *_LAZY["measure"]]

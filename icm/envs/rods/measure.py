@@ -1,5 +1,7 @@
 """Measuring the topple map in physics: `python -m icm.envs.rods` runs every move from
-every standable cell on fresh upright rods and writes assets/rod_topple_map.json."""
+every standable cell on fresh upright rods and writes assets/rod_topple_map.json, then
+does the same in the scene with the wobbly rod and writes assets/rod_wobble_map.json
+(which moves pass beside it)."""
 
 import collections
 import json
@@ -11,7 +13,7 @@ from icm.envs import icub
 from icm.envs._common import check_discrete_action
 from icm.envs.rods.physics import _RODS, PhysicsRodTable, RodsPhysics
 from icm.envs.rods.rules import (ACTIONS, N_COLUMNS, N_ROWS, ROD_NAMES, TOPPLE_MAP_FILE,
-                                     check_cell)
+                                     WOBBLE_MAP_FILE, check_cell, load_topple_map)
 
 
 def arm_touches_a_rod(physics):
@@ -85,8 +87,57 @@ def measure_topple_map(cells=None):
     return {"standable": [list(c) for c in standable], "pairs": pairs}
 
 
+def measure_wobble_map(seed=0):
+    """Runs every move from every standable cell of the stored topple map in the scene
+    with the wobbly rod, on fresh upright rods.
+
+    Args:
+      seed: the task's seed (whether a move beside the wobbly rod topples it is drawn
+        from it; which moves pass beside it does not depend on it).
+
+    Returns:
+      {"pairs": [{"cell", "action", "wobbles", "topples", "touched", "disturbance"},
+      ...]}: "wobbles", whether the move passes beside the wobbly rod (the task drew
+      for it); "topples", "red", "blue", "wobbly" or None; "touched", whether the arm
+      ever touched the wobbly rod; "disturbance", how far (metres) the rods that stayed
+      up moved.
+    """
+    env = PhysicsRodTable(max_moves=1, wobbly_rod=True, seed=seed)
+    physics = env.physics
+    wobbly = physics.model.name2id("wobbly_rod", "geom")
+    robot = {physics.model.name2id(name, "body") for name in ("r_upper_arm", "r_forearm",
+                                                              "r_hand")}
+
+    def touching(_):
+        for contact in physics.data.contact[:physics.data.ncon]:
+            if wobbly in (contact.geom1, contact.geom2) and \
+                    {physics.model.geom_bodyid[contact.geom1],
+                     physics.model.geom_bodyid[contact.geom2]} & robot:
+                touched[0] = True
+
+    pairs = []
+    for cell in sorted(load_topple_map()["standable"], key=lambda c: (c[1], c[0])):
+        for action in range(len(ACTIONS)):
+            env.start_cell = cell
+            env.reset()
+            before = physics.rod_positions()
+            touched = [False]
+            rods = env.move(action, recorder=touching)
+            moved = np.linalg.norm(physics.rod_positions() - before, axis=1)
+            standing = rods == 0
+            pairs.append({"cell": list(cell), "action": action,
+                          "wobbles": bool(env.task.wobble_log),
+                          "topples": physics.rod_names[int(np.argmax(rods))] if rods.any()
+                          else None,
+                          "touched": touched[0],
+                          "disturbance": float(moved[standing].max()) if standing.any()
+                          else 0.0})
+    return {"pairs": pairs}
+
+
 def main():
-    """Measures the topple map in physics and writes assets/rod_topple_map.json."""
+    """Measures the topple map in physics and writes assets/rod_topple_map.json; then
+    the wobble map (assets/rod_wobble_map.json)."""
     measured = measure_topple_map()
     path = icub.ASSETS / TOPPLE_MAP_FILE
     lines = ",\n  ".join(json.dumps(pair) for pair in measured["pairs"])
@@ -95,6 +146,19 @@ def main():
     counts = collections.Counter(p["topples"] for p in measured["pairs"])
     print(f"wrote {path}: {len(measured['pairs'])} pairs from {len(measured['standable'])} "
           f"standable cells; red {counts['red']}, blue {counts['blue']}")
+    write_wobble_map()
+
+
+def write_wobble_map():
+    """Measures the wobble map in physics (`measure_wobble_map`) and writes
+    assets/rod_wobble_map.json."""
+    wobble = measure_wobble_map()
+    path = icub.ASSETS / WOBBLE_MAP_FILE
+    lines = ",\n  ".join(json.dumps({k: pair[k] for k in ("cell", "action", "wobbles")})
+                         for pair in wobble["pairs"])
+    path.write_text('{"pairs": [\n  ' + lines + "\n]}\n")
+    beside = [(tuple(p["cell"]), p["action"]) for p in wobble["pairs"] if p["wobbles"]]
+    print(f"wrote {path}: moves beside the wobbly rod {beside}")
 
 
 if __name__ == "__main__":

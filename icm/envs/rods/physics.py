@@ -4,11 +4,13 @@
 dm_control task: the action is the 7 arm joint targets; the episode ends when a rod
 tilts past 45 degrees), `load_continuous`, and `PhysicsRodTable`, the paper's discrete
 moves as arm motions on top of it; `PhysicsRodTableBatch` runs one table per row for
-the batched learners.
+the batched learners. With `wobbly_rod=True` the scene is assets/rods_wobbly.xml: the
+same table plus the wobbly rod, which the task watches (see `RodsTask`).
 """
 
 import collections
 
+import mujoco
 import numpy as np
 from dm_env import specs
 
@@ -17,32 +19,58 @@ from icm.envs import icub
 from icm.envs._common import check_discrete_action, check_seed, dm_control_random
 from icm.envs.rods.rules import (ACTIONS, DEFAULT_MAX_MOVES, DEFAULT_START_CELL,
                                      HAND_HEIGHT, N_COLUMNS, N_ROWS, ROD_NAMES, TOPPLE_TILT,
-                                     cell_number, check_cell, check_start_cell, next_cell,
+                                     WOBBLE_TOPPLE_PROBABILITY, WOBBLY, cell_number,
+                                     check_cell, check_start_cell, next_cell, rod_names,
                                      standable_cells)
 from icm.envs.rods.twin import RodEpisodes
 
-_RODS = [f"{name}_rod" for name in ROD_NAMES]
+_RODS = [f"{name}_rod" for name in ROD_NAMES]  # red and blue, in every scene
+_WOBBLY_ROD = f"{WOBBLY}_rod"
+WOBBLE_REACH = 0.08
+"""The hand passes beside the wobbly rod when its fingertip crosses the line level with
+the rod (along the robot's forward axis) within this distance of it sideways (metres).
+The grid's nearest column runs 5.5 cm beside the rod, the next one 11 cm; the cells
+on either side of the rod are 2.75 cm before and after it (a move overshoots by up
+to 2 cm)."""
+WOBBLE_PUSH = 20.0
+"""The angular speed (radians per second) the task gives a wobbly rod that falls,
+tipping it away from the grid."""
 
 
 class RodsPhysics(icub.ArmPhysics):
-    """The rod scene (assets/rods.xml) with named accessors."""
+    """The rod scene (assets/rods.xml, or assets/rods_wobbly.xml) with named
+    accessors."""
+
+    @property
+    def rod_names(self):
+        """The rods of the scene: red, blue, and the wobbly one if it is there."""
+        if getattr(self, "_rod_model", None) is not self.model.ptr:
+            self._has_wobbly = mujoco.mj_name2id(self.model.ptr, mujoco.mjtObj.mjOBJ_BODY,
+                                                 _WOBBLY_ROD) >= 0
+            self._rod_model = self.model.ptr
+        return rod_names(self._has_wobbly)
+
+    def rod_bodies(self):
+        """The rods' body names, in the order of `rod_names`."""
+        return [f"{name}_rod" for name in self.rod_names]
 
     def rod_tilt(self, name):
-        """How far rod `name` ("red" or "blue") leans from upright, in radians."""
-        name = _validate.one_of("name", name, ROD_NAMES)
+        """How far rod `name` ("red", "blue" or "wobbly") leans from upright, in
+        radians."""
+        name = _validate.one_of("name", name, self.rod_names)
         return float(np.arccos(np.clip(self.named.data.xmat[f"{name}_rod"][8], -1.0, 1.0)))
 
     def rod_tilts(self):
-        """Both rods' tilts (radians), red then blue."""
-        return np.array([self.rod_tilt(name) for name in ROD_NAMES])
+        """Every rod's tilt (radians), in the order of `rod_names`."""
+        return np.array([self.rod_tilt(name) for name in self.rod_names])
 
     def rods_toppled(self):
         """The `rods` observation read from the physics: 1 where a rod tilts > 45 deg."""
         return (self.rod_tilts() > TOPPLE_TILT).astype(np.int64)
 
     def rod_positions(self):
-        """Both rods' centres (world, metres), shape (2, 3)."""
-        return self.named.data.xpos[_RODS].copy()
+        """The rods' centres (world, metres), shape (rods, 3)."""
+        return self.named.data.xpos[self.rod_bodies()].copy()
 
     def cell_centre(self, cell):
         """World position (metres) of the centre of grid cell (column, row), on the table."""
@@ -58,16 +86,36 @@ class RodsPhysics(icub.ArmPhysics):
 
     def stand_rods(self):
         """Stands both rods upright at rest where the model places them."""
-        for name in _RODS:
+        for name in self.rod_bodies():
             joint = self.model.name2id(name, "joint")
             start = self.model.jnt_qposadr[joint]
             self.data.qpos[start:start + 7] = self.model.qpos0[start:start + 7]
             self.data.qvel[self.model.jnt_dofadr[joint]:self.model.jnt_dofadr[joint] + 6] = 0
 
 
-def load_physics():
-    """A fresh `RodsPhysics` of assets/rods.xml."""
-    return RodsPhysics.from_xml_path(str(icub.asset_path("rods.xml")))
+    def hand_beside_wobbly_rod(self):
+        """Where the fingertip is with respect to the wobbly rod: (side, near), side
+        -1 before the rod's level (nearer the robot) or +1 past it, near True within
+        `WOBBLE_REACH` of it sideways. None without a wobbly rod."""
+        if WOBBLY not in self.rod_names:
+            return None
+        tip = self.named.data.site_xpos["fingertip"]
+        rod = self.named.data.xpos[_WOBBLY_ROD]
+        return (1 if tip[0] > rod[0] else -1), bool(abs(tip[1] - rod[1]) < WOBBLE_REACH)
+
+    def push_wobbly_rod(self):
+        """Tips the wobbly rod over, away from the grid (towards the robot's left): the
+        task's push when it falls."""
+        joint = self.model.name2id(_WOBBLY_ROD, "joint")
+        dof = self.model.jnt_dofadr[joint]
+        self.data.qvel[dof + 3] = -WOBBLE_PUSH  # about -x: the top moves towards +y
+
+
+def load_physics(wobbly_rod=False):
+    """A fresh `RodsPhysics` of assets/rods.xml (with `wobbly_rod`, of
+    assets/rods_wobbly.xml: the same scene plus the wobbly rod)."""
+    scene = "rods_wobbly.xml" if _validate.boolean("wobbly_rod", wobbly_rod) else "rods.xml"
+    return RodsPhysics.from_xml_path(str(icub.asset_path(scene)))
 
 
 class GridMotions:
@@ -101,21 +149,34 @@ class GridMotions:
 class RodsTask(icub.ArmTask):
     """The rod experiment as a continuous dm_control task.
 
-    Action: target angles of the 7 right-arm joints (radians). Each episode stands both
+    Action: target angles of the 7 right-arm joints (radians). Each episode stands the
     rods upright and starts the hand over `start_cell`. The episode ends (discount 0)
     when a rod tilts past 45 degrees. Reward 0.0: the paper's learner pays itself.
+
+    With `wobbly_rod` (on `load_physics(wobbly_rod=True)`), the task watches the hand
+    after every physics update. Each time the fingertip crosses the line level with
+    the wobbly rod close beside it (`RodsPhysics.hand_beside_wobbly_rod`), the task
+    draws one number u from its generator; if u < 1/2 it pushes the rod, which falls.
+    After `begin_move` (the discrete layer calls it before every move) it draws at
+    most once until the next `begin_move`, as `RodTable` draws once per move.
 
     Args:
       start_cell: (column, row) where the hand starts (default (0, 0)); a cell where
         the hand can rest with both rods standing.
-      random: None, an integer >= 0 or a `numpy.random.Generator` (unused by the
-        rules, kept for dm_control's conventions).
+      wobbly_rod: the scene has the wobbly rod (default False).
+      random: None, an integer >= 0 or a `numpy.random.Generator` (the wobbly rod's
+        draws; without it the rules use no randomness).
     """
 
-    def __init__(self, start_cell=DEFAULT_START_CELL, random=None):
+    def __init__(self, start_cell=DEFAULT_START_CELL, wobbly_rod=False, random=None):
         self.generator = check_seed(random, "random")
         super().__init__(random=dm_control_random(self.generator))
         self.start_cell = check_start_cell(start_cell, standable_cells())
+        self.wobbly_rod = _validate.boolean("wobbly_rod", wobbly_rod)
+        self.rod_names = rod_names(self.wobbly_rod)
+        self.wobble_log = []
+        self._side = None  # where the fingertip was at the last update (see update)
+        self._once, self._drawn = False, False
         self._motions = None
 
     def motions(self, physics):
@@ -125,14 +186,43 @@ class RodsTask(icub.ArmTask):
         return self._motions
 
     def initialize_episode(self, physics):
+        if tuple(physics.rod_names) != self.rod_names:
+            raise ValueError(f"the task has the rods {self.rod_names} (wobbly_rod="
+                             f"{self.wobbly_rod}) but the scene {tuple(physics.rod_names)}")
         physics.stand_rods()
         icub.Arm(physics).place(self.motions(physics).cells[self.start_cell])
+        self.wobble_log = []
+        self._side = None
+        self._once, self._drawn = False, False
+
+    def begin_move(self):
+        """Starts a discrete move: from now on at most one draw, until the next call."""
+        self._once, self._drawn = True, False
+
+    def after_step(self, physics):
+        self.update(physics)
+
+    def update(self, physics):
+        """Watches the hand beside the wobbly rod (nothing without one): on coming
+        beside it, draws whether it falls, and if so pushes it."""
+        if not self.wobbly_rod:
+            return
+        side, near = physics.hand_beside_wobbly_rod()
+        crossed = self._side is not None and side != self._side and near
+        self._side = side
+        if crossed and not (self._once and self._drawn):
+            self._drawn = True
+            falls = self.generator.random() < WOBBLE_TOPPLE_PROBABILITY
+            self.wobble_log.append(bool(falls))
+            if falls:
+                physics.push_wobbly_rod()
 
     def observation_spec(self, physics):
+        n = len(self.rod_names)
         return collections.OrderedDict(
             **self.arm_observation_spec(),
-            rod_tilts=specs.BoundedArray((2,), np.float64, 0.0, np.pi, name="rod_tilts"),
-            rod_positions=specs.Array((6,), np.float64, name="rod_positions"),
+            rod_tilts=specs.BoundedArray((n,), np.float64, 0.0, np.pi, name="rod_tilts"),
+            rod_positions=specs.Array((3 * n,), np.float64, name="rod_positions"),
         )
 
     def get_observation(self, physics):
@@ -158,10 +248,10 @@ def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
     Args:
       seed: None, an integer >= 0 or a `numpy.random.Generator`.
       time_limit: seconds per episode (> 0; float('inf') for no limit).
-      **task_kwargs: `RodsTask` arguments (start_cell).
+      **task_kwargs: `RodsTask` arguments (start_cell, wobbly_rod).
     """
-    return icub.continuous_environment(load_physics(), RodsTask(random=seed, **task_kwargs),
-                                       time_limit)
+    task = RodsTask(random=seed, **task_kwargs)
+    return icub.continuous_environment(load_physics(task.wobbly_rod), task, time_limit)
 
 
 class PhysicsRodTable(RodEpisodes):
@@ -175,11 +265,16 @@ class PhysicsRodTable(RodEpisodes):
     `rods` is read from the rods' tilts. A move off the grid leaves the hand where it
     is.
 
+    With `wobbly_rod`, the scene has the wobbly rod, which the task watches during
+    every move (`RodsTask.update`): its draws come from the task's generator, seeded
+    like `RodTable`'s, one per move that passes beside it, so the twins stay in step.
+
     Args:
       start_cell: (column, row) where each episode starts (default (0, 0)).
       max_moves: moves before an episode without a topple ends (>= 1, default 30).
-      seed: None, an integer >= 0 or a `numpy.random.Generator` (the rules use no
-        randomness).
+      wobbly_rod: add the wobbly rod (default False).
+      seed: None, an integer >= 0 or a `numpy.random.Generator` (the wobbly rod's
+        draws; without it the rules use no randomness).
 
     Attributes:
       physics: the `RodsPhysics`, to inspect or render.
@@ -192,17 +287,19 @@ class PhysicsRodTable(RodEpisodes):
     FALL_TIME = 1.0
     """Longest wait (seconds) for a tipping rod to come to rest."""
 
-    def __init__(self, start_cell=DEFAULT_START_CELL, max_moves=DEFAULT_MAX_MOVES, seed=None):
-        super().__init__(start_cell, max_moves)
-        self.task = RodsTask(start_cell=self.start_cell, random=seed)
-        self.physics = load_physics()
+    def __init__(self, start_cell=DEFAULT_START_CELL, max_moves=DEFAULT_MAX_MOVES,
+                 wobbly_rod=False, seed=None):
+        super().__init__(start_cell, max_moves, wobbly_rod)
+        self.task = RodsTask(start_cell=self.start_cell, wobbly_rod=self.wobbly_rod,
+                             random=seed)
+        self.physics = load_physics(self.wobbly_rod)
         self.arm = icub.Arm(self.physics)
         self.motions = self.task.motions(self.physics)
         self._cell = self.start_cell
 
     def reseed(self, seed):
-        """Restarts the task's random generator from `seed` (the rules use none); the
-        next step starts a new episode."""
+        """Restarts the task's random generator from `seed` (used by the wobbly rod
+        only); the next step starts a new episode."""
         self.task.generator = check_seed(seed)
         self._reset_next_step = True
 
@@ -232,11 +329,17 @@ class PhysicsRodTable(RodEpisodes):
         _validate.function("recorder", recorder)
         physics, target = self.physics, next_cell(self._cell, action)
 
+        task = self.task
+        task.begin_move()
+
         def record():
-            recorder(physics)
+            task.update(physics)
+            if recorder is not None:
+                recorder(physics)
             return False
 
-        watch = None if recorder is None else record  # no per-update call unless asked
+        # No per-update call unless asked for or needed (the wobbly rod is watched).
+        watch = None if recorder is None and not self.wobbly_rod else record
 
         if target != self._cell:
             self.arm.move(self.motions.midpoints[(self._cell, target)], self.SEGMENT_TIME, watch)
@@ -245,7 +348,8 @@ class PhysicsRodTable(RodEpisodes):
         self.arm.hold(self.SETTLE_TIME, watch)
         if np.any(physics.rod_tilts() > np.deg2rad(5.0)):
             # A rod is tipping: let it fall and come to rest before looking.
-            speed = lambda: np.abs(physics.named.data.qvel[_RODS]).max()
+            bodies = physics.rod_bodies()
+            speed = lambda: np.abs(physics.named.data.qvel[bodies]).max()
             self.arm.hold(self.FALL_TIME,
                           monitor=lambda: (watch is not None and watch()) or speed() < 0.05)
         return physics.rods_toppled()
@@ -259,13 +363,17 @@ class PhysicsRodTableBatch:
     Args:
       n_rows: number of tables.
       start_cell: (column, row) where every episode starts.
+      wobbly_rod: add the wobbly rod.
+      seeds: one seed per row (the wobbly rod's draws; default 0, 1, ...).
     """
 
-    def __init__(self, n_rows, start_cell=DEFAULT_START_CELL):
+    def __init__(self, n_rows, start_cell=DEFAULT_START_CELL, wobbly_rod=False, seeds=None):
         self.n_rows = _validate.integer_at_least("n_rows", n_rows, 1)
         self.start = cell_number(check_start_cell(start_cell, standable_cells()))
-        self.tables = [PhysicsRodTable(start_cell=start_cell, max_moves=10**9)
-                       for _ in range(self.n_rows)]
+        seeds = range(self.n_rows) if seeds is None else seeds
+        self.tables = [PhysicsRodTable(start_cell=start_cell, max_moves=10**9,
+                                       wobbly_rod=wobbly_rod, seed=seed)
+                       for seed in seeds]
 
     def new_episodes(self, rows):
         """Stands the rods up and puts the hand over the start cell in `rows`."""
@@ -274,8 +382,8 @@ class PhysicsRodTableBatch:
 
     def move(self, rows, cells, actions):
         """The moves `actions` of the tables `rows` (each is at its cell in `cells`):
-        returns (next cells, rods toppled: 0 red, 1 blue, -1 none), read from the
-        physics."""
+        returns (next cells, rods toppled: 0 red, 1 blue, 2 wobbly, -1 none), read
+        from the physics."""
         nxt = np.zeros(len(rows), dtype=np.int64)
         toppled = np.full(len(rows), -1, dtype=np.int64)
         for i, (row, cell, action) in enumerate(zip(np.asarray(rows).tolist(),

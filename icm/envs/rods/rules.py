@@ -6,6 +6,14 @@ rods stand on the table: the red one is toppled from many (cell, action) pairs, 
 blue one from few. An episode ends when a rod topples. Which pairs topple which rod is
 measured in physics (`icm.envs.rods.measure`) and stored in
 assets/rod_topple_map.json (`load_topple_map`).
+
+The wobbly rod (`wobbly_rod=True`, a chapter beyond the paper) is a third rod that
+stands off the grid, beside the line between two cells. The hand never touches it; a
+move that passes beside it makes it fall with probability `WOBBLE_TOPPLE_PROBABILITY`
+(1/2), whatever the robot knows: one uniform number u from the environment's
+Generator per such move, toppled if u < 1/2. Which moves pass beside it is measured
+in physics too, and stored in assets/rod_wobble_map.json (`load_wobble_map`). The red
+and blue rods behave exactly as without it.
 """
 
 import collections
@@ -30,6 +38,11 @@ the robot's left (column - 1)."""
 _MOVES = {0: (0, 1), 1: (0, -1), 2: (-1, 0), 3: (1, 0)}  # action -> (d column, d row)
 ROD_NAMES = ("red", "blue")
 """Order of the rods in the `rods` observation."""
+WOBBLY = "wobbly"
+"""The name of the third rod, `wobbly_rod=True`: last in the `rods` observation."""
+WOBBLE_TOPPLE_PROBABILITY = 0.5
+"""The chance that a move beside the wobbly rod topples it."""
+WOBBLE_MAP_FILE = "rod_wobble_map.json"
 DEFAULT_START_CELL = (0, 0)
 """Episodes start with the hand over the cell nearest the robot on its left."""
 DEFAULT_MAX_MOVES = 30
@@ -80,12 +93,20 @@ def next_cell(cell, action):
     return tuple(cell)
 
 
-def observation_spec():
-    """The observation spec shared by the tabular and the physics rod environments."""
+def rod_names(wobbly_rod=False):
+    """The rods of the scene, in the order of the `rods` observation: red, blue, and
+    with `wobbly_rod` the wobbly one."""
+    return ROD_NAMES + ((WOBBLY,) if _validate.boolean("wobbly_rod", wobbly_rod) else ())
+
+
+def observation_spec(wobbly_rod=False):
+    """The observation spec shared by the tabular and the physics rod environments
+    (`rods` has a third entry with the wobbly rod)."""
+    n_rods = len(rod_names(wobbly_rod))
     return collections.OrderedDict(
         hand=specs.BoundedArray((2,), np.int64, [0, 0], [N_COLUMNS - 1, N_ROWS - 1],
                                 name="hand"),
-        rods=specs.BoundedArray((2,), np.int64, 0, 1, name="rods"),
+        rods=specs.BoundedArray((n_rods,), np.int64, 0, 1, name="rods"),
     )
 
 
@@ -110,6 +131,23 @@ def load_topple_map():
     topples = {(tuple(entry["cell"]), entry["action"]): entry["topples"]
                for entry in data["pairs"]}
     return {"standable": {tuple(c) for c in data["standable"]}, "topples": topples}
+
+
+def load_wobble_map():
+    """The (cell, action) pairs whose move passes beside the wobbly rod, as measured in
+    physics (assets/rod_wobble_map.json): a set of ((column, row), action). None of
+    them topples the red or the blue rod."""
+    data = _read_topple_map(asset_path(WOBBLE_MAP_FILE).read_text())
+    return {(tuple(pair["cell"]), pair["action"]) for pair in data["pairs"] if pair["wobbles"]}
+
+
+def wobble_table():
+    """The wobble map as a bool array [cell number, action] (True: the move passes
+    beside the wobbly rod), for the batched twin."""
+    table = np.zeros((N_CELLS, len(ACTIONS)), dtype=bool)
+    for cell, action in load_wobble_map():
+        table[cell_number(cell), action] = True
+    return table
 
 
 def standable_cells():
@@ -153,7 +191,8 @@ def transition_tables(topple_map=None):
 
 
 __all__ = ["N_COLUMNS", "N_ROWS", "N_CELLS", "ACTIONS", "ROD_NAMES", "DEFAULT_START_CELL",
-           "DEFAULT_MAX_MOVES", "TOPPLE_TILT", "TOPPLE_MAP_FILE", "HAND_HEIGHT", "check_cell",
-           "cell_number", "number_cell", "next_cell", "observation_spec", "action_spec",
-           "load_topple_map", "standable_cells", "topple_counts", "check_start_cell",
-           "transition_tables"]
+           "DEFAULT_MAX_MOVES", "TOPPLE_TILT", "TOPPLE_MAP_FILE", "HAND_HEIGHT", "WOBBLY",
+           "WOBBLE_TOPPLE_PROBABILITY", "WOBBLE_MAP_FILE", "check_cell", "cell_number",
+           "number_cell", "next_cell", "rod_names", "observation_spec", "action_spec",
+           "load_topple_map", "load_wobble_map", "wobble_table", "standable_cells",
+           "topple_counts", "check_start_cell", "transition_tables"]

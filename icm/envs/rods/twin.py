@@ -5,12 +5,14 @@ import collections
 import dm_env
 import numpy as np
 
-from icm import _validate
+from icm import _streams, _validate
 from icm.envs._common import check_discrete_action, check_seed
 from icm.envs.rods.rules import (ACTIONS, DEFAULT_MAX_MOVES, DEFAULT_START_CELL,
-                                     ROD_NAMES, action_spec, cell_number, check_start_cell,
-                                     load_topple_map, next_cell, observation_spec,
-                                     standable_cells, transition_tables)
+                                     ROD_NAMES, WOBBLE_TOPPLE_PROBABILITY, action_spec,
+                                     cell_number, check_start_cell, load_topple_map,
+                                     load_wobble_map, next_cell, observation_spec,
+                                     rod_names, standable_cells, transition_tables,
+                                     wobble_table)
 
 
 class RodEpisodes(dm_env.Environment):
@@ -24,13 +26,18 @@ class RodEpisodes(dm_env.Environment):
     limit (discount 1.0). Reward is always 0.0. A step after the end of an episode
     starts a new one.
 
+    With `wobbly_rod`, the scene has a third rod (see `icm.envs.rods.rules`), the
+    last entry of `rods`.
+
     Subclasses say how an episode starts (`_start`) and what a move does (`_move`,
     returning the hand's cell and the rods' toppled flags).
     """
 
-    def __init__(self, start_cell, max_moves):
+    def __init__(self, start_cell, max_moves, wobbly_rod=False):
         self.start_cell = check_start_cell(start_cell, standable_cells())
         self.max_moves = _validate.integer_at_least("max_moves", max_moves, 1)
+        self.wobbly_rod = _validate.boolean("wobbly_rod", wobbly_rod)
+        self.rod_names = rod_names(self.wobbly_rod)
         self._moves = 0
         self._reset_next_step = True
 
@@ -54,7 +61,7 @@ class RodEpisodes(dm_env.Environment):
         self._start()
         self._moves = 0
         self._reset_next_step = False
-        return dm_env.restart(self._observation(self.start_cell, [0, 0]))
+        return dm_env.restart(self._observation(self.start_cell, [0] * len(self.rod_names)))
 
     def step(self, action):
         """Moves the hand: 0 forward, 1 backward, 2 left, 3 right.
@@ -82,7 +89,7 @@ class RodEpisodes(dm_env.Environment):
 
     def observation_spec(self):
         """The observation spec: `hand` and `rods` (see `observation_spec()`)."""
-        return observation_spec()
+        return observation_spec(self.wobbly_rod)
 
     def action_spec(self):
         """The action spec: four moves (see `action_spec()`)."""
@@ -99,23 +106,27 @@ class RodTable(RodEpisodes):
       start_cell: (column, row) where each episode starts; must be a standable cell of
         the map. Default (0, 0), the cell nearest the robot on its left.
       max_moves: moves before an episode without a topple ends (>= 1, default 30).
-      seed: None, an integer >= 0 or a `numpy.random.Generator`; accepted for
-        symmetry with the other environments (the rules use no randomness).
+      wobbly_rod: add the wobbly rod (default False).
+      seed: None, an integer >= 0 or a `numpy.random.Generator`; draws whether a move
+        beside the wobbly rod topples it (one number per such move; without the
+        wobbly rod the rules use no randomness).
 
     Raises:
       ValueError: for a start cell off the grid or where a rod stands, max_moves < 1,
         or (in `step`) an action that is not 0-3.
     """
 
-    def __init__(self, start_cell=DEFAULT_START_CELL, max_moves=DEFAULT_MAX_MOVES, seed=None):
-        super().__init__(start_cell, max_moves)
+    def __init__(self, start_cell=DEFAULT_START_CELL, max_moves=DEFAULT_MAX_MOVES,
+                 wobbly_rod=False, seed=None):
+        super().__init__(start_cell, max_moves, wobbly_rod)
         self._map = load_topple_map()
+        self._wobbles = load_wobble_map() if self.wobbly_rod else set()
         self._random = check_seed(seed)
         self._cell = self.start_cell
 
     def reseed(self, seed):
-        """Checks `seed` (the rules use no randomness); the next step starts a new
-        episode."""
+        """Restarts the random generator (used by the wobbly rod only) from `seed`; the
+        next step starts a new episode."""
         self._random = check_seed(seed)
         self._reset_next_step = True
 
@@ -129,8 +140,11 @@ class RodTable(RodEpisodes):
 
     def _move(self, action):
         toppled = self._map["topples"][(self._cell, action)]
+        if (self._cell, action) in self._wobbles and \
+                self._random.random() < WOBBLE_TOPPLE_PROBABILITY:
+            toppled = self.rod_names[-1]
         self._cell = next_cell(self._cell, action)
-        rods = [int(toppled == name) for name in ROD_NAMES]
+        rods = [int(toppled == name) for name in self.rod_names]
         return self._cell, rods
 
 
@@ -139,18 +153,28 @@ class RodTableBatch:
     need not be in the same episode or at the same move.
 
     Cells are cell numbers (`icm.envs.rods.rules.cell_number`); a move returns the next
-    cell and the rod toppled (0 red, 1 blue, -1 none) of each moving row, from the
-    same stored map as `RodTable`.
+    cell and the rod toppled (0 red, 1 blue, 2 wobbly, -1 none) of each moving row,
+    from the same stored maps as `RodTable`. With the wobbly rod, row k draws from
+    `seeds[k]` exactly the numbers `RodTable(wobbly_rod=True, seed=seeds[k])` draws.
 
     Args:
       n_rows: number of tables.
       start_cell: (column, row) where every episode starts.
+      wobbly_rod: add the wobbly rod.
+      seeds: one seed per row (needed with the wobbly rod; default 0, 1, ...).
     """
 
-    def __init__(self, n_rows, start_cell=DEFAULT_START_CELL):
+    def __init__(self, n_rows, start_cell=DEFAULT_START_CELL, wobbly_rod=False, seeds=None):
         self.n_rows = _validate.integer_at_least("n_rows", n_rows, 1)
         self.start = cell_number(check_start_cell(start_cell, standable_cells()))
         self.next_cell, self.topples = transition_tables()
+        self.wobbly_rod = _validate.boolean("wobbly_rod", wobbly_rod)
+        self.wobbles = wobble_table() if self.wobbly_rod else \
+            np.zeros(self.topples.shape, dtype=bool)
+        self.streams = None
+        if self.wobbly_rod:
+            self.streams = _streams.Streams(range(self.n_rows) if seeds is None else seeds,
+                                            chunk=16)
 
     def new_episodes(self, rows):
         """Starts new episodes in `rows` (the tabular rules keep no state)."""
@@ -158,4 +182,12 @@ class RodTableBatch:
     def move(self, rows, cells, actions):
         """The moves `actions` of the tables `rows`, each from its cell in `cells`:
         returns (next cells, rods toppled), arrays like `rows`."""
-        return self.next_cell[cells, actions], self.topples[cells, actions]
+        toppled = self.topples[cells, actions]
+        if self.wobbly_rod:
+            beside = np.flatnonzero(self.wobbles[cells, actions])
+            if beside.size:
+                toppled = toppled.copy()
+                falls = self.streams.draw(np.asarray(rows)[beside], k=1)[:, 0] \
+                    < WOBBLE_TOPPLE_PROBABILITY
+                toppled[beside[falls]] = len(ROD_NAMES)
+        return self.next_cell[cells, actions], toppled

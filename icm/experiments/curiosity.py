@@ -1,0 +1,392 @@
+"""Which curiosity? The interest signals compared on the same tasks, with and without a
+noisy world (the chapter "Which curiosity?").
+
+`run_signal_comparison` runs the goal-oriented learner on the buttons once per signal
+(`icm.learners.interest.SIGNALS`), place of interest (`interest_per`, "task" or
+"region") and world (with or without the noisy button), all on the same seeds;
+`run_reward_comparison` runs the Q-learner on the rods once per intrinsic reward
+(`icm.learners.q_learning.REWARDS`), with and without the wobbly rod. Both return the
+runs and the numbers the chapter quotes, each a mean over seeds with its 95%
+percentile-bootstrap band.
+"""
+
+import dataclasses
+import itertools
+
+import numpy as np
+
+from icm import _validate
+from icm.experiments import goal_oriented as _goal_oriented
+from icm.experiments import rod_toppling as _rod_toppling
+from icm.experiments._progress import progress_bar
+from icm.learners import goal_oriented, interest, predictors, q_learning
+from icm.stats import bootstrap_band
+
+CHANCE_SHARE = 1.0 / 6.0
+"""The share of presses a learner pressing at random gives each of the six buttons."""
+
+
+def _band(values):
+    """(mean, low, high) of a 1-d array of per-seed values, floats (NaN if empty)."""
+    return _bands({"x": values})["x"]
+
+
+def _bands(columns):
+    """{name: (mean, low, high)} for per-seed values {name: [seed]} (all over the same
+    seeds: one bootstrap for all of them), NaN for an empty column."""
+    names = [name for name, v in columns.items() if np.size(v)]
+    out = {name: (float("nan"),) * 3 for name in columns}
+    if names:
+        stacked = np.stack([np.asarray(columns[name], dtype=float) for name in names], axis=1)
+        mean, low, high = bootstrap_band(stacked)
+        for i, name in enumerate(names):
+            out[name] = (float(mean[i]), float(low[i]), float(high[i]))
+    return out
+
+
+def _check_choices(name, values, allowed):
+    """`values` as a tuple of distinct members of `allowed`, else raises."""
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+        raise _validate.ArgumentTypeError(f"{name} must be a sequence of {allowed}, got "
+                                          f"{_validate.show(values)}")
+    values = tuple(_validate.one_of(f"{name}[i]", v, allowed) for v in values)
+    if not values or len(set(values)) != len(values):
+        raise ValueError(f"{name} must list distinct values of {allowed}, at least one, "
+                         f"got {values!r}")
+    return values
+
+
+def button_numbers(result):
+    """The numbers that compare goal-oriented runs, from one `GoalOrientedResult`, each
+    a (mean, low, high) over the seeds unless said otherwise:
+
+    - "red_mastery", "green_mastery": the mastery trial, over the seeds that master
+      the task; "red_mastered", "green_mastered": the share of seeds that do;
+    - "red_first": the share of seeds that master red strictly before green (a plain
+      number);
+    - "red_presses", "green_presses", "nothing_presses": presses per run that opened
+      the red box, the green box, or nothing (3 presses a trial);
+    - "button_share": the share of all presses on each button, a list of
+      (mean, low, high), one per button;
+    - "noisy_share": the share on the noisy button (NaN without it).
+    """
+    _validate.instance("result", result, _goal_oriented.GoalOrientedResult,
+                       "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
+    out, per_seed = {}, {}
+    for i, task in enumerate(_goal_oriented.TASKS):
+        trials = result.mastery_trial[:, i]
+        out[f"{task}_mastery"] = _band(trials[trials >= 1])
+        per_seed[f"{task}_mastered"] = (trials >= 1).astype(float)
+        per_seed[f"{task}_presses"] = result.practice[:, :, i].sum(axis=1)
+    total = result.settings["presses_per_trial"] * result.n_trials
+    per_seed["nothing_presses"] = total - result.practice.sum(axis=(1, 2))
+    shares = result.button_share.mean(axis=1)  # [seed, button]
+    for b in range(shares.shape[1]):
+        per_seed[b] = shares[:, b]
+    bands = _bands(per_seed)
+    out.update({name: band for name, band in bands.items() if isinstance(name, str)})
+    out["red_first"] = result.red_first_fraction()
+    out["button_share"] = [bands[b] for b in range(shares.shape[1])]
+    out["noisy_share"] = out["button_share"][5] if shares.shape[1] > 5 else \
+        (float("nan"),) * 3
+    return out
+
+
+@dataclasses.dataclass(frozen=True)
+class SignalComparison:
+    """What `run_signal_comparison` measured.
+
+    Attributes:
+      settings: the arguments of the comparison, as a dict.
+      results: {(signal, interest_per, noisy_button): GoalOrientedResult}, every run
+        on the same seeds.
+    """
+
+    settings: dict
+    results: dict
+    _numbers: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
+
+    def numbers(self, signal, interest_per="task", noisy_button=False):
+        """`button_numbers` of one run of the comparison (computed once)."""
+        key = (signal, interest_per, noisy_button)
+        if key not in self.results:
+            raise ValueError(f"(signal, interest_per, noisy_button) must be one of "
+                             f"{sorted(self.results)}, got {key!r}")
+        if key not in self._numbers:
+            self._numbers[key] = button_numbers(self.results[key])
+        return self._numbers[key]
+
+    def summary(self):
+        """The numbers the chapter quotes, as a flat dict: keys
+        "<signal>_<interest_per>_<plain|noisy>_<quantity>" with quantity red_mastery,
+        green_mastery (means over the seeds that master), red_mastered,
+        green_mastered, red_first, red_presses, green_presses, noisy_share, and the
+        95% band of the shares and mastery trials as ..._low and ..._high."""
+        out = {}
+        for (signal, per, noisy), result in self.results.items():
+            prefix = f"{signal}_{per}_{'noisy' if noisy else 'plain'}_"
+            numbers = self.numbers(signal, per, noisy)
+            for name in ("red_mastery", "green_mastery", "red_mastered", "green_mastered",
+                         "red_presses", "green_presses", "noisy_share"):
+                mean, low, high = numbers[name]
+                out[prefix + name] = mean
+                out[prefix + name + "_low"] = low
+                out[prefix + name + "_high"] = high
+            out[prefix + "red_first"] = numbers["red_first"]
+        return out
+
+    def seed_summaries(self):
+        """One dict per seed: each run's mastery trials (-1 if never) and, with the
+        noisy button, its share of presses, keyed like `summary`."""
+        rows = [dict() for _ in range(self.settings["n_seeds"])]
+        for (signal, per, noisy), result in self.results.items():
+            prefix = f"{signal}_{per}_{'noisy' if noisy else 'plain'}_"
+            shares = result.button_share.mean(axis=1)
+            for k, row in enumerate(rows):
+                row[prefix + "red_mastery_trial"] = int(result.mastery_trial[k, 0])
+                row[prefix + "green_mastery_trial"] = int(result.mastery_trial[k, 1])
+                if noisy:
+                    row[prefix + "noisy_share"] = float(shares[k, 5])
+        return rows
+
+    def table(self, noisy_button=False):
+        """A Markdown table, one row per (signal, interest_per) of the world with or
+        without the noisy button: mastery trials of red and green (mean over the seeds
+        that master, 95% band, share that master), red first, presses per task, and
+        the noisy button's share of presses."""
+        noisy_button = _validate.boolean("noisy_button", noisy_button)
+        lines = ["| signal | interest per | red mastered, trial | green mastered, trial "
+                 "| red first | presses opening red / green / nothing | noisy button, "
+                 "share of presses |", "|" + "---|" * 7]
+        for (signal, per, noisy), result in self.results.items():
+            if noisy != noisy_button:
+                continue
+            n = self.numbers(signal, per, noisy)
+            cells = [signal.replace("_", " "), per]
+            for task in _goal_oriented.TASKS:
+                mean, low, high = n[f"{task}_mastery"]
+                cells.append(f"{mean:.1f} [{low:.1f}, {high:.1f}] "
+                             f"({n[f'{task}_mastered'][0]:.0%} of seeds)")
+            cells.append(f"{n['red_first']:.0%}")
+            cells.append(" / ".join(f"{n[f'{t}_presses'][0]:.0f}"
+                                    for t in ("red", "green", "nothing")))
+            mean, low, high = n["noisy_share"]
+            cells.append("-" if np.isnan(mean) else f"{mean:.3f} [{low:.3f}, {high:.3f}]")
+            lines.append("| " + " | ".join(cells) + " |")
+        return "\n".join(lines)
+
+
+def run_signal_comparison(n_seeds=100, n_trials=100, signals=interest.SIGNALS,
+                          designs=goal_oriented.INTEREST_PER, noisy=(False, True), seed=0,
+                          progress=True):
+    """Runs the goal-oriented learner on the buttons once per signal, place of interest
+    and world, all on the same seeds (`run_goal_oriented`, its other settings at their
+    defaults).
+
+    Args:
+      n_seeds: runs per setting (>= 1).
+      n_trials: trials per run (>= 1).
+      signals: the interest signals to compare (default all of `SIGNALS`).
+      designs: where interest lives, "task" and/or "region" (default both).
+      noisy: the worlds: False (five buttons), True (with the noisy button).
+      seed: the root seed (see `run_goal_oriented`), the same for every setting.
+      progress: a progress bar over the settings.
+
+    Returns:
+      A `SignalComparison`.
+
+    Raises:
+      ValueError: for a bad count, an unknown signal or design, or a repeated one.
+    """
+    n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
+    n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
+    signals = _check_choices("signals", signals, interest.SIGNALS)
+    designs = _check_choices("designs", designs, goal_oriented.INTEREST_PER)
+    noisy = _check_choices("noisy", noisy, (False, True))
+    seed = _validate.root_seed("seed", seed)
+    _validate.boolean("progress", progress)
+    grid = list(itertools.product(signals, designs, noisy))
+    results = {}
+    for signal, per, noisy_button in progress_bar(grid, len(grid), "interest signals",
+                                                  progress, unit="run"):
+        results[(signal, per, noisy_button)] = _goal_oriented.run_goal_oriented(
+            n_seeds=n_seeds, n_trials=n_trials, interest=signal, interest_per=per,
+            noisy_button=noisy_button, seed=seed, progress=False)
+    settings = dict(n_seeds=n_seeds, n_trials=n_trials, signals=signals, designs=designs,
+                    noisy=noisy, seed=seed)
+    return SignalComparison(settings, results)
+
+
+def rod_numbers(result):
+    """The numbers that compare Q-learner runs, from one `RodTopplingResult`, each a
+    (mean, low, high) over the seeds unless said otherwise:
+
+    - "<rod>_share" and "<rod>_share_late", for every rod of the run and "none": the
+      share of episodes that ended with it toppled (with no topple), over all episodes
+      and over the second half;
+    - "red_well", "blue_well": the share of seeds in which the rod is predicted well
+      (reading "all", see `icm.experiments.rod_toppling.READINGS`);
+    - "red_well_episode", "blue_well_episode": that episode, over the seeds where it
+      comes.
+    """
+    _validate.instance("result", result, _rod_toppling.RodTopplingResult,
+                       "a RodTopplingResult (from icm.experiments.run_rod_toppling)")
+    out, per_seed = {}, {}
+    late = slice(result.n_episodes // 2, None)
+    for rod in result.rod_names + (None,):
+        name = rod or "none"
+        per_seed[f"{name}_share"] = result.topple_shares(rod)
+        per_seed[f"{name}_share_late"] = result.topple_shares(rod, late)
+    for i, rod in enumerate(_rod_toppling.RODS):
+        well = result.predicted_well[:, i]
+        per_seed[f"{rod}_well"] = (well >= 1).astype(float)
+        out[f"{rod}_well_episode"] = _band(well[well >= 1])
+    out.update(_bands(per_seed))
+    return out
+
+
+@dataclasses.dataclass(frozen=True)
+class RewardComparison:
+    """What `run_reward_comparison` measured.
+
+    Attributes:
+      settings: the arguments of the comparison, as a dict.
+      results: {(reward, wobbly_rod): RodTopplingResult}, every run on the same seeds.
+    """
+
+    settings: dict
+    results: dict
+    _numbers: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
+
+    def numbers(self, reward, wobbly_rod=False):
+        """`rod_numbers` of one run of the comparison (computed once)."""
+        key = (reward, wobbly_rod)
+        if key not in self.results:
+            raise ValueError(f"(reward, wobbly_rod) must be one of {sorted(self.results)}, "
+                             f"got {key!r}")
+        if key not in self._numbers:
+            self._numbers[key] = rod_numbers(self.results[key])
+        return self._numbers[key]
+
+    def summary(self):
+        """The numbers the chapter quotes, as a flat dict: keys
+        "<reward>_<plain|wobbly>_<quantity>" (quantities of `rod_numbers`, means, with
+        their bands as ..._low and ..._high)."""
+        out = {}
+        for (reward, wobbly), result in self.results.items():
+            prefix = f"{reward}_{'wobbly' if wobbly else 'plain'}_"
+            for name, (mean, low, high) in self.numbers(reward, wobbly).items():
+                out[prefix + name] = mean
+                out[prefix + name + "_low"] = low
+                out[prefix + name + "_high"] = high
+        return out
+
+    def seed_summaries(self):
+        """One dict per seed: each run's share of episodes ending at the wobbly rod
+        (runs with it) and the episodes from which red and blue are predicted well."""
+        rows = [dict() for _ in range(self.settings["n_seeds"])]
+        for (reward, wobbly), result in self.results.items():
+            prefix = f"{reward}_{'wobbly' if wobbly else 'plain'}_"
+            shares = result.topple_shares("wobbly") if wobbly else None
+            for k, row in enumerate(rows):
+                row[prefix + "red_well_episode"] = int(result.predicted_well[k, 0])
+                row[prefix + "blue_well_episode"] = int(result.predicted_well[k, 1])
+                if wobbly:
+                    row[prefix + "wobbly_share"] = float(shares[k])
+        return rows
+
+    def table(self):
+        """A Markdown table, one row per (reward, world): the share of episodes ending
+        at each rod over the second half of the runs, and how many seeds predict red
+        and blue well (and from which episode, median)."""
+        lines = ["| reward | wobbly rod | episodes ending at red / blue / wobbly / none, "
+                 "second half | red predicted well: seeds (episode) "
+                 "| blue predicted well: seeds (episode) |", "|" + "---|" * 5]
+        for reward, wobbly in self.results:
+            n = self.numbers(reward, wobbly)
+            shares = " / ".join(
+                f"{n[f'{rod}_share_late'][0]:.2f}" if f"{rod}_share_late" in n else "-"
+                for rod in ("red", "blue", "wobbly", "none"))
+            cells = [reward.replace("_", " "), "yes" if wobbly else "no", shares]
+            for rod in _rod_toppling.RODS:
+                episode = n[f"{rod}_well_episode"][0]
+                cells.append(f"{n[f'{rod}_well'][0]:.0%} "
+                             f"({'-' if np.isnan(episode) else f'{episode:.0f}'})")
+            lines.append("| " + " | ".join(cells) + " |")
+        return "\n".join(lines)
+
+
+def run_reward_comparison(n_seeds=100, n_episodes=300, rewards=q_learning.REWARDS,
+                          wobbly=(False, True), seed=0, progress=True):
+    """Runs the Q-learner on the rods once per intrinsic reward and world, all on the
+    same seeds (`run_rod_toppling`, its other settings at their defaults).
+
+    Args:
+      n_seeds: runs per setting (>= 1).
+      n_episodes: episodes per run (>= 1).
+      rewards: the rewards to compare (default all of `REWARDS`).
+      wobbly: the worlds: False (red and blue), True (with the wobbly rod).
+      seed: the root seed, the same for every setting.
+      progress: a progress bar over the settings.
+
+    Returns:
+      A `RewardComparison`.
+
+    Raises:
+      ValueError: for a bad count, an unknown reward, or a repeated one.
+    """
+    n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
+    n_episodes = _validate.integer_at_least("n_episodes", n_episodes, 1)
+    rewards = _check_choices("rewards", rewards, q_learning.REWARDS)
+    wobbly = _check_choices("wobbly", wobbly, (False, True))
+    seed = _validate.root_seed("seed", seed)
+    _validate.boolean("progress", progress)
+    grid = list(itertools.product(rewards, wobbly))
+    results = {}
+    for reward, wobbly_rod in progress_bar(grid, len(grid), "intrinsic rewards", progress,
+                                           unit="run"):
+        results[(reward, wobbly_rod)] = _rod_toppling.run_rod_toppling(
+            n_seeds=n_seeds, n_episodes=n_episodes, reward=reward, wobbly_rod=wobbly_rod,
+            seed=seed, progress=False)
+    settings = dict(n_seeds=n_seeds, n_episodes=n_episodes, rewards=rewards, wobbly=wobbly,
+                    seed=seed)
+    return RewardComparison(settings, results)
+
+
+def outcome_rewards(rewards=("prediction_error", "learning_progress", "novelty"),
+                    n_tries=60, n_seeds=100, window=interest.DEFAULT_WINDOW,
+                    predictor_lr=predictors.DEFAULT_LINEAR_LR, seed=0):
+    """What each intrinsic reward pays, try after try, for one (state, action) pair
+    whose outcome is a fair coin (1 or 0, probability 1/2 each: the wobbly rod) and for
+    one whose outcome is always 1 (a rod that always topples), as the rods' Q-learner
+    computes it (`icm.learners.q_learning.QLearner.learn` on a one-pair table with a
+    `LinearPredictor`).
+
+    Args:
+      rewards: the rewards, names of `REWARDS`.
+      n_tries: tries of the pair (>= 1).
+      n_seeds: seeds of the coin (>= 1).
+      window: errors in the learning-progress slope (>= 2).
+      predictor_lr: the predictor's learning rate, in (0, 1].
+      seed: the root seed of the coins.
+
+    Returns:
+      {(reward, "coin" | "sure"): rewards [seed, try]}.
+    """
+    rewards = _check_choices("rewards", rewards, q_learning.REWARDS)
+    n_tries = _validate.integer_at_least("n_tries", n_tries, 1)
+    n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
+    seed = _validate.root_seed("seed", seed)
+    coins = np.random.default_rng(seed).random((n_seeds, n_tries)) < 0.5
+    out = {}
+    for reward in rewards:
+        for kind, outcomes in (("coin", coins), ("sure", np.ones_like(coins))):
+            paid = np.zeros((n_seeds, n_tries))
+            for k in range(n_seeds):
+                learner = q_learning.QLearner(
+                    1, 1, predictors.LinearPredictor(1, 1, lr=predictor_lr), reward=reward,
+                    window=window, seed=0)
+                for t in range(n_tries):
+                    paid[k, t] = learner.learn(0, 0, [float(outcomes[k, t])], 0, 0.0)
+            out[(reward, kind)] = paid
+    return out

@@ -1,0 +1,260 @@
+"""Figures of the chapter "Which curiosity?": the interest signals compared on the
+buttons and the rods, with and without noise, and the scenes with the noisy button and
+the wobbly rod."""
+
+import numpy as np
+
+from icm import _validate
+from icm.envs import buttons, icub, rods
+from icm.experiments import curiosity as _curiosity
+from icm.experiments.curiosity import RewardComparison, SignalComparison
+from icm.figures._common import TASK_COLOURS, check_result, new_figure
+from icm.figures.icub import check_camera, check_image_size, render
+
+SIGNAL_COLOURS = {"learning_progress": "#1b9e77", "prediction_error": "#d95f02",
+                  "novelty": "#7570b3", "random": "#7a7a7a"}
+"""One colour per interest signal (or intrinsic reward)."""
+WOBBLY_COLOUR = "#e6a817"
+"""The wobbly rod's colour (as in assets/rods_wobbly.xml)."""
+BLOCK = 10
+"""Episodes per point in the rod curves: shares over blocks of this many episodes."""
+
+
+def _label(name):
+    return name.replace("_", " ")
+
+
+def signal_mastery_figure(comparison):
+    """When the predictor masters red and green, per signal and place of interest:
+    the mean mastery trial over the seeds that master the task, with its 95% band,
+    without (left) and with (right) the noisy button. A hollow marker: fewer than 95%
+    of the seeds master the task (the share is written beside it).
+
+    Args:
+      comparison: a `SignalComparison`.
+    """
+    check_result("comparison", comparison, SignalComparison,
+                 "icm.experiments.run_signal_comparison")
+    worlds = comparison.settings["noisy"]
+    fig, axes = new_figure(width=5.2 * len(worlds), height=4.2, ncols=len(worlds),
+                           sharex=True, sharey=True, squeeze=False)
+    right_end = 0.0
+    rows = [(s, d) for s in comparison.settings["signals"]
+            for d in comparison.settings["designs"]]
+    for ax, noisy in zip(axes[0], worlds):
+        for y, (signal, design) in enumerate(rows):
+            numbers = comparison.numbers(signal, design, noisy)
+            for offset, task in ((-0.15, "red"), (0.15, "green")):
+                mean, low, high = numbers[f"{task}_mastery"]
+                share = numbers[f"{task}_mastered"][0]
+                colour = TASK_COLOURS[task]
+                right_end = max(right_end, high)
+                ax.errorbar(mean, y + offset, xerr=[[mean - low], [high - mean]], fmt="o",
+                            color=colour, mfc=colour if share >= 0.95 else "white",
+                            markersize=6, capsize=2)
+                if share < 0.95:
+                    ax.annotate(f"{share:.0%} of seeds", (high, y + offset),
+                                xytext=(4, -3), textcoords="offset points", fontsize=7,
+                                color=colour)
+        ax.set_yticks(range(len(rows)))
+        ax.set_yticklabels([f"{_label(s)}, per {d}" for s, d in rows], fontsize=8)
+        ax.set_xlabel("mastery trial (mean, 95% band)")
+        ax.grid(axis="x", alpha=0.3)
+        ax.set_title(("with the noisy button" if noisy else "five buttons") +
+                     f", {comparison.settings['n_seeds']} seeds", fontsize=10)
+    axes[0][0].set_xlim(0, 1.3 * right_end)  # the axes share x: room for every band
+    axes[0][0].invert_yaxis()  # the axes share y: once for all
+    axes[0][0].plot([], [], "o", color=TASK_COLOURS["red"], label="red task")
+    axes[0][0].plot([], [], "o", color=TASK_COLOURS["green"], label="green task")
+    axes[0][0].legend(frameon=False, fontsize=8, loc="lower right")
+    return fig
+
+
+def noisy_share_figure(comparison):
+    """The share of each trial's presses on the noisy button, per signal (mean over
+    seeds, 95% band), with interest per task (left) and per region (right); the dashed
+    line is chance, 1/6.
+
+    Args:
+      comparison: a `SignalComparison` with runs with the noisy button.
+    """
+    check_result("comparison", comparison, SignalComparison,
+                 "icm.experiments.run_signal_comparison")
+    if True not in comparison.settings["noisy"]:
+        raise ValueError("comparison must hold runs with the noisy button (noisy=(..., True))")
+    designs = comparison.settings["designs"]
+    fig, axes = new_figure(width=5.0 * len(designs), height=3.6, ncols=len(designs),
+                           sharey=True, squeeze=False)
+    from icm.stats import bootstrap_band
+
+    for ax, design in zip(axes[0], designs):
+        for signal in comparison.settings["signals"]:
+            result = comparison.results[(signal, design, True)]
+            share = result.button_share[:, :, buttons.NOISY_BUTTON]
+            mean, low, high = bootstrap_band(share, resamples=300)
+            x = np.arange(1, result.n_trials + 1)
+            colour = SIGNAL_COLOURS[signal]
+            ax.fill_between(x, low, high, color=colour, alpha=0.2, linewidth=0)
+            ax.plot(x, mean, color=colour, linewidth=1.8, label=_label(signal))
+        ax.axhline(_curiosity.CHANCE_SHARE, color="black", linestyle="--", linewidth=1)
+        ax.set(xlabel="trial", xlim=(1, comparison.settings["n_trials"]), ylim=(0, 1))
+        ax.set_title(f"interest per {design}", fontsize=10)
+    axes[0][0].set_ylabel("share of presses on the noisy button")
+    axes[0][0].legend(frameon=False, fontsize=8, loc="upper left")
+    return fig
+
+
+def _block_shares(result, index):
+    """[seed, block]: the share of each block of `BLOCK` episodes ending with rod
+    `index` toppled (-1: none)."""
+    n_blocks = result.n_episodes // BLOCK
+    hits = (result.toppled[:, :n_blocks * BLOCK] == index).astype(float)
+    return hits.reshape(result.n_seeds, n_blocks, BLOCK).mean(axis=2)
+
+
+def wobbly_rod_figure(comparison):
+    """The rods with the wobbly rod, per intrinsic reward: the share of episodes that
+    end with the wobbly rod toppled (left), and the error the predictor would still
+    make on the red rod's pairs (right; below 0.1, red is predicted well), against
+    episode (mean over seeds, 95% band; shares over blocks of `BLOCK` episodes).
+
+    Args:
+      comparison: a `RewardComparison` with runs with the wobbly rod.
+    """
+    check_result("comparison", comparison, RewardComparison,
+                 "icm.experiments.run_reward_comparison")
+    if True not in comparison.settings["wobbly"]:
+        raise ValueError("comparison must hold runs with the wobbly rod (wobbly=(..., True))")
+    from icm.stats import bootstrap_band
+
+    fig, (left, right) = new_figure(width=10.4, height=3.7, ncols=2)
+    for reward in comparison.settings["rewards"]:
+        result = comparison.results[(reward, True)]
+        colour = SIGNAL_COLOURS[reward]
+        shares = _block_shares(result, result.rod_names.index(rods.WOBBLY))
+        x = BLOCK * np.arange(shares.shape[1]) + (BLOCK + 1) / 2
+        mean, low, high = bootstrap_band(shares, resamples=300)
+        left.fill_between(x, low, high, color=colour, alpha=0.2, linewidth=0)
+        left.plot(x, mean, color=colour, linewidth=1.8, label=_label(reward))
+        error = result.rod_error[:, :, 0]
+        mean, low, high = bootstrap_band(error, resamples=300)
+        episodes = np.arange(1, result.n_episodes + 1)
+        right.fill_between(episodes, low, high, color=colour, alpha=0.2, linewidth=0)
+        right.plot(episodes, mean, color=colour, linewidth=1.8, label=_label(reward))
+    n = comparison.settings["n_seeds"]
+    left.set(xlabel="episode", ylabel="share of episodes ending at the wobbly rod",
+             ylim=(0, 1), xlim=(1, comparison.settings["n_episodes"]))
+    left.set_title(f"Where the episodes end, {n} seeds", fontsize=10)
+    left.legend(frameon=False, fontsize=8, loc="center left")
+    right.axhline(_curiosity._rod_toppling.WELL_PREDICTED_ERROR, color="black",
+                  linestyle="--", linewidth=1)
+    right.set(xlabel="episode", ylabel="largest error left on a red pair", ylim=(0, 1.02),
+              xlim=(1, comparison.settings["n_episodes"]))
+    right.set_title(f"What is learned about the red rod, {n} seeds", fontsize=10)
+    return fig
+
+
+def coin_flip_figure(curves):
+    """What each signal pays, try after try, for a pair whose outcome is a fair coin
+    (solid) and for one whose outcome never changes (dashed): the curves of
+    `icm.experiments.curiosity.outcome_rewards` (mean over seeds, 95% band).
+
+    Args:
+      curves: {(signal, "coin" | "sure"): rewards [seed, try]}.
+    """
+    if not isinstance(curves, dict) or not curves:
+        raise _validate.ArgumentTypeError(
+            f"curves must be a non-empty dict {{(signal, 'coin' | 'sure'): array}}, got "
+            f"{_validate.show(curves)}")
+    from icm.stats import bootstrap_band
+
+    fig, ax = new_figure(width=6.6, height=3.7)
+    for (signal, kind), values in curves.items():
+        values = _validate.finite_array(f"curves[{(signal, kind)!r}]", values, ndim=2)
+        mean, low, high = bootstrap_band(values, resamples=300)
+        x = np.arange(1, values.shape[1] + 1)
+        colour = SIGNAL_COLOURS.get(signal, "black")
+        ax.fill_between(x, low, high, color=colour, alpha=0.15, linewidth=0)
+        ax.plot(x, mean, color=colour, linewidth=1.8,
+                linestyle="-" if kind == "coin" else "--",
+                label=f"{_label(signal)}, {'fair coin' if kind == 'coin' else 'sure outcome'}")
+    ax.set(xlabel="try of the pair", ylabel="reward paid (mean over seeds)",
+           xlim=(1, max(v.shape[1] for v in curves.values())))
+    ax.set_ylim(bottom=0)
+    ax.set_title("What a noisy and a learnable outcome pay", fontsize=10)
+    ax.legend(frameon=False, fontsize=7, ncol=2)
+    return fig
+
+
+def noisy_scenes(camera="front", height=360, width=480):
+    """Two images from the simulated scenes beyond the paper: the iCub pressing the
+    noisy button (blue, on its stand right of the console), and the wobbly rod (yellow,
+    beside the grid) falling as the hand passes it, backward from cell (0, 2). The
+    first seed whose draw topples the wobbly rod is used (a rod that stands shows
+    nothing).
+
+    Only the few postures these motions need are solved (the discrete environments
+    solve all of theirs, which takes seconds); the tasks watching the button and the
+    rod are those of the environments."""
+    height, width = check_image_size(height, width)
+    physics = buttons.load_physics(noisy_button=True)
+    check_camera(physics, camera)
+    task = buttons.ButtonsTask(noisy_button=True, random=0)
+    arm = icub.Arm(physics)
+    cap = physics.named.data.geom_xpos[f"button{buttons.NOISY_BUTTON}_cap"].copy()
+    top = cap[2] + physics.named.model.geom_size[f"button{buttons.NOISY_BUTTON}_cap"][1]
+    home = arm.solve(buttons.ButtonMotions.HOME)
+    above = arm.solve([cap[0], cap[1], top + buttons.ButtonMotions.ABOVE], start=home)
+    down = arm.solve([cap[0], cap[1], top + buttons.ButtonMotions.DOWN], start=above)
+    with physics.reset_context():
+        arm.place(home)
+    task.lights = buttons.lights_for(task.red_button, buttons.green_candidates(task.red_button)[0])
+    physics.set_lights(task.lights)
+    watch = lambda: task.update(physics) or False
+    console = buttons.PhysicsButtonConsole
+    arm.move(above, console.REACH_TIME, watch)
+    arm.move(down, console.PUSH_TIME, watch)
+    arm.hold(0.3, watch)
+    press = render(physics, camera, height, width)
+
+    physics = rods.load_physics(wobbly_rod=True)
+    arm = icub.Arm(physics)
+    physics.forward()
+    lift = np.array([0.0, 0.0, rods.HAND_HEIGHT])
+    start, end = physics.cell_centre((0, 2)), physics.cell_centre((0, 1))
+    pointing = rods.GridMotions.POINTING
+    q_start = arm.solve(start + lift, pointing=pointing)
+    q_mid = arm.solve((start + end) / 2 + lift, start=q_start, pointing=pointing)
+    q_end = arm.solve(end + lift, start=q_mid, pointing=pointing)
+    table = rods.PhysicsRodTable
+    for seed in range(20):
+        task = rods.RodsTask(start_cell=(0, 2), wobbly_rod=True, random=seed)
+        with physics.reset_context():
+            physics.stand_rods()
+            arm.place(q_start)
+        task.begin_move()
+        frames = []
+
+        def watch():
+            task.update(physics)
+            if not frames and physics.rod_tilt(rods.WOBBLY) > np.deg2rad(35):
+                frames.append(render(physics, camera, height, width))
+            return bool(frames)
+
+        arm.move(q_mid, table.SEGMENT_TIME, watch) or arm.move(q_end, table.SEGMENT_TIME, watch) \
+            or arm.hold(table.FALL_TIME, watch)
+        if frames:
+            return press, frames[0]
+    raise RuntimeError("the wobbly rod stood in 20 seeds")  # 1 chance in a million
+
+
+def scenes_figure(camera="front"):
+    """The two scenes of `noisy_scenes`, side by side."""
+    press, fall = noisy_scenes(camera)
+    fig, (left, right) = new_figure(width=10, height=3.9, ncols=2)
+    for ax, image, title in [(left, press, "(a) a press of the noisy button (blue), at random"),
+                             (right, fall, "(b) the wobbly rod (yellow) falls, at random")]:
+        ax.imshow(image)
+        ax.set_title(title, fontsize=10)
+        ax.axis("off")
+    return fig
