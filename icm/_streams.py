@@ -16,14 +16,15 @@ class Streams:
 
     Args:
       seeds: one integer seed (or Generator) per row.
-      chunk: numbers buffered per row (bounded so that large batches stay small).
+      chunk: numbers buffered per row (at most 4096, fewer for large batches: the
+        buffer stays under 64 MB).
     """
 
     def __init__(self, seeds, chunk=None):
         self.generators = [s if isinstance(s, np.random.Generator) else np.random.default_rng(s)
                            for s in seeds]
         n = len(self.generators)
-        self.chunk = int(chunk or max(16, min(512, (1 << 23) // max(n, 1))))
+        self.chunk = int(chunk or max(16, min(4096, (1 << 23) // max(n, 1))))
         self.buffer = np.empty((n, self.chunk))
         for row, generator in enumerate(self.generators):
             self.buffer[row] = generator.random(self.chunk)

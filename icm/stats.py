@@ -130,6 +130,14 @@ def bootstrap_band(values, level=0.95, resamples=1000, seed=0):
     return mean, low, high
 
 
+def every_nth(n, every):
+    """Indices 0, every, 2 * every, ... below n, and n - 1 (the last point is always
+    kept): the points a thinned curve keeps."""
+    n = _validate.integer("n", n, 1)
+    every = _validate.integer("every", every, 1)
+    return np.unique(np.r_[np.arange(0, n, every), n - 1])
+
+
 PANEL_RESAMPLES = 500
 """Bootstrap resamples of the panels' bands: enough for a 95% band to be stable to the
 eye, few enough for a panel to redraw at once."""

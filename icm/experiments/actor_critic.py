@@ -16,7 +16,8 @@ from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
 from icm.experiments.goal_oriented import check_results, measures_table
 from icm.learners import actor_critic, predictors
-from icm.stats import PANEL_RESAMPLES, bootstrap_band, comes_first, first_from_which
+from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
+                       first_from_which)
 
 TASKS = ("red", "green")
 """Order of the task axis in the result arrays."""
@@ -418,10 +419,15 @@ def comparison_table(results):
     return table + "\n\n† mean over the seeds whose error reaches 0 for good within the run."
 
 
-def panel_curves(result):
+def panel_curves(result, every=1):
     """What the Figure 6 panel draws, as numbers: section 4.1's prediction error for
     each task per trial, the mean over the seeds with a 95% percentile-bootstrap band
     (which, unlike mean +/- t standard errors, never dips below an error of 0).
+
+    Args:
+      result: an `ActorCriticResult`.
+      every: keep every `every`-th trial (and the last); each kept point's numbers do
+        not depend on it.
 
     Returns:
       {"x": trials, "xlabel", "groups": [{"title", "ylabel", "series": {task: (mean,
@@ -429,9 +435,10 @@ def panel_curves(result):
     """
     _validate.instance("result", result, ActorCriticResult,
                        "an ActorCriticResult (from icm.experiments.run_actor_critic)")
-    series = {task: bootstrap_band(result.prediction_error[:, :, i],
+    keep = every_nth(result.n_trials, every)
+    series = {task: bootstrap_band(result.prediction_error[:, keep, i],
                                    resamples=PANEL_RESAMPLES)
               for i, task in enumerate(TASKS)}
-    return {"x": np.arange(1, result.n_trials + 1), "xlabel": "trial",
+    return {"x": keep + 1, "xlabel": "trial",
             "groups": [{"title": f"Prediction error, {result.n_seeds} seeds",
                         "ylabel": "prediction error (mean, 95% band)", "series": series}]}

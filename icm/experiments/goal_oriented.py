@@ -15,7 +15,8 @@ from icm.experiments import _grid
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
 from icm.learners import goal_oriented, interest, predictors
-from icm.stats import PANEL_RESAMPLES, bootstrap_band, comes_first, first_below, first_from_which
+from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth, first_below,
+                       first_from_which)
 
 TASKS = ("red", "green")
 """Order of the task axis in the result arrays."""
@@ -394,12 +395,17 @@ def comparison_table(results):
     ])
 
 
-def panel_curves(result):
+def panel_curves(result, every=1):
     """What the Figure 5 panel draws, as numbers: the mean interest in each task per
     trial over the seeds, with a 95% percentile-bootstrap band.
 
     The interactive panel and the book's precomputed static panel both draw this, so
     the two show the same numbers for the same settings.
+
+    Args:
+      result: a `GoalOrientedResult`.
+      every: keep every `every`-th trial (and the last); each kept point's numbers do
+        not depend on it.
 
     Returns:
       {"x": trials [trial], "xlabel", "groups": [{"title", "ylabel", "series":
@@ -407,8 +413,9 @@ def panel_curves(result):
     """
     _validate.instance("result", result, GoalOrientedResult,
                        "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
-    series = {task: bootstrap_band(result.interest[:, :, i], resamples=PANEL_RESAMPLES)
+    keep = every_nth(result.n_trials, every)
+    series = {task: bootstrap_band(result.interest[:, keep, i], resamples=PANEL_RESAMPLES)
               for i, task in enumerate(TASKS)}
-    return {"x": np.arange(1, result.n_trials + 1), "xlabel": "trial",
+    return {"x": keep + 1, "xlabel": "trial",
             "groups": [{"title": f"Interest in each task, {result.n_seeds} seeds",
                         "ylabel": "interest (mean, 95% band)", "series": series}]}

@@ -28,7 +28,7 @@ from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments import rod_toppling as _rod_toppling
 from icm.experiments._progress import progress_bar
 from icm.learners import actor_critic, goal_oriented, interest, predictors, q_learning
-from icm.stats import bootstrap_band
+from icm.stats import bootstrap_band, every_nth
 
 
 @dataclasses.dataclass(frozen=True)
@@ -47,7 +47,8 @@ class PanelSpec:
       defaults: the library's default of every slider and choice.
       fixed: the run's other arguments (seeds, trials, root seed).
       every: the static panel keeps every `every`-th point of each curve (and the
-        last): enough for the eye, a smaller page.
+        last): enough for the eye, a smaller page, and fewer bands to compute (a kept
+        point's numbers are those of the live panel).
     """
 
     title: str
@@ -208,8 +209,9 @@ def panel_run(name, fixed=None, **setting):
 def panel_curves_for(name, fixed=None, **setting):
     """What panel `name` draws at `setting`: the experiment's `panel_curves` of
     `panel_run(name, fixed, **setting)`. The live panels call this; `precompute` calls
-    the same `panel_runs` and `panel_curves` for every setting of the grid, so the two
-    show the same numbers for the same setting (a test checks it)."""
+    the same `panel_runs` and `panel_curves` for every setting of the grid (keeping
+    every `every`-th point), so the two show the same numbers for the same setting (a
+    test checks it)."""
     return spec(name).curves(panel_run(name, fixed, **setting))
 
 
@@ -243,7 +245,8 @@ class PanelGrid:
     Attributes:
       name: the panel (a key of `PANELS`).
       settings: the grid's settings, dicts of slider and choice values.
-      curves: for each setting, what `panel_curves_for` returned.
+      curves: for each setting, what `panel_curves_for` returns, thinned to the
+        panel's `every`.
       cells: for "figure5", each setting's `sweep_cell` (else None).
     """
 
@@ -282,7 +285,7 @@ def _precompute(name, progress):
     settings = panel.settings()
     curves, cells = [], []
     for result in panel_runs(name, settings, progress=progress):
-        curves.append(panel.curves(result))
+        curves.append(panel.curves(result, every=panel.every))
         if name == "figure5":
             cells.append(sweep_cell(result))
     return PanelGrid(name=name, settings=tuple(settings), curves=tuple(curves),
@@ -311,10 +314,8 @@ def precompute(name, progress=True):
 
 
 def thin(curves, every):
-    """`curves` with every `every`-th point of each series kept (and the last one)."""
-    every = _validate.integer("every", every, 1)
-    n = len(curves["x"])
-    keep = np.unique(np.r_[np.arange(0, n, every), n - 1])
+    """`curves` with every `every`-th point of each series kept (and the last)."""
+    keep = every_nth(len(curves["x"]), every)
     groups = [{**g, "series": {k: tuple(np.asarray(a)[keep] for a in band)
                                for k, band in g["series"].items()}}
               for g in curves["groups"]]

@@ -11,7 +11,8 @@ from icm.envs import rods
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
 from icm.learners import interest, predictors, q_learning
-from icm.stats import PANEL_RESAMPLES, bootstrap_band, comes_first, first_from_which
+from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
+                       first_from_which)
 
 RODS = rods.ROD_NAMES
 """Order of the rod axis in the result arrays: red, blue (with the wobbly rod, the
@@ -541,12 +542,17 @@ def _to_grid(history):
     return np.swapaxes(shaped, 2, 3)
 
 
-def panel_curves(result):
+def panel_curves(result, every=1):
     """What the Figure 7 panel draws, as numbers, per episode over the seeds (means
     with 95% percentile-bootstrap bands): the largest error the predictor would still
     make on a pair that topples each rod (`rod_error`, reading "all": red is learned
     when its curve falls below 0.1), and the share of episodes that end with each rod
     toppled (where the robot plays).
+
+    Args:
+      result: a `RodTopplingResult`.
+      every: keep every `every`-th episode (and the last); each kept point's numbers
+        do not depend on it.
 
     Returns:
       {"x": episodes, "xlabel", "groups": [{"title", "ylabel", "series": {name: (mean,
@@ -555,13 +561,14 @@ def panel_curves(result):
     """
     _validate.instance("result", result, RodTopplingResult,
                        "a RodTopplingResult (from icm.experiments.run_rod_toppling)")
+    keep = every_nth(result.n_episodes, every)
     series = {}
     for i, rod in enumerate(RODS):
-        series[rod] = bootstrap_band(result.rod_error[:, :, i], resamples=PANEL_RESAMPLES)
+        series[rod] = bootstrap_band(result.rod_error[:, keep, i], resamples=PANEL_RESAMPLES)
     for i, rod in enumerate(RODS):
-        series[f"{rod} toppled"] = bootstrap_band((result.toppled == i).astype(float),
+        series[f"{rod} toppled"] = bootstrap_band((result.toppled[:, keep] == i).astype(float),
                                                   resamples=PANEL_RESAMPLES)
-    return {"x": np.arange(1, result.n_episodes + 1), "xlabel": "episode",
+    return {"x": keep + 1, "xlabel": "episode",
             "groups": [{"title": f"Error left on each rod's pairs (solid), share of episodes "
                                  f"toppling it (dashed), {result.n_seeds} seeds",
                         "ylabel": "error left / share of episodes", "series": series}]}

@@ -144,12 +144,11 @@ def _specification(rows, params, transform, body):
 
 def curves_rows(grid):
     """The page's data of a curves panel: one row per setting and series, the series'
-    points as arrays (x, mean, low, high), thinned to the panel's `every`."""
+    points as arrays (x, mean, low, high)."""
     _validate.instance("grid", grid, _panels.PanelGrid,
                        "a PanelGrid (from icm.experiments.panels.precompute)")
     rows = []
     for setting, curves in zip(grid.settings, grid.curves):
-        curves = _panels.thin(curves, grid.spec.every)
         x = [int(v) for v in curves["x"]]
         for group in curves["groups"]:
             for series, (mean, low, high) in group["series"].items():
