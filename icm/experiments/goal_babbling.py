@@ -32,7 +32,7 @@ from icm.experiments._babbling_physics import (  # noqa: F401 (the times are re-
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import check_run_size, run_seeds
 from icm.learners import goal_oriented, interest, predictors
-from icm.stats import mean_band
+from icm.stats import PANEL_RESAMPLES, bootstrap_band
 
 STRATEGIES = ("random_motor", "random_goal", "learning_progress")
 """How the next movement is chosen (see the module docstring)."""
@@ -206,7 +206,8 @@ class GoalBabblingResult:
         seeds and its 95% band, in m), the buttons pressed (mean number of the 5,
         and the share of seeds that press all 5), the share of rollouts that touched
         the console and that pressed a button."""
-        mean, low, high = mean_band(self.final_test_error()[:, None])
+        mean, low, high = bootstrap_band(self.final_test_error()[:, None],
+                                         resamples=PANEL_RESAMPLES)
         return {"test_error": float(mean[0]), "test_error_low": float(low[0]),
                 "test_error_high": float(high[0]),
                 "buttons_pressed": float(self.buttons_pressed.sum(axis=1).mean()),
