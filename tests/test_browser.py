@@ -46,7 +46,7 @@ def browser_pages(built_book):
             args=["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                   "--disable-background-networking", "--disable-component-update",
                   "--disable-sync"])
-        context = browser.new_context(offline=True)
+        context = browser.new_context(offline=True, viewport={"width": 1366, "height": 800})
         requests = []
 
         def refuse_network(route):
@@ -72,12 +72,37 @@ def browser_pages(built_book):
                 "sliders": page.locator(".widget-slider").count(),
                 "expected_sliders": expected_sliders(path.read_text()),
                 "math": page.locator("mjx-container").count(),
+                "overflowing": page.evaluate(OVERFLOWING),
                 "errors": errors,
             }
             page.close()
         seen["__requests__"] = requests
         browser.close()
     return seen
+
+
+OVERFLOWING = """() => {
+  // Tables, figures and panels that reach past the page's text column. Output areas
+  // and tables scroll sideways, so such an element is not lost, but a reader sees it
+  // cut at the column's edge: nothing may be wider than the column.
+  const article = document.querySelector(".bd-article");
+  if (!article) { return []; }
+  const style = getComputedStyle(article);
+  const right = article.getBoundingClientRect().right - parseFloat(style.paddingRight) + 1;
+  const out = [];
+  for (const el of article.querySelectorAll("table, img, .icm-static-panel svg")) {
+    const r = el.getBoundingClientRect();
+    if (r.width > 0 && r.right > right)
+      out.push(el.tagName + " " + Math.round(r.right - right) + " px too wide: " +
+               (el.getAttribute("src") || el.textContent).slice(0, 60));
+  }
+  return out;
+}"""
+
+
+def test_nothing_is_cut_off_at_laptop_width(browser_pages):
+    for name in toc_files():
+        assert browser_pages[name]["overflowing"] == [], (name, browser_pages[name]["overflowing"])
 
 
 def test_every_page_loads_without_console_errors(browser_pages):

@@ -22,17 +22,22 @@ def defaults(run_fn):
 
 def check_grid(grid, allowed, run_fn, arguments):
     """Checks `grid` (a non-empty list of dicts whose keys are among `allowed`) and
-    `arguments` (other arguments of `run_fn`, none of which a setting may also give).
+    `arguments` (other arguments of `run_fn`, none of which a setting may also give;
+    `progress` is taken out of them, and a `seed` drawn once for all settings).
 
     Returns:
-      The list of every setting's full arguments: `run_fn`'s defaults, then
-      `arguments`, then the setting.
+      (full, progress): the list of every setting's full arguments (`run_fn`'s
+      defaults, then `arguments`, then the setting), and whether to show progress.
 
     Raises:
       ArgumentTypeError: if grid is not a non-empty list or tuple of dicts.
       ValueError: for a key no setting may vary, or an argument `run_fn` lacks.
     """
     name = run_fn.__name__
+    arguments = dict(arguments)
+    progress = _validate.boolean("progress", arguments.pop("progress", True))
+    if "seed" in arguments:  # one root seed for all settings, even if drawn from entropy
+        arguments["seed"] = _validate.root_seed("seed", arguments["seed"])
     if not isinstance(grid, (list, tuple)) or not grid or \
             not all(isinstance(s, dict) for s in grid):
         raise _validate.ArgumentTypeError(f"grid must be a non-empty list of dicts (one "
@@ -52,7 +57,7 @@ def check_grid(grid, allowed, run_fn, arguments):
                 raise ValueError(f"{key!r} is given both in a grid setting and as an "
                                  f"argument for every setting")
         full.append({**base, **arguments, **setting})
-    return full
+    return full, progress
 
 
 def per_row(settings, name, n_rows):

@@ -280,10 +280,7 @@ def run_actor_critic_grid(grid, **arguments):
       ValueError: for a malformed grid, a setting of an argument not in
         `GRID_ARGUMENTS`, or any value `run_actor_critic` refuses.
     """
-    progress = _validate.boolean("progress", arguments.pop("progress", True))
-    if "seed" in arguments:  # one root seed for all settings, even if drawn from entropy
-        arguments["seed"] = _validate.root_seed("seed", arguments["seed"])
-    full = _grid.check_grid(grid, GRID_ARGUMENTS, run_actor_critic, arguments)
+    full, progress = _grid.check_grid(grid, GRID_ARGUMENTS, run_actor_critic, arguments)
     settings = [_check_run_arguments(
         a["n_seeds"], a["n_trials"], a["temperature"], a["lr_actor"], a["lr_critic"],
         a["gamma"], a["reward"], a["variant"], a["rewarded_box"], a["action_selection"],

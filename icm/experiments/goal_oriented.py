@@ -261,10 +261,7 @@ def run_goal_oriented_grid(grid, **arguments):
       ValueError: for a malformed grid, a setting of an argument not in
         `GRID_ARGUMENTS`, or any value `run_goal_oriented` refuses.
     """
-    progress = _validate.boolean("progress", arguments.pop("progress", True))
-    if "seed" in arguments:  # one root seed for all settings, even if drawn from entropy
-        arguments["seed"] = _validate.root_seed("seed", arguments["seed"])
-    full = _grid.check_grid(grid, GRID_ARGUMENTS, run_goal_oriented, arguments)
+    full, progress = _grid.check_grid(grid, GRID_ARGUMENTS, run_goal_oriented, arguments)
     settings = [_check_run_arguments(
         a["n_seeds"], a["n_trials"], a["epsilon"], a["window"], a["new_task_factor"],
         a["reading"], a["action_weight"], a["presses_per_trial"], a["red_button"],

@@ -177,7 +177,8 @@ def panel_runs(name, settings, fixed=None, progress=False):
     full = [setting for setting, _ in checked]
     per_batch = 1 if panel.grid_run is None else \
         max(1, ROWS_PER_BATCH // run_fixed.get("n_seeds", 1))
-    bar = progress_bar(None, len(full), f"{name} panel", progress, unit="setting")
+    bar = progress_bar(None, len(full), panel.title.split(':')[0] + ', grid of settings',
+                       progress, unit="setting")
     for start in range(0, len(full), per_batch):
         chunk = full[start:start + per_batch]
         if panel.grid_run is None:

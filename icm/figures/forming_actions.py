@@ -131,21 +131,23 @@ def goal_choice_figure(result, n_stretches=8):
                          f"rollouts with goals, got {n_stretches}")
     order = list(reversed(range(len(_babbling.COLUMN_NAMES))))  # the robot's left on top
     names = [_babbling.COLUMN_NAMES[c] for c in order]
-    fig, (left, right) = new_figure(width=10.5, height=3.6, ncols=2)
+    # One above the other at the page's width: side by side, the labels would be shrunk
+    # to unreadable text in the book.
+    fig, (left, right) = new_figure(width=7.4, height=6.4, nrows=2)
     interest = result.column_interest()[start:, order]  # [rollout, column]
     x = np.arange(start, result.n_rollouts + 1) + 0.5
     mesh = left.pcolormesh(x, np.arange(len(order) + 1) - 0.5, interest.T, cmap="Purples",
                            vmin=0, shading="flat")
     fig.colorbar(mesh, ax=left, shrink=0.85, label="interest (m per goal)")
     left.set_title(f"Interest of each column of regions, mean of {result.n_seeds} seeds",
-                   fontsize=9)
+                   fontsize=10)
     edges = np.unique(np.geomspace(start, result.n_rollouts, n_stretches + 1).round())
     edges[0], edges[-1] = start, result.n_rollouts
     shares = result.goal_shares(edges)[:, order]
     mesh = right.pcolormesh(edges, np.arange(len(order) + 1) - 0.5, shares.T,
                             cmap="Oranges", vmin=0, shading="flat")
     fig.colorbar(mesh, ax=right, shrink=0.85, label="share of goals")
-    right.set_title(f"Share of goals in each column, {result.n_seeds} seeds", fontsize=9)
+    right.set_title(f"Share of goals in each column, {result.n_seeds} seeds", fontsize=10)
     ticks = [t for t in (20, 50, 100, 200, 500, 1000, 2000, 5000, 10000)
              if start <= t <= result.n_rollouts]
     for ax in (left, right):
@@ -154,13 +156,13 @@ def goal_choice_figure(result, n_stretches=8):
         ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator(ticks))
         ax.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
         ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
-        ax.set_yticks(range(len(names)), names, fontsize=7)
+        ax.set_yticks(range(len(names)), names, fontsize=9)
         ax.set_ylim(len(names) - 0.5, -0.5)
         ax.set_xlabel("rollouts (log scale)")
     return fig
 
 
-def record_learned_press(result, seed=0, button=0, camera="over_shoulder", height=240,
+def record_learned_press(result, seed=0, button=0, camera="close_up", height=240,
                          width=320):
     """Runs one learned press on the physics console (the button lit red) and renders
     the scene at the end of the hold, when the finger is at its outcome.
@@ -200,24 +202,29 @@ def record_learned_press(result, seed=0, button=0, camera="over_shoulder", heigh
     return {"frame": frames[0], "pressed": list(console.task.press_log), "boxes": boxes}
 
 
-def learned_presses_figure(result, seed=0, camera="over_shoulder"):
+def learned_presses_figure(result, seed=0, camera="close_up"):
     """Each button pressed by the movement the robot learned for it (one seed), seen
     at the end of the hold, each in a trial where that button is lit red.
 
     Args:
       result: a `GoalBabblingResult`.
       seed: which of its seeds.
-      camera: the camera to render from.
+      camera: the camera to render from (default: the close-up, which sees the finger
+        on the button).
     """
     check_result("result", result, GoalBabblingResult, _MADE_BY)
-    fig, axes = new_figure(width=13, height=2.9, ncols=buttons.N_BUTTONS)
-    for button, ax in enumerate(axes):
+    # Three and two a row, at the page's width: five in a row would be too small to see
+    # the finger.
+    fig, axes = new_figure(width=7.6, height=4.9, ncols=3, nrows=2)
+    axes = axes.ravel()
+    axes[-1].axis("off")
+    for button, ax in enumerate(axes[:buttons.N_BUTTONS]):
         record = record_learned_press(result, seed, button, camera)
         ax.imshow(record["frame"])
         ax.axis("off")
         pressed = ", ".join(map(str, record["pressed"])) or "none"
         opened = "red box open" if record["boxes"][0] else "red box shut"
-        ax.set_title(f"button {button}: pressed {pressed}\n{opened}", fontsize=8)
+        ax.set_title(f"button {button}: pressed {pressed}\n{opened}", fontsize=9)
     fig.suptitle(f"The learned presses ({_label(result)}, seed {seed}), at the end of "
                  "the hold", fontsize=10)
     return fig

@@ -23,7 +23,7 @@ from icm.experiments import panels as _panels
 from icm.figures.panels import SERIES_COLOURS
 
 LABELS = {
-    "epsilon": "epsilon (random presses)", "window": "window k",
+    "epsilon": "epsilon (random actions)", "window": "window k",
     "new_task_factor": "new-task factor", "lr_actor": "actor learning rate",
     "lr_critic": "critic learning rate", "temperature": "temperature",
     "variant": "variant", "alpha": "alpha (Q learning rate)", "gamma": "gamma (discount)",
@@ -225,7 +225,7 @@ def sweep_rows(grid):
     return rows
 
 
-def sweep_panel(grid, cell=56):
+def sweep_panel(grid, cell=44):
     """The static epsilon x window sweep: for the new-task factor its slider shows, two
     heatmaps over epsilon and window, the mean mastery gap (green - red, trials) and
     the share of seeds that master red first, each cell labelled with its number.

@@ -330,8 +330,9 @@ class PhysicsButtonConsole(ButtonTrials):
     assets/buttons_noisy.xml); the task draws its outcome from the same generator as
     the layouts, in the same order as `ButtonConsole`, so the twins stay in step.
 
-    Args: as `ButtonConsole` (red_button, presses_per_trial, rewarded_box,
-      noisy_button, seed), and
+    Args:
+      red_button, presses_per_trial, rewarded_box, noisy_button, seed: as
+        `ButtonConsole`.
       press_motions: None for the scripted primitive (default), or the movement that
         presses each of the five buttons instead: one sequence per button of (joint
         targets (7,), seconds) pairs, each a minimum-jerk motion of the arm
