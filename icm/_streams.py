@@ -5,7 +5,9 @@ each run must draw exactly the numbers it would draw alone, so that run k of a b
 equals run k run by itself, and equals the per-run reference classes seed for seed.
 `Streams` keeps one `numpy.random.Generator` per row and hands out its uniform numbers
 in order, a few at a time, from a buffer refilled by whole chunks (a Generator's
-`random(n)` gives the same numbers as n calls of `random()`).
+`random(n)` gives the same numbers as n calls of `random()`). The buffer starts small
+and grows sixteenfold at each refill up to its chunk, so that a short run does not draw
+thousands of numbers it never uses.
 """
 
 import numpy as np
@@ -16,15 +18,20 @@ class Streams:
 
     Args:
       seeds: one integer seed (or Generator) per row.
-      chunk: numbers buffered per row (at most 4096, fewer for large batches: the
-        buffer stays under 64 MB).
+      chunk: the most numbers buffered per row (at most 4096, fewer for large batches:
+        the buffer stays under 64 MB). The buffer starts at `FIRST_CHUNK` numbers a row
+        (or `chunk` if smaller) and grows to `chunk`; code that reads `buffer` itself
+        reads it again after each `refill`.
     """
+
+    FIRST_CHUNK = 64
 
     def __init__(self, seeds, chunk=None):
         self.generators = [s if isinstance(s, np.random.Generator) else np.random.default_rng(s)
                            for s in seeds]
         n = len(self.generators)
-        self.chunk = int(chunk or max(16, min(4096, (1 << 23) // max(n, 1))))
+        self.max_chunk = int(chunk or max(16, min(4096, (1 << 23) // max(n, 1))))
+        self.chunk = min(self.FIRST_CHUNK, self.max_chunk)
         self.buffer = np.empty((n, self.chunk))
         for row, generator in enumerate(self.generators):
             self.buffer[row] = generator.random(self.chunk)
@@ -43,6 +50,9 @@ class Streams:
     def _refill(self, rows, k):
         """Makes room for k more numbers in each of `rows` (those that need it)."""
         short = rows[self.cursor[rows] + k > self.chunk]
+        while len(short) and self.chunk < self.max_chunk:  # grow: every row moves over
+            self._grow()
+            short = rows[k > self.chunk]
         for row in short.tolist():
             used = int(self.cursor[row])
             rest = self.buffer[row, used:].copy()
@@ -50,11 +60,24 @@ class Streams:
             self.buffer[row, len(rest):] = self.generators[row].random(used)
             self.cursor[row] = 0
 
+    def _grow(self):
+        """A buffer sixteen times longer (at most `max_chunk`): every row keeps its unused
+        numbers, then draws the next ones; every cursor is back at 0."""
+        chunk = min(self.max_chunk, 16 * self.chunk)
+        buffer = np.empty((len(self.generators), chunk))
+        for row, generator in enumerate(self.generators):
+            rest = self.buffer[row, int(self.cursor[row]):]
+            buffer[row, :len(rest)] = rest
+            buffer[row, len(rest):] = generator.random(chunk - len(rest))
+        self.buffer, self.chunk = buffer, chunk
+        self.cursor[:] = 0
+
     def draw(self, rows=None, k=1):
         """The next `k` numbers of each row in `rows` (default: every row), an array
-        [len(rows), k]; each row's cursor moves on by k."""
-        if k > self.chunk:
-            raise ValueError(f"k must be at most the chunk {self.chunk}, got {k}")
+        [len(rows), k]; each row's cursor moves on by k. The array may be a view of the
+        buffer: use it before the next draw, or copy it."""
+        if k > self.max_chunk:
+            raise ValueError(f"k must be at most the chunk {self.max_chunk}, got {k}")
         if rows is None and self._aligned is not None:  # every row alike: a slice
             start = self._aligned
             if start + k > self.chunk:

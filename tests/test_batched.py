@@ -320,3 +320,13 @@ def test_rod_results_of_a_batch_equal_those_of_each_run_alone():
                      "confidence"):
             np.testing.assert_array_equal(getattr(batch, name)[k], getattr(alone, name)[0],
                                           err_msg=name)
+
+
+def test_q_learner_batch_equals_the_per_agent_learner_when_the_wobbly_rod_draws_often():
+    """Long enough that the tables' streams and the learners' refill many times
+    between runs of the compiled loop (and the learners' buffer grows to full size)."""
+    batched = icm.experiments.run_rod_toppling(n_seeds=3, n_episodes=300, seed=5,
+                                               wobbly_rod=True, progress=False)
+    reference = reference_rod_toppling(3, 300, seed=5, wobbly_rod=True)
+    for name, expected in reference.items():
+        np.testing.assert_array_equal(getattr(batched, name), expected, err_msg=name)

@@ -192,12 +192,14 @@ def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, nex
     count = np.zeros((n, n_cells, n_actions) if signal else (0, 0, 0), dtype=np.int64)
     wobbly = wobbles is not None
     if wobbly:
-        env_draws, env_cursor = env_streams.buffer, env_streams.cursor
+        env_cursor = env_streams.cursor
         wobbles = np.ascontiguousarray(wobbles, dtype=np.bool_)
     else:
         env_draws, env_cursor = np.zeros((n, 1)), np.zeros(n, dtype=np.int64)
         wobbles = np.zeros(next_cell.shape, dtype=np.bool_)
     while True:
+        if wobbly:  # read again: a refill may give the streams a longer buffer
+            env_draws = env_streams.buffer
         finished = play(q, predictions, last_error, streams.buffer, streams.cursor, cell,
                         episode, moves, error_sum, epsilon, alpha, gamma, lr, next_cell,
                         topples, start, max_moves, n_episodes, out["toppled"],

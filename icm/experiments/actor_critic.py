@@ -334,7 +334,7 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, start_s
     states, the predictor's answers to the probes and the critic's largest value; the
     result's arrays are computed from those afterwards, for all trials at once."""
     n_seeds, n_effects = len(env), len(buttons.EFFECTS)
-    practice = np.zeros((n_seeds, n_trials, len(TASKS)), dtype=np.int64)
+    outcomes = np.zeros((n_seeds, n_trials, presses_per_trial), dtype=np.int64)
     reward_out = np.zeros((n_seeds, n_trials))
     max_abs_value = np.zeros((n_seeds, n_trials))
     starts = np.zeros((n_seeds, n_trials, len(start_states), agent.n_actions))
@@ -346,19 +346,20 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, start_s
     for trial in trials:
         layout = env.new_trials()
         state = start_states[layout]
-        for _ in range(presses_per_trial):
+        for press in range(presses_per_trial):
             actions = agent.select_actions(state)
             observed = env.press(actions)
             next_state = layout * n_effects + observed
             external = (observed == rewarded).astype(float)
             r, _ = agent.learn(state, actions, next_state, observed, external, 1.0)
             reward_out[:, trial] += r
-            practice[:, trial] += effects[observed]
+            outcomes[:, trial, press] = observed
             state = next_state
         starts[:, trial] = agent.actor[:, start_states]
         answers[:, trial] = agent.predictor.effect[:, probe_keys]
         max_abs_value[:, trial] = np.abs(agent.critic).max(axis=1)
 
+    practice = effects[outcomes].sum(axis=2)  # the boxes opened in each trial
     # Section 4.1's test: the predictor's error on the probes, red alone, and green
     # averaged over its four places (added in order, as one run at a time would).
     errors = np.array([[math.dist(p, o) for o in buttons.EFFECTS] for p in buttons.EFFECTS])

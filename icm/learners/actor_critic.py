@@ -353,6 +353,7 @@ class ActorCriticBatch:
         n = len(self.streams)
         per_row = lambda value, dtype=float: np.broadcast_to(np.asarray(value, dtype=dtype), (n,))
         self.temperature, self.lr_actor = per_row(temperature), per_row(lr_actor)
+        self._temperature_column = self.temperature[:, None]
         self.lr_critic, self.gamma, self.epsilon = per_row(lr_critic), per_row(gamma), per_row(epsilon)
         self.intrinsic = per_row(reward, object) == "intrinsic"
         variants = per_row(variant, object)
@@ -380,12 +381,14 @@ class ActorCriticBatch:
         top = preferences[..., 0]
         for a in range(1, self.n_actions):
             top = np.maximum(top, preferences[..., a])
+        temperature = self._temperature_column if preferences.ndim == 2 \
+            else per_row(self.temperature)
         with np.errstate(over="ignore"):  # a difference of -inf gives exp 0.0
-            weights = np.exp((preferences - top[..., None]) / per_row(self.temperature))
+            weights = np.exp((preferences - top[..., None]) / temperature)
         total = weights[..., 0]
         for a in range(1, self.n_actions):  # in order, as the one-agent sum
             total = total + weights[..., a]
-        if not np.isfinite(total.sum()):
+        if not np.isfinite(np.add.reduce(total, axis=None)):
             raise FloatingPointError("preferences must be finite: an actor diverged")
         return weights / total[..., None]
 
@@ -431,7 +434,7 @@ class ActorCriticBatch:
         value, next_value = critic.take(here), critic.take(there)
         td_error = np.where(self.printed_td, reward + gamma * (value - next_value),
                             reward + gamma * next_value - value)
-        if not np.isfinite(td_error.sum()) and not np.all(np.isfinite(td_error)):
+        if not np.isfinite(np.add.reduce(td_error)) and not np.all(np.isfinite(td_error)):
             _check_finite(float(td_error[~np.isfinite(td_error)][0]))
         # critic(s) <- critic(s) + lrC * tdError; actor(s, a) <- actor(s, a) + lrA * tdError
         critic[here] = value + self.lr_critic * td_error

@@ -342,7 +342,7 @@ class NearestNeighbourTable:
         if rows is None:  # every agent, in place
             nearer = distance <= self.distance  # later experiences win ties
             np.minimum(self.distance, distance, out=self.distance)
-            self.effect += nearer * (effects - self.effect)  # the new effect where nearer
+            np.copyto(self.effect, effects, where=nearer)  # the new effect where nearer
             return
         nearer = distance <= self.distance[rows]
         self.distance[rows] = np.where(nearer, distance, self.distance[rows])
