@@ -6,7 +6,6 @@ installs Chromium before `make test`.
 """
 
 import json
-import pathlib
 import re
 import shutil
 

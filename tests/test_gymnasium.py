@@ -32,6 +32,10 @@ def test_observations_are_in_the_space_and_match_the_dm_env(name, physics):
         observation, reward, terminated, truncated, _ = env.step(action)
         step = twin.step(action)
         assert env.observation_space.contains(observation)
+        for key in step.observation:
+            np.testing.assert_array_equal(observation[key], step.observation[key])
+        assert reward == step.reward
+        assert terminated or truncated or not step.last()
         if terminated or truncated:
             env.reset(), twin.reset()
 

@@ -4,7 +4,6 @@ tabular twins."""
 import unittest
 import xml.etree.ElementTree as ElementTree
 
-import dm_env
 import mujoco
 import numpy as np
 import pytest
