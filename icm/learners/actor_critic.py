@@ -365,6 +365,12 @@ class ActorCriticBatch:
         self.critic = np.zeros((n, len(states)))
         self.actor = np.zeros((n, len(states), n_actions))
         self.predictor = NearestNeighbourTable(n, states, n_actions, action_weight)
+        # Shortcuts of `learn` that give the same numbers: each row's offset in the
+        # flattened tables, and whether every row has the same reward and TD error.
+        self._state_offset = self.rows * len(states)
+        self._key_offset = self.rows * self.predictor.effect.shape[1]
+        self._all_intrinsic = bool(np.all(self.intrinsic))
+        self._one_td = bool(np.all(self.printed_td == self.printed_td[0]))
 
     def policy(self, states):
         """Each row's probability of each action in its state, [rows, actions]."""
@@ -422,18 +428,21 @@ class ActorCriticBatch:
         Raises:
           FloatingPointError: if a TD error is not finite (a diverged critic).
         """
-        n_states = self.critic.shape[1]
         keys = self.predictor.keys(states, actions)
-        right = self.predictor.effect.reshape(-1).take(self.rows * self.predictor.effect.shape[1]
-                                                       + keys) == effects
+        right = self.predictor.effect.reshape(-1).take(self._key_offset + keys) == effects
         internal = (right == self.reward_if_right).astype(float)  # 1 when paid
-        reward = np.where(self.intrinsic, internal, external_reward)
-        gamma = self.gamma * discount
-        here, there = self.rows * n_states + states, self.rows * n_states + next_states
+        reward = internal if self._all_intrinsic else \
+            np.where(self.intrinsic, internal, external_reward)
+        gamma = self.gamma if np.isscalar(discount) and discount == 1.0 else self.gamma * discount
+        here, there = self._state_offset + states, self._state_offset + next_states
         critic = self.critic.reshape(-1)
         value, next_value = critic.take(here), critic.take(there)
-        td_error = np.where(self.printed_td, reward + gamma * (value - next_value),
-                            reward + gamma * next_value - value)
+        if self._one_td:  # every row the same TD error (computed as in the np.where)
+            td_error = reward + gamma * (value - next_value) if self.printed_td[0] \
+                else reward + gamma * next_value - value
+        else:
+            td_error = np.where(self.printed_td, reward + gamma * (value - next_value),
+                                reward + gamma * next_value - value)
         if not np.isfinite(np.add.reduce(td_error)) and not np.all(np.isfinite(td_error)):
             _check_finite(float(td_error[~np.isfinite(td_error)][0]))
         # critic(s) <- critic(s) + lrC * tdError; actor(s, a) <- actor(s, a) + lrA * tdError
