@@ -25,8 +25,8 @@ class GymnasiumEnv(gymnasium.Env):
 
     Args:
       env: the dm_env environment (from `icm.envs.load`).
-      render_mode: None, or "rgb_array" for a physics environment (renders the camera
-        over the robot's shoulder, 480 x 640).
+      render_mode: None, or "rgb_array" for a physics environment (renders the
+        "front" camera, which shows the robot and the whole scene, 480 x 640).
 
     Raises:
       ValueError: for an `env` that is not one of the package's discrete
@@ -88,5 +88,5 @@ class GymnasiumEnv(gymnasium.Env):
 
     def render(self):
         if self.render_mode == "rgb_array":
-            return self.env.physics.render(480, 640, camera_id="over_shoulder")
+            return self.env.physics.render(480, 640, camera_id="front")
         return None
