@@ -58,10 +58,11 @@ def new_figure(width=6.4, height=3.8, ncols=1, nrows=1, **kwargs):
     return fig, axes
 
 
-def plot_mean_band(ax, values, colour, label, x=None, per_seed=False):
+def plot_mean_band(ax, values, colour, label, x=None, per_seed=False, linestyle="-"):
     """Draws the mean over seeds of `values` [seed, time] with its 95% band on `ax`: a
     percentile bootstrap (`icm.stats.bootstrap_band`), which stays within the range the
-    values can take (an error's band never dips below zero)."""
+    values can take (an error's band never dips below zero). `x` defaults to 1, 2, ...;
+    `per_seed` also draws every seed's curve faintly; `linestyle` is the mean's."""
     _validate.instance("ax", ax, matplotlib.axes.Axes, "a matplotlib Axes")
     values = _validate.finite_array("values", values, ndim=2)
     x = np.arange(1, values.shape[1] + 1) if x is None else \
@@ -71,4 +72,4 @@ def plot_mean_band(ax, values, colour, label, x=None, per_seed=False):
             ax.plot(x, row, color=colour, alpha=0.08, linewidth=0.6)
     mean, low, high = stats.bootstrap_band(values, resamples=stats.PANEL_RESAMPLES)
     ax.fill_between(x, low, high, color=colour, alpha=0.25, linewidth=0)
-    ax.plot(x, mean, color=colour, linewidth=2, label=label)
+    ax.plot(x, mean, color=colour, linewidth=2, linestyle=linestyle, label=label)

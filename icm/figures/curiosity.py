@@ -8,7 +8,7 @@ from icm import _validate
 from icm.envs import buttons, icub, rods
 from icm.experiments import curiosity as _curiosity
 from icm.experiments.curiosity import RewardComparison, SignalComparison
-from icm.figures._common import TASK_COLOURS, check_result, new_figure
+from icm.figures._common import TASK_COLOURS, check_result, new_figure, plot_mean_band
 from icm.figures.icub import check_camera, check_image_size, render
 
 SIGNAL_COLOURS = {"learning_progress": "#1b9e77", "prediction_error": "#d95f02",
@@ -85,17 +85,11 @@ def noisy_share_figure(comparison):
     designs = comparison.settings["designs"]
     fig, axes = new_figure(width=5.0 * len(designs), height=3.6, ncols=len(designs),
                            sharey=True, squeeze=False)
-    from icm.stats import bootstrap_band
-
     for ax, design in zip(axes[0], designs):
         for signal in comparison.settings["signals"]:
             result = comparison.results[(signal, design, True)]
-            share = result.button_share[:, :, buttons.NOISY_BUTTON]
-            mean, low, high = bootstrap_band(share, resamples=300)
-            x = np.arange(1, result.n_trials + 1)
-            colour = SIGNAL_COLOURS[signal]
-            ax.fill_between(x, low, high, color=colour, alpha=0.2, linewidth=0)
-            ax.plot(x, mean, color=colour, linewidth=1.8, label=_label(signal))
+            plot_mean_band(ax, result.button_share[:, :, buttons.NOISY_BUTTON],
+                           SIGNAL_COLOURS[signal], _label(signal))
         ax.axhline(_curiosity.CHANCE_SHARE, color="black", linestyle="--", linewidth=1)
         ax.set(xlabel="trial", xlim=(1, comparison.settings["n_trials"]), ylim=(0, 1))
         ax.set_title(f"interest per {design}", fontsize=10)
@@ -125,22 +119,14 @@ def wobbly_rod_figure(comparison):
                  "icm.experiments.run_reward_comparison")
     if True not in comparison.settings["wobbly"]:
         raise ValueError("comparison must hold runs with the wobbly rod (wobbly=(..., True))")
-    from icm.stats import bootstrap_band
-
     fig, (left, right) = new_figure(width=10.4, height=3.7, ncols=2)
     for reward in comparison.settings["rewards"]:
         result = comparison.results[(reward, True)]
         colour = SIGNAL_COLOURS[reward]
         shares = _block_shares(result, result.rod_names.index(rods.WOBBLY))
         x = BLOCK * np.arange(shares.shape[1]) + (BLOCK + 1) / 2
-        mean, low, high = bootstrap_band(shares, resamples=300)
-        left.fill_between(x, low, high, color=colour, alpha=0.2, linewidth=0)
-        left.plot(x, mean, color=colour, linewidth=1.8, label=_label(reward))
-        error = result.rod_error[:, :, 0]
-        mean, low, high = bootstrap_band(error, resamples=300)
-        episodes = np.arange(1, result.n_episodes + 1)
-        right.fill_between(episodes, low, high, color=colour, alpha=0.2, linewidth=0)
-        right.plot(episodes, mean, color=colour, linewidth=1.8, label=_label(reward))
+        plot_mean_band(left, shares, colour, _label(reward), x=x)
+        plot_mean_band(right, result.rod_error[:, :, 0], colour, _label(reward))
     n = comparison.settings["n_seeds"]
     left.set(xlabel="episode", ylabel="share of episodes ending at the wobbly rod",
              ylim=(0, 1), xlim=(1, comparison.settings["n_episodes"]))
@@ -166,18 +152,12 @@ def coin_flip_figure(curves):
         raise _validate.ArgumentTypeError(
             f"curves must be a non-empty dict {{(signal, 'coin' | 'sure'): array}}, got "
             f"{_validate.show(curves)}")
-    from icm.stats import bootstrap_band
-
     fig, ax = new_figure(width=6.6, height=3.7)
     for (signal, kind), values in curves.items():
         values = _validate.finite_array(f"curves[{(signal, kind)!r}]", values, ndim=2)
-        mean, low, high = bootstrap_band(values, resamples=300)
-        x = np.arange(1, values.shape[1] + 1)
-        colour = SIGNAL_COLOURS.get(signal, "black")
-        ax.fill_between(x, low, high, color=colour, alpha=0.15, linewidth=0)
-        ax.plot(x, mean, color=colour, linewidth=1.8,
-                linestyle="-" if kind == "coin" else "--",
-                label=f"{_label(signal)}, {'fair coin' if kind == 'coin' else 'sure outcome'}")
+        plot_mean_band(ax, values, SIGNAL_COLOURS.get(signal, "black"),
+                       f"{_label(signal)}, {'fair coin' if kind == 'coin' else 'sure outcome'}",
+                       linestyle="-" if kind == "coin" else "--")
     ax.set(xlabel="try of the pair", ylabel="reward paid (mean over seeds)",
            xlim=(1, max(v.shape[1] for v in curves.values())))
     ax.set_ylim(bottom=0)
