@@ -226,6 +226,13 @@ class ArmTask(base.Task):
     """A dm_control task whose action is the 7 right-arm joint targets (radians),
     tracked by the arm's position actuators."""
 
+    MOTIONS = None
+    """The class of the scene's postures (e.g. `ButtonMotions`), set by each task."""
+
+    def motions(self, physics):
+        """The scene's postures (`shared_motions`: computed once per scene and process)."""
+        return shared_motions(self.MOTIONS, physics)
+
     def before_step(self, action, physics):
         lower, upper = physics.named.model.actuator_ctrlrange[list(ARM_JOINTS)].T
         physics.named.data.ctrl[list(ARM_JOINTS)] = check_arm_action(action, lower, upper)

@@ -162,6 +162,8 @@ class ButtonsTask(icub.ArmTask):
         `ButtonConsole` does.
     """
 
+    MOTIONS = ButtonMotions
+
     def __init__(self, red_button=DEFAULT_RED_BUTTON, rewarded_box=None,
                  lid_open_time=LID_OPEN_TIME, noisy_button=False, random=None):
         self.generator = check_seed(random, "random")
@@ -177,13 +179,6 @@ class ButtonsTask(icub.ArmTask):
         self._down = np.zeros(self.n_buttons, dtype=bool)
         self._lid_opened_at = [None, None]
         self._lid_targets = (0.0, 0.0)
-        self._motions = None
-
-    def motions(self, physics):
-        """The press primitive's postures for this physics (computed once per process)."""
-        if self._motions is None:
-            self._motions = icub.shared_motions(ButtonMotions, physics)
-        return self._motions
 
     def initialize_episode(self, physics):
         if physics.n_buttons != self.n_buttons:

@@ -168,6 +168,8 @@ class RodsTask(icub.ArmTask):
         draws; without it the rules use no randomness).
     """
 
+    MOTIONS = GridMotions
+
     def __init__(self, start_cell=DEFAULT_START_CELL, wobbly_rod=False, random=None):
         self.generator = check_seed(random, "random")
         super().__init__(random=dm_control_random(self.generator))
@@ -177,13 +179,6 @@ class RodsTask(icub.ArmTask):
         self.wobble_log = []
         self._side = None  # where the fingertip was at the last update (see update)
         self._once, self._drawn = False, False
-        self._motions = None
-
-    def motions(self, physics):
-        """The grid postures for this physics (computed once per process)."""
-        if self._motions is None:
-            self._motions = icub.shared_motions(GridMotions, physics)
-        return self._motions
 
     def initialize_episode(self, physics):
         if tuple(physics.rod_names) != self.rod_names:
