@@ -52,7 +52,7 @@ class Streams:
         short = rows[self.cursor[rows] + k > self.chunk]
         while len(short) and self.chunk < self.max_chunk:  # grow: every row moves over
             self._grow()
-            short = rows[k > self.chunk]
+            short = rows[self.cursor[rows] + k > self.chunk]
         for row in short.tolist():
             used = int(self.cursor[row])
             rest = self.buffer[row, used:].copy()

@@ -353,7 +353,6 @@ class ActorCriticBatch:
         n = len(self.streams)
         per_row = lambda value, dtype=float: np.broadcast_to(np.asarray(value, dtype=dtype), (n,))
         self.temperature, self.lr_actor = per_row(temperature), per_row(lr_actor)
-        self._temperature_column = self.temperature[:, None]
         self.lr_critic, self.gamma, self.epsilon = per_row(lr_critic), per_row(gamma), per_row(epsilon)
         self.intrinsic = per_row(reward, object) == "intrinsic"
         variants = per_row(variant, object)
@@ -387,10 +386,8 @@ class ActorCriticBatch:
         top = preferences[..., 0]
         for a in range(1, self.n_actions):
             top = np.maximum(top, preferences[..., a])
-        temperature = self._temperature_column if preferences.ndim == 2 \
-            else per_row(self.temperature)
         with np.errstate(over="ignore"):  # a difference of -inf gives exp 0.0
-            weights = np.exp((preferences - top[..., None]) / temperature)
+            weights = np.exp((preferences - top[..., None]) / per_row(self.temperature))
         total = weights[..., 0]
         for a in range(1, self.n_actions):  # in order, as the one-agent sum
             total = total + weights[..., a]
@@ -433,7 +430,7 @@ class ActorCriticBatch:
         internal = (right == self.reward_if_right).astype(float)  # 1 when paid
         reward = internal if self._all_intrinsic else \
             np.where(self.intrinsic, internal, external_reward)
-        gamma = self.gamma if np.isscalar(discount) and discount == 1.0 else self.gamma * discount
+        gamma = self.gamma * discount
         here, there = self._state_offset + states, self._state_offset + next_states
         critic = self.critic.reshape(-1)
         value, next_value = critic.take(here), critic.take(there)
