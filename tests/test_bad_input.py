@@ -552,6 +552,15 @@ def test_figure_arguments(small_results):
     refused(lambda: icm.figures.animation([np.zeros((8, 8, 3))], fps=0), "fps", "0", "value")
     refused(lambda: icm.figures.press_trace_figure({"time": []}), "record", "'time'", "type")
     refused(lambda: icm.figures.new_figure(width=-1), "width", "-1", "value")
+    _, ax = icm.figures.new_figure()
+    band = np.ones((3, 4))
+    refused(lambda: icm.figures.plot_mean_band("ax", band, "red", "x"), "ax", "'ax'", "type")
+    refused(lambda: icm.figures.plot_mean_band(ax, [[np.nan]], "red", "x"), "values", "nan",
+            "value")
+    refused(lambda: icm.figures.plot_mean_band(ax, band, "red", "x", x=[1, 2]), "x", "[1, 2]",
+            "value")
+    refused(lambda: icm.figures.plot_mean_band(ax, band, "red", "x", linestyle="dotted"),
+            "linestyle", "'dotted'", "value")
 
 
 def test_sweep_heatmap_refuses_unknown_columns():

@@ -58,6 +58,10 @@ def new_figure(width=6.4, height=3.8, ncols=1, nrows=1, **kwargs):
     return fig, axes
 
 
+LINESTYLES = ("-", "--", ":", "-.")
+"""The line styles `plot_mean_band` draws a mean with."""
+
+
 def plot_mean_band(ax, values, colour, label, x=None, per_seed=False, linestyle="-"):
     """Draws the mean over seeds of `values` [seed, time] with its 95% band on `ax`: a
     percentile bootstrap (`icm.stats.bootstrap_band`), which stays within the range the
@@ -65,6 +69,7 @@ def plot_mean_band(ax, values, colour, label, x=None, per_seed=False, linestyle=
     `per_seed` also draws every seed's curve faintly; `linestyle` is the mean's."""
     _validate.instance("ax", ax, matplotlib.axes.Axes, "a matplotlib Axes")
     values = _validate.finite_array("values", values, ndim=2)
+    linestyle = _validate.one_of("linestyle", linestyle, LINESTYLES)
     x = np.arange(1, values.shape[1] + 1) if x is None else \
         _validate.finite_array("x", x, shape=(values.shape[1],))
     if per_seed:
