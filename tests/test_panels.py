@@ -211,8 +211,9 @@ def test_live_panels_have_the_grids_controls_and_rerun_the_panels_call(name, mak
     fixed = {"n_seeds": 4} if name != "figure7" else {"n_seeds": 4, "n_episodes": 20}
     panel = make(static=False, **fixed)
     assert isinstance(panel, ipywidgets.VBox)
-    assert isinstance(panel.children[-1], ipywidgets.Output)
-    controls = {w.description: w for box in panel.children[:-1] for w in box.children}
+    image = panel.children[-1]
+    assert isinstance(image, ipywidgets.Image) and bytes(image.value).startswith(b"\x89PNG")
+    controls = {w.description: w for box in panel.children[:-2] for w in box.children}
     assert set(controls) == set(spec.controls) == set(live_sliders) | set(spec.choices)
     for slider, values in spec.sliders.items():
         s = controls[slider]
@@ -222,8 +223,10 @@ def test_live_panels_have_the_grids_controls_and_rerun_the_panels_call(name, mak
         assert np.allclose(steps, np.round(steps)), slider
     assert calls == [(name, fixed, {k: spec.defaults[k] for k in spec.controls})]
     first_slider = next(iter(spec.sliders))
+    first_png = bytes(image.value)
     controls[first_slider].value = spec.sliders[first_slider][-1]
     assert calls[-1][2][first_slider] == spec.sliders[first_slider][-1] and len(calls) == 2
+    assert bytes(image.value) != first_png  # redrawn
 
 
 def test_panels_are_static_while_the_book_is_built(monkeypatch, small_grid):

@@ -62,33 +62,55 @@ def choice(name, options):
 
 
 def panel(sliders, draw, per_row=2):
-    """A VBox of `sliders` (a dict name -> slider) above an Output that shows
-    `draw(**values)`, redrawn whenever a slider is released.
+    """A VBox of `sliders` (a dict name -> slider) above an image of `draw(**values)`
+    (an `icm.figures.Figure`), redrawn whenever a slider is released.
+
+    The figure is an `ipywidgets.Image` holding its PNG, not a display into an
+    `ipywidgets.Output`. Every program that runs a notebook through nbclient
+    (nbconvert, papermill, nbval, Jupyter Book) answers each display into an Output
+    widget with a comm message on the kernel's shell channel, and jupyter_client
+    (7.4 and later) sends it through a synchronous shadow of the asyncio socket on
+    which nbclient is waiting for the cell's reply: when the reply has just arrived,
+    that send swallows its wakeup and the client waits forever (nbconvert's default
+    timeout is none). A new value of an Image widget needs no answer.
 
     The first figure is drawn before any widget exists, so that a bad argument raises
-    its error here (a redraw's error shows in the panel's output)."""
-    from IPython.display import display
+    its error here; a redraw's error is shown above the figure, which keeps the last
+    one drawn."""
+    import html
 
     if not isinstance(sliders, dict) or not sliders:
         raise _validate.ArgumentTypeError(f"sliders must be a non-empty dict of name to "
                                           f"widget, got {_validate.show(sliders)}")
     _validate.function("draw", draw, allow_none=False)
     per_row = _validate.integer("per_row", per_row, 1, 10)
-    first = draw(**{name: s.value for name, s in sliders.items()})
-    output = ipywidgets.Output()
+    image = ipywidgets.Image(value=_png(draw(**{n: s.value for n, s in sliders.items()})),
+                             format="png", layout=ipywidgets.Layout(max_width="100%"))
+    message = ipywidgets.HTML()
 
     def redraw(_change=None):
-        with output:
-            output.clear_output(wait=True)
-            display(draw(**{name: s.value for name, s in sliders.items()}))
+        try:
+            figure = draw(**{name: s.value for name, s in sliders.items()})
+        except Exception as error:  # shown in the panel, as a cell would show it
+            message.value = f"<b>{type(error).__name__}:</b> {html.escape(str(error))}"
+            return
+        message.value = ""
+        image.value = _png(figure)
 
     for s in sliders.values():
         s.observe(redraw, names="value")
-    with output:
-        display(first)
     controls = list(sliders.values())
     rows = [ipywidgets.HBox(controls[i:i + per_row]) for i in range(0, len(controls), per_row)]
-    return ipywidgets.VBox(rows + [output])
+    return ipywidgets.VBox(rows + [message, image])
+
+
+def _png(figure):
+    """The PNG of a figure (an `icm.figures.Figure`) as bytes."""
+    png = getattr(figure, "_repr_png_", None)
+    if png is None:
+        raise _validate.ArgumentTypeError(f"draw must return a figure, got "
+                                          f"{_validate.show(figure)}")
+    return png()
 
 
 def curves_panel(name, sliders, static, fixed, per_row=2):
