@@ -1,0 +1,378 @@
+"""The book's build holds on any machine: slow is not hung, a stuck cell fails fast and
+named, the first failure and Ctrl-C stop everything at once, a damaged cache repairs
+itself, two builds in one folder take turns, and lost wakeups cost a second.
+
+Each test runs `book/_ext/execute_book.py` (or `build_book.py`'s lock) on small
+notebooks of its own, many of them while a CPU burner runs on every core."""
+
+import asyncio
+import importlib.util
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from queue import Empty
+
+import nbformat
+import psutil
+import pytest
+
+from conftest import BUILD_BOOK, EXECUTE_BOOK, ROOT, cpu_burners
+
+
+def _module(path, name):
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.path.insert(0, str(path.parent))
+    try:
+        spec.loader.exec_module(module)
+    finally:
+        sys.path.remove(str(path.parent))
+    return module
+
+
+execute_book = _module(EXECUTE_BOOK, "execute_book")
+build_book = _module(BUILD_BOOK, "build_book")
+
+
+def notebook(path, *cells, tags=None):
+    """Writes a notebook of code cells; `tags` {cell index: [tags]}."""
+    nb = nbformat.v4.new_notebook()
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
+                                 "language": "python"}
+    nb.cells = [nbformat.v4.new_code_cell(source) for source in cells]
+    for index, cell_tags in (tags or {}).items():
+        nb.cells[index].metadata["tags"] = cell_tags
+    nbformat.write(nb, path)
+    return path
+
+
+def run(out, *arguments, timeout=300):
+    """Runs execute_book.py into `out`; returns (status, stdout, stderr, seconds)."""
+    start = time.monotonic()
+    completed = subprocess.run(
+        [sys.executable, str(EXECUTE_BOOK), "--path-output", str(out)] + [str(a) for a in arguments],
+        capture_output=True, text=True, cwd=ROOT, timeout=timeout)
+    return completed.returncode, completed.stdout, completed.stderr, time.monotonic() - start
+
+
+def kernels_of(pid):
+    """The kernel processes still running under `pid`."""
+    try:
+        return [p for p in psutil.Process(pid).children(recursive=True)
+                if "ipykernel" in " ".join(p.cmdline())]
+    except psutil.Error:
+        return []
+
+
+BUSY = "import time\nstart = time.process_time()\nwhile time.process_time() - start < {}:\n    pass"
+"""A cell that computes silently for the given CPU-seconds."""
+
+
+# Slow is not hung ---------------------------------------------------------------------
+
+def test_a_stuck_cell_fails_within_the_bound_naming_the_notebook_and_the_cell_even_under_load(
+        tmp_path):
+    path = notebook(tmp_path / "hangs.ipynb", "x = 1", "import time\ntime.sleep(600)")
+    with cpu_burners():
+        status, _, stderr, seconds = run(tmp_path / "out", "--stall", 3, path, timeout=120)
+    assert status == 1
+    assert "hangs.ipynb: cell 1 stalled (no output and" in stderr
+    assert "time.sleep(600)" in stderr  # the cell's code is shown
+    assert seconds < 60  # 3 s of stall, plus starting and stopping a loaded kernel
+
+
+def test_a_cell_that_computes_silently_is_never_killed_even_on_a_loaded_machine(tmp_path):
+    # 6 CPU-seconds with no output, twice the stall period, while every core is also
+    # busy with a burner: slow, but computing, so it must pass.
+    path = notebook(tmp_path / "computes.ipynb", BUSY.format(6), "print('finished')")
+    with cpu_burners():
+        status, stdout, stderr, seconds = run(tmp_path / "out", "--stall", 3, path)
+    assert status == 0, stderr
+    assert "executed" in stdout and seconds > 6
+
+
+def test_a_runaway_cell_fails_on_cpu_time_and_its_kernel_is_killed_cleanly(tmp_path):
+    # It prints as it computes: a kernel asked to shut down in the middle of it (not
+    # killed) closes its sockets under the running cell, whose reply then fails with
+    # "ZMQError: Socket operation on non-socket" in the log.
+    path = notebook(tmp_path / "runaway.ipynb", "from tqdm import tqdm\nimport time\n"
+                    "for i in tqdm(range(10 ** 6)):\n    t = time.process_time()\n"
+                    "    while time.process_time() - t < 0.01:\n        pass")
+    status, _, stderr, seconds = run(tmp_path / "out", "--cpu-limit", 2, path)
+    assert status == 1 and "runaway.ipynb: cell 0 ran away (more than 2 CPU-seconds)" in stderr
+    assert seconds < 120
+    assert "ZMQError" not in stderr and "Exception in message handler" not in stderr
+
+
+def test_the_stall_rule_reads_cpu_time_of_the_kernel_and_its_children():
+    # A process that computes in a child (as joblib's workers do) counts as computing.
+    parent = subprocess.Popen([sys.executable, "-c", "import subprocess, sys; subprocess.run("
+                               "[sys.executable, '-c', 'while True: pass'])"])
+    try:
+        time.sleep(0.5)
+        process = psutil.Process(parent.pid)
+        first = execute_book.cpu_seconds(process)
+        time.sleep(2)
+        assert execute_book.cpu_seconds(process) - first > execute_book.PROGRESS_CPU_SECONDS
+    finally:
+        for child in psutil.Process(parent.pid).children(recursive=True):
+            child.kill()
+        parent.kill()
+        parent.wait()
+
+
+def test_a_lost_wakeup_costs_a_second_not_the_whole_timeout():
+    # The mechanism of the silent stall: a zmq.asyncio poll whose wakeup is lost (the
+    # edge-triggered FD drained by someone reading zmq.EVENTS) waits for its whole
+    # timeout, then finds the message and returns it as if nothing had happened.
+    # jupyter_client's get_msg is such a poll; nbclient waits a cell's reply with one
+    # get_msg of the whole cell timeout. execute_book.py cuts every wait in 1 s polls.
+    import zmq
+    import zmq.asyncio
+
+    async def reply_after_lost_wakeup(wrap, timeout):
+        ctx = zmq.asyncio.Context()
+        client = ctx.socket(zmq.DEALER)
+        server = zmq.Context.instance().socket(zmq.ROUTER)
+        port = server.bind_to_random_port("tcp://127.0.0.1")
+        client.connect(f"tcp://127.0.0.1:{port}")
+        await client.send(b"execute_request")
+        identity, _ = server.recv_multipart()
+
+        async def get_msg(timeout=None):  # as jupyter_client's AsyncZMQSocketChannel
+            ready = await client.poll(None if timeout is None else int(timeout * 1000))
+            if ready:
+                return await client.recv()
+            raise Empty
+
+        waiting = asyncio.ensure_future(wrap(get_msg)(timeout=timeout))
+        await asyncio.sleep(0.05)
+        start = time.monotonic()
+        server.send_multipart([identity, b"execute_reply"])
+        time.sleep(0.05)  # the reply is in, the event loop has not run yet
+        zmq.Socket.shadow(client.underlying).get(zmq.EVENTS)  # drains the wakeup
+        reply = await waiting
+        elapsed = time.monotonic() - start
+        client.close(linger=0), server.close(linger=0), ctx.term()
+        return reply, elapsed
+
+    reply, elapsed = asyncio.run(reply_after_lost_wakeup(lambda f: f, 4.0))
+    assert reply == b"execute_reply" and elapsed > 3.5  # silent: no error, just late
+    reply, elapsed = asyncio.run(reply_after_lost_wakeup(execute_book.sliced, 60.0))
+    assert reply == b"execute_reply" and elapsed < 1.5
+
+
+def test_cells_tagged_skip_execution_are_not_executed(tmp_path):
+    path = notebook(tmp_path / "skips.ipynb", "raise SystemExit('this cell must not run')",
+                    "print('ran')", tags={0: ["skip-execution", "remove-cell"]})
+    status, _, stderr, _ = run(tmp_path / "out", path)
+    assert status == 0, stderr
+
+    from jupyter_cache import get_cache
+
+    cache = get_cache(str(tmp_path / "out" / "_build" / ".jupyter_cache"))
+    record = cache.match_cache_notebook(nbformat.read(path, as_version=4))  # the build's lookup
+    executed = cache.get_cache_bundle(record.pk).nb
+    assert executed.cells[0].execution_count is None and executed.cells[0].outputs == []
+    assert executed.cells[1].execution_count == 1
+    assert executed.cells[1].outputs[0]["text"] == "ran\n"
+
+
+def test_kernels_talk_over_local_sockets_without_the_tcp_warning(tmp_path):
+    path = notebook(tmp_path / "quiet.ipynb", "print('hello')")
+    status, _, stderr, _ = run(tmp_path / "out", path)
+    assert status == 0, stderr
+    assert "without encryption" not in stderr and "Traceback" not in stderr
+
+
+# Fail fast, stop at once --------------------------------------------------------------
+
+def test_the_first_failure_stops_the_other_notebooks_at_once(tmp_path):
+    long = notebook(tmp_path / "long.ipynb", BUSY.format(300))
+    fails = notebook(tmp_path / "fails.ipynb", "import time\ntime.sleep(2)",
+                     "raise ValueError('a cell that raises')")
+    status, _, stderr, seconds = run(tmp_path / "out", long, fails, timeout=200)
+    assert status == 1
+    assert "fails.ipynb: cell 1 failed" in stderr and "a cell that raises" in stderr
+    assert "stopping the other notebooks" in stderr
+    assert seconds < 90  # not the 300 CPU-seconds of the long notebook
+    assert "long.ipynb" not in stderr.split("stopping the other notebooks")[1]  # not reported
+
+
+def test_keep_going_runs_the_others_after_a_failure(tmp_path):
+    fails = notebook(tmp_path / "fails.ipynb", "raise ValueError('boom')")
+    passes = notebook(tmp_path / "passes.ipynb", "import time\ntime.sleep(3)\nprint(1)")
+    status, stdout, stderr, _ = run(tmp_path / "out", "--keep-going", "--jobs", 1, fails, passes)
+    assert status == 1 and "fails.ipynb: cell 0 failed" in stderr
+    assert "executed" in stdout and "passes.ipynb" in stdout
+
+
+def test_ctrl_c_stops_at_once_and_the_next_run_keeps_what_was_executed(tmp_path):
+    quick = notebook(tmp_path / "quick.ipynb", "print('quick')")
+    long = notebook(tmp_path / "long.ipynb", BUSY.format(300))
+    out = tmp_path / "out"
+    process = subprocess.Popen(
+        [sys.executable, str(EXECUTE_BOOK), "--path-output", str(out), str(long), str(quick)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT)
+    deadline = time.monotonic() + 120
+    lines = []
+    while time.monotonic() < deadline:  # wait until the quick one is cached
+        line = process.stdout.readline()
+        lines.append(line)
+        if "executed" in line and "quick.ipynb" in line:
+            break
+    else:
+        process.kill()
+        pytest.fail("the quick notebook never finished:\n" + "".join(lines))
+    assert kernels_of(process.pid), "the long notebook's kernel should be running"
+    process.send_signal(signal.SIGINT)
+    start = time.monotonic()
+    _, stderr = process.communicate(timeout=60)
+    assert process.returncode == 130
+    assert time.monotonic() - start < 30, "Ctrl-C did not stop the build at once"
+    assert "interrupted: 1 notebooks executed and kept in the cache" in stderr
+    assert not psutil.pid_exists(process.pid) or not kernels_of(process.pid)
+    status, stdout, stderr, _ = run(out, quick)
+    assert status == 0 and "cached   " in stdout and "quick.ipynb" in stdout, stdout + stderr
+
+
+# A cache that repairs itself ----------------------------------------------------------
+
+def _first_build(tmp_path):
+    path = notebook(tmp_path / "small.ipynb", "print(6 * 7)")
+    out = tmp_path / "out"
+    status, _, stderr, _ = run(out, path)
+    assert status == 0, stderr
+    return path, out, out / "_build" / ".jupyter_cache"
+
+
+def test_a_damaged_cache_database_is_emptied_and_the_build_goes_on(tmp_path):
+    path, out, cache = _first_build(tmp_path)
+    database = cache / "global.db"
+    database.write_bytes(database.read_bytes()[:100])  # truncated
+    status, stdout, stderr, _ = run(out, path)
+    assert status == 0, stderr
+    assert "repair   the execution cache's database was damaged" in stderr
+    assert "executed" in stdout
+    status, stdout, _, _ = run(out, path)  # and the repaired cache works
+    assert status == 0 and "cached" in stdout
+
+
+def test_a_damaged_cached_notebook_is_executed_again(tmp_path):
+    path, out, cache = _first_build(tmp_path)
+    (cached,) = cache.glob("executed/*/base.ipynb")
+    cached.write_text(cached.read_text()[:50])  # truncated: no longer JSON
+    status, stdout, stderr, _ = run(out, path)
+    assert status == 0, stderr
+    assert "repair   the cached copy of" in stderr and "executed" in stdout
+    from jupyter_cache import get_cache
+
+    record = get_cache(str(cache)).match_cache_notebook(nbformat.read(path, as_version=4))
+    assert get_cache(str(cache)).get_cache_bundle(record.pk).nb.cells[0].outputs
+
+
+def test_a_damaged_record_of_times_is_forgotten(tmp_path):
+    path, out, cache = _first_build(tmp_path)
+    times = cache.parent / execute_book.TIMES_FILE
+    times.write_text('{"book/x.ipynb": 1')  # truncated JSON
+    status, _, stderr, _ = run(out, "--force", path)
+    assert status == 0, stderr
+    assert f"repair   {execute_book.TIMES_FILE} was damaged" in stderr
+    assert json.loads(times.read_text())  # written afresh
+
+
+def test_the_library_fingerprint_is_kept_when_a_run_fails(tmp_path):
+    # Written before anything runs: an interrupted or failed run keeps its cache.
+    good = notebook(tmp_path / "good.ipynb", "print(1)")
+    bad = notebook(tmp_path / "bad.ipynb", "raise ValueError('x')")
+    out = tmp_path / "out"
+    status, _, _, _ = run(out, "--keep-going", "--jobs", 1, good, bad)
+    assert status == 1
+    status, stdout, _, _ = run(out, good)
+    assert status == 0 and "cached" in stdout
+
+
+# Two builds in one folder -------------------------------------------------------------
+
+TWO_BUILDS = """
+import sys, pathlib
+sys.path.insert(0, {folder!r})
+import build_book, execute_book
+out = pathlib.Path(sys.argv[1])
+with build_book.build_lock(out / "_build"):
+    sys.exit(execute_book.main(["--force", "--path-output", str(out)] + sys.argv[2:]))
+"""
+
+
+def test_two_builds_in_one_folder_take_turns_and_both_succeed(tmp_path):
+    # Each build empties the cache (--force) and executes into it: without the lock,
+    # one deletes the database the other has open.
+    paths = [notebook(tmp_path / f"n{i}.ipynb", "import time\ntime.sleep(2)\nprint(1)")
+             for i in range(2)]
+    script = tmp_path / "one_build.py"
+    script.write_text(TWO_BUILDS.format(folder=str(BUILD_BOOK.parent)))
+    out = tmp_path / "out"
+    command = [sys.executable, str(script), str(out)] + [str(p) for p in paths]
+    first = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(1.0)
+    second = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    results = [p.communicate(timeout=240) for p in (first, second)]
+    assert first.returncode == 0 and second.returncode == 0, results
+    assert "waiting: another build of the book is running in" in results[1][1]
+    assert all("2 of 2 notebooks executed" in r[0] for r in results)
+
+
+def test_the_lock_is_released_when_its_holder_dies(tmp_path):
+    holder = subprocess.Popen([sys.executable, "-c", TWO_BUILDS.format(
+        folder=str(BUILD_BOOK.parent)).replace(
+        'sys.exit(execute_book.main(["--force", "--path-output", str(out)] + sys.argv[2:]))',
+        'print("locked", flush=True); import time; time.sleep(600)'), str(tmp_path)],
+        stdout=subprocess.PIPE, text=True)
+    assert holder.stdout.readline().strip() == "locked"
+    holder.kill()
+    holder.wait()
+    start = time.monotonic()
+    with build_book.build_lock(tmp_path / "_build"):
+        pass
+    assert time.monotonic() - start < 5
+
+
+@pytest.mark.parametrize("argument", ["--jobs=0", "--stall=0", "--cpu-limit=-1"])
+def test_bad_arguments_are_refused_in_one_line(tmp_path, argument):
+    status, _, stderr, _ = run(tmp_path, argument)
+    assert status == 2 and "must be" in stderr
+
+
+# The student's notebook never stalls --------------------------------------------------
+
+@pytest.mark.parametrize("cell, sends", [
+    # icm's live panel: its figure is an Image widget, which needs no answer.
+    ("import icm\nicm.widgets.figure5_panel(static=False, n_seeds=4, n_trials=10)", False),
+    # The trigger, shown so that this test can tell: a display into an Output widget.
+    ("import ipywidgets\nout = ipywidgets.Output()\nwith out:\n    print('hi')\nout", True)],
+    ids=["icm-live-panel", "ipywidgets-Output"])
+def test_a_live_panel_never_makes_the_notebook_client_write_on_the_shell_channel(tmp_path,
+                                                                               cell, sends):
+    # nbclient (nbconvert, papermill, nbval, Jupyter Book) answers a display into an
+    # ipywidgets.Output with a comm message on the shell channel while it waits there
+    # for the cell's reply; jupyter_client sends it through a synchronous shadow of the
+    # asyncio socket, which can swallow the reply's wakeup: the client then waits
+    # forever (reproduced in 3 of 4 nbconvert runs of a chapter on a loaded machine).
+    from nbclient import NotebookClient
+
+    nb = nbformat.read(notebook(tmp_path / "panel.ipynb", cell), as_version=4)
+    sent = []
+
+    def spy_on_the_shell(**_):
+        send = client.kc.shell_channel.send
+        client.kc.shell_channel.send = lambda msg: (sent.append(msg["header"]["msg_type"]),
+                                                    send(msg))[1]
+
+    client = NotebookClient(nb, timeout=300, kernel_name="python3",
+                            on_notebook_start=spy_on_the_shell,
+                            resources={"metadata": {"path": str(tmp_path)}})
+    client.execute()
+    assert ("comm_msg" in sent) == sends, sent
