@@ -1,24 +1,35 @@
 # Everything runs inside .venv, created on first use from Python 3.11.
 PYTHON ?= python3.11
+SHELL := /bin/bash
+.SHELLFLAGS := -o pipefail -c
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: book test lab bench clean
+.PHONY: book test lab bench clean check-system
+
+# Before anything slow: what the system must provide besides Python packages
+# (icm/_system.py: Python 3.11+, Mesa's EGL on Linux), with the command that installs it.
+check-system:
+	@$(PYTHON) icm/_system.py
 
 $(STAMP): requirements.txt pyproject.toml
-	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -r requirements.txt
-	$(BIN)/python -m pip install --quiet --no-deps -e .
-	touch $(STAMP)
+	@echo "[1/3] creating $(VENV) with $(PYTHON)"
+	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	@$(BIN)/python -m pip install --quiet --upgrade pip
+	@echo "[2/3] installing the pinned requirements (a few minutes the first time)"
+	@$(BIN)/python -m pip install -r requirements.txt | awk \
+		'/^Collecting/ {n++; printf "\r      %d packages found (%s)                    ", n, $$2; fflush()} \
+		 /^Installing collected/ {printf "\n      installing them ...\n"; fflush()} \
+		 /^Successfully installed/ {print "      done"}'
+	@echo "[3/3] installing icm itself (editable)"
+	@$(BIN)/python -m pip install --quiet --no-deps -e .
+	@touch $(STAMP)
 
-book: $(STAMP)  ## execute the notebooks (unless cached and the library unchanged), build _build/html
-	$(BIN)/python book/_ext/execute_book.py
-	$(BIN)/jupyter-book build . --keep-going
-	@echo "Open the book: $(CURDIR)/_build/html/index.html"
+book: check-system $(STAMP)  ## execute the notebooks (unless cached and the library unchanged), build _build/html
+	$(BIN)/python book/_ext/build_book.py
 
-test: $(STAMP)  ## unit tests, then a full book build with warnings and errors fatal
+test: check-system $(STAMP)  ## unit tests, then a full book build with warnings and errors fatal
 	$(BIN)/python -m pytest
 
 lab: $(STAMP)  ## open the notebooks in JupyterLab

@@ -7,6 +7,8 @@ by setting its position.
 """
 
 
+import os
+
 import mujoco
 import numpy as np
 from dm_control import mujoco as dm_mujoco
@@ -14,7 +16,7 @@ from dm_control.rl import control
 from dm_control.suite import base
 from dm_env import specs
 
-from icm import _validate
+from icm import _system, _validate
 from icm.envs._assets import ASSETS, asset_path  # noqa: F401 (part of this module's API)
 from icm.envs._common import check_time_limit
 
@@ -212,6 +214,24 @@ def describe_arm(physics):
 
 class ArmPhysics(dm_mujoco.Physics):
     """A dm_control Physics of a scene with the iCub: accessors for its right arm."""
+
+    @classmethod
+    def from_scene(cls, scene):
+        """A fresh physics of the MJCF file `scene` of `assets/`.
+
+        Raises:
+          RuntimeError: when the simulation cannot be built because the system lacks
+            Mesa's EGL (dm_control loads its renderer as it builds a physics), with
+            the command that installs it.
+        """
+        try:
+            return cls.from_xml_path(str(asset_path(scene)))
+        except (AttributeError, ImportError, RuntimeError) as error:
+            problem = _system.missing_rendering() \
+                if os.environ.get("MUJOCO_GL", "egl") == "egl" else None
+            if problem is None:
+                raise
+            raise RuntimeError(f"the simulated iCub cannot be built: {problem}") from error
 
     def fingertip_position(self):
         """The fingertip site's world position (metres)."""

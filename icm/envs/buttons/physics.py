@@ -109,7 +109,7 @@ def load_physics(noisy_button=False):
     assets/buttons_noisy.xml: the same scene plus the noisy button)."""
     scene = "buttons_noisy.xml" if _validate.boolean("noisy_button", noisy_button) \
         else "buttons.xml"
-    return ButtonsPhysics.from_xml_path(str(icub.asset_path(scene)))
+    return ButtonsPhysics.from_scene(scene)
 
 
 class ButtonMotions:

@@ -115,7 +115,7 @@ def load_physics(wobbly_rod=False):
     """A fresh `RodsPhysics` of assets/rods.xml (with `wobbly_rod`, of
     assets/rods_wobbly.xml: the same scene plus the wobbly rod)."""
     scene = "rods_wobbly.xml" if _validate.boolean("wobbly_rod", wobbly_rod) else "rods.xml"
-    return RodsPhysics.from_xml_path(str(icub.asset_path(scene)))
+    return RodsPhysics.from_scene(scene)
 
 
 class GridMotions:
