@@ -131,3 +131,15 @@ def test_chapters_have_launch_and_download_buttons(built_book):
         assert f"mybinder.org/v2/gh/{repository}/main?urlpath=lab/tree/book/{path.name}" in html
         assert f"colab.research.google.com/github/{repository}/blob/main/book/{path.name}" in html
         assert f"_sources/book/{path.name}" in html  # the notebook download button
+
+
+def test_the_preface_lists_every_chapter_in_order():
+    import re
+
+    toc = yaml.safe_load((ROOT / "_toc.yml").read_text())
+    (part,) = [p for p in toc["parts"] if p["caption"] == "Chapters"]
+    chapters = [c["file"].removeprefix("book/") for c in part["chapters"]]
+    preface = (ROOT / "book" / "preface.md").read_text()
+    section = preface.split("## The chapters", 1)[1].split("\n## ", 1)[0]
+    listed = re.findall(r"^\d+\. \{doc\}`(\w+)`", section, re.MULTILINE)
+    assert listed == chapters

@@ -170,3 +170,26 @@ def test_either_rule_for_a_task_seen_once_keeps_the_order_and_changes_the_first_
     assert abs(runs[0.0]["red_mastery_mean"] - runs[0.5]["red_mastery_mean"]) < 1.0
     assert abs(runs[0.0]["green_mastery_mean"] - runs[0.5]["green_mastery_mean"]) < 3.0
     assert runs[0.0]["red_peak_interest"] < 0.8 * runs[0.5]["red_peak_interest"]
+
+
+def test_the_peaks_are_described_in_the_order_the_data_gives(default_run):
+    red, green = default_run.peak_trial("red"), default_run.peak_trial("green")
+    text = default_run.describe_peaks()
+    assert f"trial {red}" in text and (green == red or f"trial {green}" in text)
+    expected = "agree" if green > red else "do not show" if green == red else "opposite"
+    assert expected in text
+
+
+@pytest.mark.parametrize("red_peak, green_peak, word", [(3, 7, "agree"), (4, 4, "do not show"),
+                                                        (6, 2, "opposite")])
+def test_every_order_of_the_peaks_has_its_own_words(default_run, red_peak, green_peak, word):
+    import dataclasses
+
+    import numpy as np
+
+    interest = np.zeros((2, 10, 2))
+    interest[:, red_peak - 1, 0] = 1.0
+    interest[:, green_peak - 1, 1] = 1.0
+    result = dataclasses.replace(default_run, interest=interest)
+    text = result.describe_peaks()
+    assert word in text and f"trial {red_peak}" in text and f"trial {green_peak}" in text

@@ -444,3 +444,23 @@ def test_first_run_gives_run_k_of_a_larger_batch_alone():
     alone = run_rod_toppling(n_seeds=1, n_episodes=30, seed=6, first_run=3, progress=False)
     for name in ("toppled", "episode_length", "prediction_error", "q_table"):
         np.testing.assert_array_equal(getattr(alone, name)[0], getattr(batch, name)[3])
+
+
+def test_the_run_figure7_shows_is_chosen_by_a_rule_and_described_in_its_order(default_run):
+    story = default_run.tells_the_papers_story("toppled")
+    order = default_run.in_paper_order("toppled")
+    assert order.mean() == default_run.red_before_blue_begins("toppled")
+    assert 0 < story.mean() < 1  # not every run tells it: the chapter says how many do
+    shown = default_run.first_telling_the_story("toppled")
+    assert story[shown] and not story[:shown].any()
+    assert default_run.toppled[shown, 0] == 0  # (a): the first episode toppled red
+    for run in range(default_run.n_seeds):
+        text = default_run.describe_order(run, "toppled")
+        red = default_run.predicted_well_toppled[run, 0]
+        blue = default_run.first_topple("blue")[run]
+        assert (f"episode {red}" in text) == (red >= 1)
+        assert (f"episode {blue}" in text) == (blue >= 1)
+        if red >= 1 and blue >= 1 and red != blue:
+            first = "red" if red < blue else "blue"
+            assert text.startswith(first), text
+            assert order[run] == (first == "red")

@@ -85,6 +85,19 @@ class GoalOrientedResult:
         task = _validate.one_of("task", task, TASKS)
         return int(np.argmax(self.mean_interest()[:, TASKS.index(task)])) + 1
 
+    def describe_peaks(self):
+        """In words, whether the mean interest in green peaks after the mean interest
+        in red, as the paper's "interest rise slower" would have it: a clause that
+        the chapter quotes, phrased from the data."""
+        red, green = self.peak_trial("red"), self.peak_trial("green")
+        if green > red:
+            return (f"the mean curves agree, green's peaking at trial {green}, after red's "
+                    f"at trial {red}")
+        if green == red:
+            return f"the mean curves do not show it: both peak at trial {red}"
+        return (f"the mean curves show the opposite, green's peaking at trial {green}, "
+                f"before red's at trial {red}")
+
     def fade_trial(self, task, fraction=0.1):
         """The first trial after its peak at which the mean interest in `task` falls
         below `fraction` (in (0, 1]) of that peak; -1 if it never does."""
@@ -346,6 +359,10 @@ def check_results(name, results, cls):
             f"{name} must be a non-empty dict {{label: {cls.__name__}}}, got "
             f"{_validate.show(results)}")
     for label, result in results.items():
+        if not isinstance(label, str):
+            raise _validate.ArgumentTypeError(f"{name} must be labelled by strings (they "
+                                              f"become column or legend labels), got the "
+                                              f"label {label!r}")
         _validate.instance(f"{name}[{label!r}]", result, cls)
     return results
 

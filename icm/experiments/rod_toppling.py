@@ -194,12 +194,51 @@ class RodTopplingResult:
         red, blue = well[:, 0], well[:, 1]
         return float(np.mean(comes_first(red, blue)))
 
+    def in_paper_order(self, reading="all"):
+        """[seed], True where the run's moments of Figure 7 come in the paper's order:
+        (a) the first episode, (b) red predicted well (in `reading`), then (c) the
+        first blue topple, or blue never toppled (`icm.stats.comes_first`)."""
+        return comes_first(self.well_predicted(reading)[:, 0], self.first_topple("blue"))
+
     def red_before_blue_begins(self, reading="all"):
         """Share of seeds in which red is predicted well before the first blue topple
         (or blue is never toppled): Figure 7's order, (b) before (c)."""
-        red = self.well_predicted(reading)[:, 0]
-        blue = self.first_topple("blue")
-        return float(np.mean(comes_first(red, blue)))
+        return float(np.mean(self.in_paper_order(reading)))
+
+    def tells_the_papers_story(self, reading="all"):
+        """[seed], True where a run tells Figure 7's story: its first episode ends with
+        the red rod toppled ("(a) Robot finds playing with the red rod more
+        interesting") and its moments come in the paper's order (`in_paper_order`)."""
+        return (self.toppled[:, 0] == RODS.index("red")) & self.in_paper_order(reading)
+
+    def first_telling_the_story(self, reading="all"):
+        """The first run (seed index) that tells Figure 7's story
+        (`tells_the_papers_story`); -1 if none does. The chapter draws Figure 7 from
+        it: a rule, so that the run shown is not picked by hand."""
+        story = self.tells_the_papers_story(reading)
+        return int(np.argmax(story)) if story.any() else -1
+
+    def describe_order(self, run, reading="all"):
+        """In words, when red was predicted well (in `reading`) and blue first toppled
+        in one run (a seed index), in the order they came: e.g. "blue is first
+        toppled at episode 29, before red is predicted well at episode 43"."""
+        run = _validate.integer_in_range("run", run, 0, self.n_seeds - 1)
+        red = int(self.well_predicted(reading)[run, 0])
+        blue = int(self.first_topple("blue")[run])
+        red_text = f"red is predicted well at episode {red}"
+        blue_text = f"blue is first toppled at episode {blue}"
+        if red < 1 and blue < 1:
+            return (f"neither is red predicted well nor blue toppled in "
+                    f"{self.n_episodes} episodes")
+        if red < 1:
+            return f"{blue_text}, and red is never predicted well in {self.n_episodes} episodes"
+        if blue < 1:
+            return f"{red_text}, and blue is never toppled in {self.n_episodes} episodes"
+        if red < blue:
+            return f"{red_text}, before blue is first toppled, at episode {blue}"
+        if blue < red:
+            return f"{blue_text}, before {red_text}"
+        return f"red is predicted well and blue first toppled in the same episode, {red}"
 
     def seed_summaries(self):
         """One dict per seed of the numbers a sweep compares: the episode from which
