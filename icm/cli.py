@@ -60,6 +60,35 @@ def _number(text):
 
 _positive_int = _integer_at_least(1)
 _seed = _integer_at_least(0)
+MAX_DPI = 1200
+"""The largest --dpi: a figure of the book at 1200 dpi is about 100 megapixels."""
+
+
+def _dpi(text):
+    """An argparse type: a resolution, an integer from 1 to MAX_DPI."""
+    value = _positive_int(text)
+    if value > MAX_DPI:
+        raise argparse.ArgumentTypeError(f"must be an integer from 1 to {MAX_DPI}, got {text!r}")
+    return value
+
+
+def _check_out(parser, out):
+    """Refuses, before anything runs, an --out that cannot be written (by trying: a
+    file that did not exist is created and removed again)."""
+    if out.is_dir():
+        parser.error(f"--out must be a file to write, got the folder {out}")
+    if out.suffix.lower() not in (".png", ".pdf", ".svg"):
+        parser.error(f"--out must end in .png, .pdf or .svg, got {out}")
+    if not out.parent.exists():
+        parser.error(f"--out: the folder {out.parent} does not exist")
+    existed = out.exists()
+    try:
+        with open(out, "ab"):
+            pass
+    except OSError as error:
+        parser.error(f"--out: {out} cannot be written ({error.strerror})")
+    if not existed:
+        out.unlink()
 
 
 def _no_options(parser):
@@ -218,8 +247,8 @@ def build_parser():
                          help="root random seed, an integer >= 0 (default 0)")
         sub.add_argument("--out", type=pathlib.Path, default=pathlib.Path(f"{name}.png"),
                          help=f"image file to write, .png, .pdf or .svg (default {name}.png)")
-        sub.add_argument("--dpi", type=_positive_int, default=150,
-                         help="resolution of a .png (default 150)")
+        sub.add_argument("--dpi", type=_dpi, default=150,
+                         help=f"resolution of a .png, 1 to {MAX_DPI} (default 150)")
     return parser
 
 
@@ -227,16 +256,16 @@ def main(argv=None):
     """Runs the command line; returns the exit status (0 on success)."""
     parser = build_parser()
     args = parser.parse_args(argv)
-    if args.out.suffix.lower() not in (".png", ".pdf", ".svg"):
-        parser.error(f"--out must end in .png, .pdf or .svg, got {args.out}")
-    if not args.out.parent.exists():
-        parser.error(f"--out: the folder {args.out.parent} does not exist")
+    _check_out(parser, args.out)
     _, make_figure, _ = COMMANDS[args.figure]
     try:
         figure = make_figure(args)
     except ValueError as error:
         parser.exit(2, f"{parser.prog} {args.figure}: error: {error}\n")
-    figure.savefig(args.out, dpi=args.dpi)
+    try:
+        figure.savefig(args.out, dpi=args.dpi)
+    except OSError as error:  # e.g. the disk filled up while the run went on
+        parser.exit(2, f"{parser.prog} {args.figure}: error: --out: {error}\n")
     print(f"wrote {args.out}")
     return 0
 

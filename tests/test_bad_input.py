@@ -591,3 +591,93 @@ def test_panels_refuse_bad_sizes_and_arguments_they_cannot_hold():
     refused(lambda: icm.widgets.figure6_panel(n_trials=-3), "n_trials", "-3", "value")
     refused(lambda: icm.widgets.figure7_panel(n_episodes=1.5), "n_episodes", "1.5", "type")
     refused(lambda: icm.widgets.figure7_panel(seed=-1), "seed", "-1", "value")
+
+
+# --- the last cases: overflow, wrong run functions, comparisons, panels, figures -------
+
+def test_a_linear_predictor_refuses_outcomes_whose_errors_overflow():
+    predictor = LinearPredictor(4, 2)
+    refused(lambda: predictor.update((0, 0), 1, [1e308, 1e308]), "observed", "1e+308", "value")
+    refused(lambda: predictor.update((0, 0), 1, [1e308, -1e308]), "observed", "1e+308", "value")
+    assert predictor.predict((0, 0), 1).tolist() == [0.0, 0.0]  # nothing was changed
+    assert predictor.update((0, 0), 1, [1, 0]) == 1.0
+
+
+def _not_a_run(n_seeds, seed, progress, epsilon=0.1):
+    return {"epsilon": epsilon}
+
+
+def test_sweep_refuses_a_function_that_does_not_return_a_run_result():
+    refused(lambda: icm.experiments.sweep(_not_a_run, {"epsilon": [0.1]}, progress=False),
+            "run_fn", "{'epsilon': 0.1}", "type")
+
+
+def test_robustness_verdicts_need_shares_and_thresholds_in_0_1():
+    from icm.experiments import robustness
+
+    refused(lambda: robustness.verdict(NAN, 1.0, 0.9), "low", "nan", "value")
+    refused(lambda: robustness.verdict(0.5, 1.2, 0.9), "high", "1.2", "value")
+    refused(lambda: robustness.verdict(0.5, 0.6, 1.5), "threshold", "1.5", "value")
+    refused(lambda: robustness.verdict(0.7, 0.6, 0.5), "low", "0.7", "value")
+    assert robustness.verdict(0.95, 1.0, 0.9) == "holds"
+
+
+@pytest.fixture(scope="module")
+def signal_comparison():
+    return icm.experiments.run_signal_comparison(n_seeds=2, n_trials=3, noisy=(False,),
+                                                 signals=("novelty",), progress=False)
+
+
+def test_a_signal_comparison_refuses_a_world_or_key_it_did_not_run(signal_comparison):
+    refused(lambda: signal_comparison.table(noisy_button=True), "noisy_button", "True",
+            "value")
+    refused(lambda: signal_comparison.numbers(["novelty"]), "signal", "['novelty']", "type")
+    refused(lambda: signal_comparison.numbers("novelty", "task", True), "noisy_button",
+            "('novelty', 'task', True)", "value")
+
+
+def test_panels_refuse_bad_settings_when_called_not_when_iterated():
+    from icm.experiments import panels
+
+    refused(lambda: panels.panel_curves_for("figure5", fixed={"n_seeds": 0}),
+            "fixed['n_seeds']", "0", "value")
+    refused(lambda: panels.panel_runs("figure5", [1, 2]), "settings", "1", "type")
+    refused(lambda: panels.panel_runs("figure5", [{"bogus": 1}]), "'bogus'", "epsilon",
+            "value")
+
+
+def test_physics_environments_name_the_seed_they_refuse():
+    for name in ("buttons", "rods"):
+        refused(lambda: icm.envs.load(name, physics=True, seed=-5), "seed", "-5", "value")
+        refused(lambda: icm.envs.load_continuous(name, seed=-5), "seed", "-5", "value")
+
+
+def test_figures_refuse_bad_sizes_labels_and_kinds():
+    from icm.experiments import curiosity
+    from icm.figures.curiosity import coin_flip_figure as _coin_flip
+
+    curves = {"x": np.arange(1, 4), "xlabel": "trial",
+              "groups": [{"title": "t", "ylabel": "y",
+                          "series": {"red": (np.ones(3), np.zeros(3), np.ones(3))}}]}
+    refused(lambda: icm.figures.draw_curves(curves, height=0), "height", "0", "value")
+    refused(lambda: icm.figures.draw_curves({**curves, "groups": [{**curves["groups"][0],
+                                                                   "title": 5}]}),
+            "title", "5", "type")
+    paid = curiosity.outcome_rewards(rewards=("novelty",), n_tries=3, n_seeds=2)
+    refused(lambda: _coin_flip({("novelty", "sideways"): paid[("novelty", "coin")]}),
+            "curves", "sideways", "value")
+    goal = icm.experiments.run_goal_oriented(n_seeds=2, n_trials=3, progress=False)
+    refused(lambda: icm.figures.figure5_grid({1: goal}), "results", "label 1", "type")
+    refused(lambda: icm.experiments.comparison_table({("a",): goal}), "results", "('a',)",
+            "type")
+
+
+def test_a_static_panel_keeps_markup_in_its_data_out_of_the_page():
+    from icm.figures.interactive import StaticPanel
+
+    panel = StaticPanel({"$schema": "x", "title": "a <!--<script> b </script> & c"}, "t")
+    page = panel.html()
+    script = page.split('-spec">', 1)[1].split("</script>", 1)[0]
+    assert "<" not in script and ">" not in script and "&" not in script
+    import json
+    assert json.loads(script)["title"] == "a <!--<script> b </script> & c"

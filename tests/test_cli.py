@@ -1,5 +1,6 @@
 """The command line: figures without Jupyter, clear errors for bad options."""
 
+import pathlib
 import subprocess
 import sys
 
@@ -117,3 +118,25 @@ def test_figure7_of_run_n_computes_that_run_alone(tmp_path, monkeypatch, capsys)
                                str(tmp_path / "f.png")], capsys)
     assert status == 0
     assert len(calls) == 1 and calls[0]["n_seeds"] == 1 and calls[0]["first_run"] == 3
+
+
+@pytest.mark.parametrize("make_out, message", [
+    (lambda d: (d / "a_folder.png").mkdir() or d / "a_folder.png", "must be a file to write"),
+    (lambda d: pathlib.Path("/proc/fig5.png"), "cannot be written"),
+])
+def test_an_out_that_cannot_be_written_is_refused_before_anything_runs(make_out, message,
+                                                                      tmp_path, monkeypatch,
+                                                                      capsys):
+    from icm import experiments
+
+    out = make_out(tmp_path)
+    ran = []
+    monkeypatch.setattr(experiments, "run_goal_oriented", lambda **kw: ran.append(kw))
+    status, _, err = in_process(["figure5", "--out", str(out)], capsys)
+    assert status == 2 and message in err and "Traceback" not in err
+    assert ran == []  # refused before the run
+
+
+def test_a_huge_dpi_is_refused_in_one_line(capsys):
+    status, _, err = in_process(["figure5", "--dpi", "100000"], capsys)
+    assert status == 2 and "--dpi: must be an integer from 1 to 1200" in err

@@ -92,6 +92,19 @@ def button_numbers(result):
     return out
 
 
+def _comparison_key(results, names, key):
+    """`key` if it is a key of `results` (a tuple of strings and bools), else raises:
+    an ArgumentTypeError for a part that is not a string or bool (a list, say), a
+    ValueError listing the keys for one that names no run."""
+    for part in key:
+        if not isinstance(part, (str, bool, np.bool_)):
+            raise _validate.ArgumentTypeError(f"{names} must be strings and booleans, got "
+                                              f"{_validate.show(key)}")
+    if key not in results:
+        raise ValueError(f"{names} must be one of {sorted(results)}, got {key!r}")
+    return key
+
+
 @dataclasses.dataclass(frozen=True)
 class SignalComparison:
     """What `run_signal_comparison` measured.
@@ -108,10 +121,8 @@ class SignalComparison:
 
     def numbers(self, signal, interest_per="task", noisy_button=False):
         """`button_numbers` of one run of the comparison (computed once)."""
-        key = (signal, interest_per, noisy_button)
-        if key not in self.results:
-            raise ValueError(f"(signal, interest_per, noisy_button) must be one of "
-                             f"{sorted(self.results)}, got {key!r}")
+        key = _comparison_key(self.results, "(signal, interest_per, noisy_button)",
+                              (signal, interest_per, noisy_button))
         if key not in self._numbers:
             self._numbers[key] = button_numbers(self.results[key])
         return self._numbers[key]
@@ -155,6 +166,10 @@ class SignalComparison:
         that master, 95% band, share that master), red first, presses per task, and
         the noisy button's share of presses."""
         noisy_button = _validate.boolean("noisy_button", noisy_button)
+        worlds = sorted({noisy for _, _, noisy in self.results})
+        if noisy_button not in worlds:
+            raise ValueError(f"noisy_button must be one of the worlds this comparison ran "
+                             f"({', '.join(map(str, worlds))}), got {noisy_button!r}")
         lines = ["| signal | interest per | red mastered, trial | green mastered, trial "
                  "| red first | presses opening red / green / nothing | noisy button, "
                  "share of presses |", "|" + "---|" * 7]
@@ -260,10 +275,7 @@ class RewardComparison:
 
     def numbers(self, reward, wobbly_rod=False):
         """`rod_numbers` of one run of the comparison (computed once)."""
-        key = (reward, wobbly_rod)
-        if key not in self.results:
-            raise ValueError(f"(reward, wobbly_rod) must be one of {sorted(self.results)}, "
-                             f"got {key!r}")
+        key = _comparison_key(self.results, "(reward, wobbly_rod)", (reward, wobbly_rod))
         if key not in self._numbers:
             self._numbers[key] = rod_numbers(self.results[key])
         return self._numbers[key]

@@ -127,6 +127,9 @@ def spec(name):
 
 
 def _check_setting(panel, setting, fixed):
+    if not isinstance(setting, dict):
+        raise _validate.ArgumentTypeError(f"settings must be a list of dicts of control "
+                                          f"values, got the entry {_validate.show(setting)}")
     allowed = panel.controls
     for key in setting:
         if key not in allowed:
@@ -174,9 +177,17 @@ def panel_runs(name, settings, fixed=None, progress=False):
                                           f"{_validate.show(settings)}")
     checked = [_check_setting(panel, s, fixed or {}) for s in settings]
     run_fixed = checked[0][1]
+    _validate.integer_at_least("fixed['n_seeds']", run_fixed.get("n_seeds", 1), 1)
+    _validate.boolean("progress", progress)
     full = [setting for setting, _ in checked]
     per_batch = 1 if panel.grid_run is None else \
         max(1, ROWS_PER_BATCH // run_fixed.get("n_seeds", 1))
+    # Checked above, here; run below, as the caller iterates.
+    return _run_in_batches(panel, full, run_fixed, per_batch, progress)
+
+
+def _run_in_batches(panel, full, run_fixed, per_batch, progress):
+    """The generator of `panel_runs`: its settings run `per_batch` at a time."""
     bar = progress_bar(None, len(full), panel.title.split(':')[0] + ', grid of settings',
                        progress, unit="setting")
     for start in range(0, len(full), per_batch):

@@ -273,7 +273,20 @@ def share_interval(successes, n, level=LEVEL):
 
 def verdict(low, high, threshold):
     """"holds" if the interval [low, high] is at or above `threshold`, "fails" if it
-    is below it, "unclear" if it straddles it."""
+    is below it, "unclear" if it straddles it.
+
+    Args:
+      low, high: the interval of a share (numbers in [0, 1], low <= high).
+      threshold: the share a claim needs, in [0, 1].
+
+    Raises:
+      ValueError: for a bound or threshold outside [0, 1] (NaN included), or low > high.
+    """
+    low = _validate.in_closed_interval("low", low, 0.0, 1.0)
+    high = _validate.in_closed_interval("high", high, 0.0, 1.0)
+    threshold = _validate.in_closed_interval("threshold", threshold, 0.0, 1.0)
+    if low > high:
+        raise ValueError(f"low must be at most high, got low {low!r} and high {high!r}")
     if low >= threshold:
         return "holds"
     if high < threshold:

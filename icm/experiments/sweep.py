@@ -5,8 +5,6 @@ import functools
 import inspect
 import itertools
 
-
-
 from icm import _validate
 from icm.experiments._progress import progress_bar
 
@@ -16,6 +14,11 @@ BACKENDS = ("joblib", "dask")
 def _run_point(run_fn, n_seeds, seed, fixed, point, per_seed=None):
     """Runs one grid point; returns its rows (module level, so workers can unpickle it)."""
     result = run_fn(n_seeds=n_seeds, seed=seed, progress=False, **fixed, **point)
+    if per_seed is None and not callable(getattr(result, "seed_summaries", None)):
+        raise _validate.ArgumentTypeError(
+            f"run_fn must return a run result with seed_summaries() (as the icm.experiments "
+            f"run functions do), or sweep needs per_seed; {getattr(run_fn, '__name__', run_fn)} "
+            f"returned {_validate.show(result)}")
     rows = result.seed_summaries() if per_seed is None else _per_seed_rows(per_seed, result)
     return [{**point, "seed_index": i, **row} for i, row in enumerate(rows)]
 

@@ -152,6 +152,11 @@ def coin_flip_figure(curves):
         raise _validate.ArgumentTypeError(
             f"curves must be a non-empty dict {{(signal, 'coin' | 'sure'): array}}, got "
             f"{_validate.show(curves)}")
+    for key in curves:
+        if not (isinstance(key, tuple) and len(key) == 2 and isinstance(key[0], str)
+                and key[1] in ("coin", "sure")):
+            raise ValueError(f"curves must be keyed by (signal, 'coin' | 'sure'), got the "
+                             f"key {key!r}")
     fig, ax = new_figure(width=6.6, height=3.7)
     for (signal, kind), values in curves.items():
         values = _validate.finite_array(f"curves[{(signal, kind)!r}]", values, ndim=2)

@@ -61,7 +61,11 @@ class StaticPanel:
 
     def html(self):
         """The panel as HTML: a div, its specification, and the script that draws it."""
-        spec = self._json.replace("</", "<\\/")
+        # No "<" or ">" inside the script element, as JSON escapes: text such as
+        # "<!--<script>" in a title would otherwise change how the browser reads the
+        # rest of the page (HTML's script-data states).
+        spec = self._json.replace("&", "\\u0026").replace("<", "\\u003c").replace(
+            ">", "\\u003e")
         note = html.escape(f"{self.title}: this figure is drawn by the book's HTML pages "
                            f"(Vega-Lite). In Jupyter, use the live panel of icm.widgets.")
         return (f'<div class="icm-static-panel" id="{self.element_id}">'

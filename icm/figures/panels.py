@@ -29,7 +29,17 @@ def draw_curves(curves, height=3.2, width_per_group=4.6):
     if not isinstance(curves, dict) or not {"x", "xlabel", "groups"} <= set(curves):
         raise _validate.ArgumentTypeError(f"curves must be the dict of a panel_curves "
                                           f"function, got {_validate.show(curves)}")
+    height = _validate.real("height", height, 0.5, 60.0)
+    width_per_group = _validate.real("width_per_group", width_per_group, 0.5, 60.0)
+    _validate.text("curves['xlabel']", curves["xlabel"])
     groups = curves["groups"]
+    if not isinstance(groups, (list, tuple)) or not groups:
+        raise _validate.ArgumentTypeError(f"curves['groups'] must be a non-empty list, got "
+                                          f"{_validate.show(groups)}")
+    for i, group in enumerate(groups):
+        for key in ("title", "ylabel"):
+            _validate.text(f"curves['groups'][{i}][{key!r}]", group.get(key)
+                           if isinstance(group, dict) else None)
     fig = Figure(figsize=(width_per_group * len(groups), height))
     fig.png_dpi, fig.quick_png = 96, True
     axes = fig.subplots(1, len(groups), squeeze=False)[0]

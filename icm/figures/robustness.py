@@ -6,7 +6,7 @@ import matplotlib.patches
 import numpy as np
 
 from icm.experiments.robustness import RobustnessResult
-from icm.figures._common import Figure, check_result
+from icm.figures._common import Figure, check_result, check_title
 
 _MADE_BY = "icm.experiments.robustness.run_robustness"
 COLOURMAP = "PuOr"
@@ -37,6 +37,7 @@ def robustness_map(result, title=None):
       The `Figure`.
     """
     check_result("result", result, RobustnessResult, _MADE_BY)
+    check_title(title)
     study = result.study
     pairs, claims = study.pairs(), study.claims
     height = 2.6 * len(pairs) + 1.9

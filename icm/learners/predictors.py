@@ -1,5 +1,6 @@
 """Predictors: models of what an action does in a context (paper sections 3.1 and 3.3)."""
 
+import math
 import operator
 
 import numpy as np
@@ -226,12 +227,20 @@ class LinearPredictor:
         before the update (a list of n_outputs floats) instead of their sum."""
         action = self._check_action(action)
         observed = self._check_outcome(observed)
-        predicted = self._row(check_state("state", state))[action]
-        errors = []
-        for i, o in enumerate(observed):
-            difference = o - predicted[i]
-            errors.append(abs(difference))
-            predicted[i] += self.lr * difference
+        state = check_state("state", state)
+        current = self._predictions.get(state)
+        current = current[action] if current is not None else \
+            [self.initial_prediction] * self.n_outputs
+        differences = [o - p for o, p in zip(observed, current)]
+        errors = [abs(d) for d in differences]
+        if not math.isfinite(sum(errors)) or not all(
+                math.isfinite(p + self.lr * d) for p, d in zip(current, differences)):
+            raise ValueError(f"observed must hold numbers whose prediction errors are "
+                             f"finite; {_validate.show(observed)} against the prediction "
+                             f"{_validate.show(current)} overflows")
+        predicted = self._row(state)[action]
+        for i, d in enumerate(differences):
+            predicted[i] += self.lr * d
         self._last_errors[state][action] = sum(errors)
         return errors
 

@@ -284,7 +284,7 @@ def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
       **task_kwargs: `ButtonsTask` arguments (red_button, rewarded_box, lid_open_time,
         noisy_button).
     """
-    task = ButtonsTask(random=seed, **task_kwargs)
+    task = ButtonsTask(random=check_seed(seed), **task_kwargs)
     return icub.continuous_environment(load_physics(task.noisy_button), task, time_limit)
 
 
@@ -362,7 +362,7 @@ class PhysicsButtonConsole(ButtonTrials):
                  noisy_button=False, seed=None, press_motions=None):
         self.press_motions = check_press_motions(press_motions)
         self.task = ButtonsTask(red_button=red_button, rewarded_box=rewarded_box,
-                                noisy_button=noisy_button, random=seed)
+                                noisy_button=noisy_button, random=check_seed(seed))
         self.red_button = self.task.red_button
         super().__init__(presses_per_trial, rewarded_box, noisy_button)
         self.physics = load_physics(self.noisy_button)

@@ -245,7 +245,7 @@ def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
       time_limit: seconds per episode (> 0; float('inf') for no limit).
       **task_kwargs: `RodsTask` arguments (start_cell, wobbly_rod).
     """
-    task = RodsTask(random=seed, **task_kwargs)
+    task = RodsTask(random=check_seed(seed), **task_kwargs)
     return icub.continuous_environment(load_physics(task.wobbly_rod), task, time_limit)
 
 
@@ -286,7 +286,7 @@ class PhysicsRodTable(RodEpisodes):
                  wobbly_rod=False, seed=None):
         super().__init__(start_cell, max_moves, wobbly_rod)
         self.task = RodsTask(start_cell=self.start_cell, wobbly_rod=self.wobbly_rod,
-                             random=seed)
+                             random=check_seed(seed))
         self.physics = load_physics(self.wobbly_rod)
         self.arm = icub.Arm(self.physics)
         self.motions = self.task.motions(self.physics)
