@@ -290,14 +290,21 @@ def run_goal_oriented_grid(grid, **arguments):
 def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progress):
     """Plays every trial of a batched run and gathers a GoalOrientedResult.
 
-    The loop only plays and keeps what happened (the presses, their outcomes, the
-    interest and the predictor after each trial); everything the result reports is
-    computed from those afterwards, for all trials at once."""
+    After each trial the loop reduces what happened (the presses, their outcomes, the
+    interest and the predictor) to the result's numbers for that trial, so that a run
+    keeps its result and nothing per press."""
     n_seeds, n_actions = len(env), env.n_actions
-    actions = np.zeros((n_seeds, n_trials, presses_per_trial), dtype=np.int64)
-    outcomes = np.zeros((n_seeds, n_trials, presses_per_trial), dtype=np.int64)
-    values = np.zeros((n_seeds, n_trials, agent.interest.n_keys))
-    predictions = np.zeros((n_seeds, n_trials) + agent.predictor.effect.shape[1:], dtype=np.int64)
+    practice = np.zeros((n_seeds, n_trials, len(TASKS)), dtype=np.int64)
+    presses = np.zeros((n_seeds, n_trials, n_actions), dtype=np.int64)
+    interest_out = np.zeros((n_seeds, n_trials, len(TASKS)))
+    action_interest = np.zeros((n_seeds, n_trials, n_actions))
+    error_out = np.zeros((n_seeds, n_trials, len(TASKS)))
+    # The share of the 20 (layout, button) pairs on which the predictor is wrong about
+    # each box: wrong[predicted effect, true effect, box] is 1 where they differ.
+    effects = np.asarray(buttons.EFFECTS)
+    wrong = np.abs(effects[:, None, :] - effects[None, :, :]).astype(float)
+    truth = buttons.outcome_table(red_button)
+    greens = buttons.green_candidates(red_button)
     trials = progress_bar(range(n_trials), n_trials, "goal-oriented learner", progress,
                           unit="trial")
     for trial in trials:
@@ -306,31 +313,23 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progres
             chosen = agent.select_actions(layout)
             observed = env.press(chosen)
             agent.learn(layout, chosen, observed)
-            actions[:, trial, press], outcomes[:, trial, press] = chosen, observed
-        values[:, trial] = agent.interest.values()
-        predictions[:, trial] = agent.predictor.effect
+            for i, box in enumerate(_TASK_EFFECTS):
+                practice[:, trial, i] += observed == box
+            presses[np.arange(n_seeds), trial, chosen] += 1
+        values = agent.interest.values()
+        per_layout = agent.predictor.effect.reshape(n_seeds, 4, n_actions)
+        if agent.interest_per == "task":
+            interest_out[:, trial] = values[:, list(_TASK_EFFECTS)]
+            per_layout_interest = np.take_along_axis(values[:, None, :], per_layout, axis=2)
+        else:
+            interest_out[:, trial] = np.stack([values[:, red_button],
+                                               values[:, greens].mean(axis=1)], axis=1)
+            per_layout_interest = np.broadcast_to(values[:, None, :], per_layout.shape)
+        action_interest[:, trial] = np.moveaxis(per_layout_interest, 1, 0).mean(axis=0)
+        pairs = (per_layout[..., :buttons.N_BUTTONS] * len(effects) + truth).reshape(n_seeds, -1)
+        for box in range(len(TASKS)):
+            error_out[:, trial, box] = wrong[..., box].reshape(-1).take(pairs).mean(axis=1)
 
-    effects = np.asarray(buttons.EFFECTS)
-    practice = np.stack([(outcomes == buttons.RED_BOX).sum(axis=2),
-                         (outcomes == buttons.GREEN_BOX).sum(axis=2)], axis=2)
-    presses = np.stack([(actions == a).sum(axis=2) for a in range(n_actions)], axis=2)
-    per_layout = predictions.reshape(n_seeds, n_trials, 4, n_actions)
-    if agent.interest_per == "task":
-        interest_out = values[..., list(_TASK_EFFECTS)]
-        per_layout_interest = np.take_along_axis(values[:, :, None, :], per_layout, axis=3)
-    else:
-        greens = buttons.green_candidates(red_button)
-        interest_out = np.stack([values[..., red_button], values[..., greens].mean(axis=2)],
-                                axis=2)
-        per_layout_interest = np.broadcast_to(values[:, :, None, :], per_layout.shape)
-    action_interest = np.moveaxis(per_layout_interest, 2, 0).mean(axis=0)
-    # The share of the 20 (layout, button) pairs on which the predictor is wrong about
-    # each box: wrong[predicted effect, true effect, box] is 1 where they differ.
-    wrong = np.abs(effects[:, None, :] - effects[None, :, :]).astype(float)
-    pairs = (per_layout[..., :buttons.N_BUTTONS] * len(effects)
-             + buttons.outcome_table(red_button)).reshape(n_seeds, n_trials, -1)
-    error_out = np.stack([wrong[..., box].reshape(-1).take(pairs).mean(axis=2)
-                          for box in range(2)], axis=2)
     mastery = first_from_which(np.moveaxis(error_out, 1, 2) == 0)
     mastery = np.where(mastery >= 0, mastery + 1, -1)
     share = presses / presses_per_trial
