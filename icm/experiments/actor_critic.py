@@ -330,18 +330,23 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, start_s
           probes, rewarded, progress):
     """Plays every trial of a batched actor-critic run and gathers the result.
 
-    The loop plays and keeps, after each trial, the actor's preferences at the start
-    states, the predictor's answers to the probes and the critic's largest value; the
-    result's arrays are computed from those afterwards, for all trials at once."""
+    After each trial the loop reduces what happened to the result's numbers for that
+    trial: the boxes opened, section 4.1's test of the predictor on the probes, the
+    actor's policy at the start states and the critic's largest value; a run keeps its
+    result and nothing per press."""
     n_seeds, n_effects = len(env), len(buttons.EFFECTS)
-    outcomes = np.zeros((n_seeds, n_trials, presses_per_trial), dtype=np.int64)
+    practice = np.zeros((n_seeds, n_trials, len(TASKS)), dtype=np.int64)
     reward_out = np.zeros((n_seeds, n_trials))
     max_abs_value = np.zeros((n_seeds, n_trials))
-    starts = np.zeros((n_seeds, n_trials, len(start_states), agent.n_actions))
+    error_out = np.zeros((n_seeds, n_trials, len(TASKS)))
+    press_probability = np.zeros((n_seeds, n_trials, len(TASKS)))
     probe_keys = agent.predictor.keys(np.array([p[1] for p in probes]),
                                       np.array([p[2] for p in probes]))
-    answers = np.zeros((n_seeds, n_trials, len(probes)), dtype=np.int64)
     effects = np.asarray(buttons.EFFECTS)
+    # Section 4.1's test: the predictor's error on the probes, red alone, and green
+    # averaged over its four places (added in order, as one run at a time would).
+    errors = np.array([[math.dist(p, o) for o in buttons.EFFECTS] for p in buttons.EFFECTS])
+    n_green = sum(1 for task, *_ in probes if task == "green")
     trials = progress_bar(range(n_trials), n_trials, "actor-critic", progress, unit="trial")
     for trial in trials:
         layout = env.new_trials()
@@ -353,30 +358,22 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, start_s
             external = (observed == rewarded).astype(float)
             r, _ = agent.learn(state, actions, next_state, observed, external, 1.0)
             reward_out[:, trial] += r
-            outcomes[:, trial, press] = observed
+            practice[:, trial] += effects[observed]  # the boxes opened
             state = next_state
-        starts[:, trial] = agent.actor[:, start_states]
-        answers[:, trial] = agent.predictor.effect[:, probe_keys]
+        answers = agent.predictor.effect[:, probe_keys]
+        for i, (task, _, _, truth) in enumerate(probes):
+            error = errors[answers[:, i], truth]
+            if task == "red":
+                error_out[:, trial, 0] = error
+            else:
+                error_out[:, trial, 1] += error / n_green
+        # The policy at the start of a trial, averaged over the layouts.
+        policy = agent.policy_of(agent.actor[:, start_states])  # [seed, layout, action]
+        for layout, green in enumerate(buttons.green_candidates(red_button)):
+            press_probability[:, trial, 0] += policy[:, layout, red_button] / len(start_states)
+            press_probability[:, trial, 1] += policy[:, layout, green] / len(start_states)
         max_abs_value[:, trial] = np.abs(agent.critic).max(axis=1)
 
-    practice = effects[outcomes].sum(axis=2)  # the boxes opened in each trial
-    # Section 4.1's test: the predictor's error on the probes, red alone, and green
-    # averaged over its four places (added in order, as one run at a time would).
-    errors = np.array([[math.dist(p, o) for o in buttons.EFFECTS] for p in buttons.EFFECTS])
-    error_out = np.zeros((n_seeds, n_trials, len(TASKS)))
-    n_green = sum(1 for task, *_ in probes if task == "green")
-    for i, (task, _, _, truth) in enumerate(probes):
-        error = errors[answers[..., i], truth]
-        if task == "red":
-            error_out[..., 0] = error
-        else:
-            error_out[..., 1] += error / n_green
-    # The policy at the start of a trial, averaged over the layouts.
-    policy = agent.policy_of(starts)  # [seed, trial, layout, action]
-    press_probability = np.zeros((n_seeds, n_trials, len(TASKS)))
-    for layout, green in enumerate(buttons.green_candidates(red_button)):
-        press_probability[..., 0] += policy[:, :, layout, red_button] / len(start_states)
-        press_probability[..., 1] += policy[:, :, layout, green] / len(start_states)
     zero = first_from_which(np.moveaxis(error_out, 1, 2) == 0)
     zero = np.where(zero >= 0, zero + 1, -1)
     return ActorCriticResult(settings, error_out, zero, practice, press_probability,
