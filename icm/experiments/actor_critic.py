@@ -9,11 +9,12 @@ import math
 
 import numpy as np
 
-from icm import _validate
+from icm import _streams, _validate
 from icm.envs import buttons
 from icm.experiments import _grid
+from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import check_run_size, run_seeds
+from icm.experiments._seeding import run_seeds
 from icm.experiments.goal_oriented import check_results, measures_table
 from icm.learners import actor_critic, predictors
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
@@ -189,8 +190,45 @@ def _check_run_arguments(n_seeds, n_trials, temperature, lr_actor, lr_critic, ga
         red_button=buttons.check_red_button(red_button),
         seed=_validate.root_seed("seed", seed))
     _validate.boolean("progress", progress)
-    check_run_size("run_actor_critic", checked["n_seeds"], checked["n_trials"], 64)
+    check_memory("run_actor_critic", {"n_seeds": checked["n_seeds"],
+                                      "n_trials": checked["n_trials"]},
+                 memory_needed(checked["n_seeds"], checked["n_trials"],
+                               checked["presses_per_trial"])[0])
     return checked
+
+
+LOOP_ROW_BYTES = 1500
+"""An upper bound on the temporaries of a press and of a trial's reduction, per row,
+besides the predictor's distances (counted from their shape)."""
+
+
+def memory_needed(n_rows, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
+                  one_action_weight=True):
+    """An upper bound on the memory a batch of `n_rows` runs of `run_actor_critic`
+    adds to the process, in bytes, counted from its arrays' shapes (see
+    `icm.experiments._memory`). `one_action_weight`: whether every row has the same
+    action weight (a grid may vary it: the predictor then computes each row's
+    distances anew at every press).
+
+    Returns:
+      (peak, kept): the bound on the run's peak, and the bytes of its result.
+    """
+    n_states = len(state_table()[0])
+    n_tasks, n_actions = len(TASKS), buttons.N_BUTTONS
+    row_trials = n_rows * n_trials
+    # The result, per row and trial: prediction_error, practice, press_probability
+    # [task]; reward, max_abs_value.
+    kept = 8 * row_trials * (3 * n_tasks + 2)
+    making = 8 * row_trials  # the masks that find the zero trials
+    n_keys = n_states * n_actions
+    learner = n_rows * (8 * n_states * (1 + n_actions)  # critic, actor
+                        + 16 * n_keys  # the predictor: distance, effect per key
+                        + 8 * n_keys * (1 if one_action_weight else 4)  # a press's distances
+                        + LOOP_ROW_BYTES)
+    presses = n_trials * presses_per_trial
+    streams = (_streams.memory_bound(n_rows, presses * actor_critic.DRAWS_PER_CHOICE)
+               + _streams.memory_bound(n_rows, n_trials))  # the consoles': a layout a trial
+    return FIXED_BYTES + kept + making + learner + streams, kept
 
 
 def run_actor_critic(n_seeds=100, n_trials=100,
@@ -287,8 +325,12 @@ def run_actor_critic_grid(grid, **arguments):
         a["epsilon"], a["action_weight"], a["presses_per_trial"], a["red_button"],
         a["seed"], progress) for a in full]
     first, n = settings[0], settings[0]["n_seeds"]
-    if len(settings) > 1:
-        check_run_size("run_actor_critic_grid", n * len(settings), first["n_trials"], 64)
+    if len(settings) > 1:  # the settings' rows side by side
+        check_memory("run_actor_critic_grid", {"settings": len(settings), "n_seeds": n,
+                                               "n_trials": first["n_trials"]},
+                     memory_needed(n * len(settings), first["n_trials"],
+                                   first["presses_per_trial"],
+                                   len({s["action_weight"] for s in settings}) == 1)[0])
     seeds = run_seeds(first["seed"], n, 2) * len(settings)
     red_button = first["red_button"]
     states, start_states, probes = state_table(red_button)
