@@ -23,18 +23,21 @@ def _max_chunk(n_rows, chunk=None):
     return int(chunk or max(16, min(4096, (1 << 23) // max(n_rows, 1))))
 
 
-def memory_bound(n_rows, draws_per_row, chunk=None):
+def memory_bound(n_rows, draws_per_row, chunk=None, k=1):
     """An upper bound on the bytes a `Streams(seeds, chunk)` of `n_rows` rows holds at
-    its largest, when no row draws more than `draws_per_row` numbers in all: the
-    generators, and the buffer at the largest length those draws can make it grow to
-    together with the buffer before it (both are held while it grows).
+    its largest, when no row draws more than `draws_per_row` numbers in all, `k` at a
+    time: the generators, and the buffer at the largest length those draws can make it
+    grow to together with the buffer before it (both are held while it grows).
 
-    A row that draws at most c numbers in all never needs a buffer longer than c, so
-    the buffer stops growing at the first length >= `draws_per_row`.
+    The buffer grows (for every row) when a row needs more numbers than it holds;
+    after growing to each length, a row has kept fewer than `k` of its unused numbers,
+    so a row has had at least the sum of the lengths so far, less k - 1 per growth,
+    when the buffer must grow again.
     """
     largest = _max_chunk(n_rows, chunk)
     lengths = [min(Streams.FIRST_CHUNK, largest)]
-    while lengths[-1] < min(draws_per_row, largest):
+    while lengths[-1] < largest and \
+            draws_per_row > sum(lengths) - (k - 1) * (len(lengths) - 1):
         lengths.append(min(largest, 16 * lengths[-1]))
     held = lengths[-1] + (lengths[-2] if len(lengths) > 1 else 0)
     return n_rows * (GENERATOR_BYTES + 8 * held + 8)

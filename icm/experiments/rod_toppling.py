@@ -6,10 +6,11 @@ import dataclasses
 
 import numpy as np
 
-from icm import _validate
+from icm import _streams, _validate
 from icm.envs import rods
+from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES, check_memory
 from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import check_run_size, run_seeds
+from icm.experiments._seeding import run_seeds
 from icm.learners import interest, predictors, q_learning
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
                        first_from_which)
@@ -274,12 +275,56 @@ def _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma, predictor_l
         seed=_validate.root_seed("seed", seed),
         first_run=_validate.integer("first_run", first_run, 0, _validate.MAX_SEED))
     _validate.boolean("progress", progress)
-    n_moments = len(MOMENTS) + len(episodes)
-    per_seed = n_moments * (N_STATES * N_ACTIONS * (1 + len(RODS)) + N_STATES) * 8
-    history = n_episodes * N_STATES * (N_ACTIONS * (1 + len(RODS)) + 1) * 8  # one run's
-    check_run_size("run_rod_toppling", checked["n_seeds"], n_episodes, 64,
-                   per_seed + history / checked["n_seeds"])
+    check_memory("run_rod_toppling", {"n_seeds": checked["n_seeds"], "n_episodes": n_episodes},
+                 memory_needed(checked["n_seeds"], n_episodes, checked["reward"],
+                               checked["window"], checked["wobbly_rod"], checked["physics"],
+                               checked["max_moves"], len(episodes))[0])
     return checked
+
+
+LOOP_ROW_BYTES = 500
+"""An upper bound on the play's own small arrays and temporaries, per row."""
+
+
+def memory_needed(n_rows, n_episodes, reward="prediction_error", window=interest.DEFAULT_WINDOW,
+                  wobbly_rod=False, physics=False, max_moves=rods.DEFAULT_MAX_MOVES,
+                  n_snapshot_episodes=0):
+    """An upper bound on the memory a batch of `n_rows` runs of `run_rod_toppling` adds
+    to the process, in bytes, counted from its arrays' shapes (see
+    `icm.experiments._memory`). The learner is kept at the moments only, so that
+    memory grows with the episodes by the result alone.
+
+    Returns:
+      (peak, kept): the bound on the run's peak, and the bytes of its result.
+    """
+    n_rods = len(rods.rod_names(wobbly_rod))
+    n_fixed, pairs = len(RODS), N_STATES * N_ACTIONS
+    n_snapshots = len(MOMENTS) + n_snapshot_episodes
+    # The result, per row and episode: toppled, episode_length; prediction_error [rod];
+    # rod_error, rod_error_toppled [red and blue] ...
+    kept = 8 * n_rows * n_episodes * (2 + n_rods + 2 * n_fixed)
+    # ... per row and snapshot: q_table, predictions [cell, action, ...], confidence [cell].
+    kept += 8 * n_rows * n_snapshots * (pairs * (1 + n_rods) + N_STATES)
+    # While it is made: the masks that find the moments, per episode; the snapshots as
+    # the loop keeps them (q, predictions, last errors) and the confidence's terms.
+    making = n_rows * (8 * n_episodes + 8 * n_snapshots * pairs * (2 + n_rods + 2))
+    # The learner: q, predictions, last errors, and the first topple of each pair.
+    learner = n_rows * (8 * pairs * (2 + 2 * n_rods) + LOOP_ROW_BYTES)
+    # The reward's slope table, and its last errors, count (and progress) per pair: the
+    # compiled loop keeps its own (the batched learner's, never written, take no memory).
+    kmax = 1 if reward == "prediction_error" else window
+    learner += 8 * (kmax + 1) ** 2 * kmax
+    if physics:
+        learner += n_rows * 8 * pairs * (kmax + 2)
+    elif reward != "prediction_error":
+        learner += n_rows * 8 * pairs * ((window if reward == "learning_progress" else 1) + 1)
+    moves = n_episodes * max_moves  # at most
+    streams = _streams.memory_bound(n_rows, moves * q_learning.DRAWS_PER_CHOICE)
+    if physics:  # a simulated table per row
+        tables = n_rows * PHYSICS_SCENE_BYTES
+    else:  # the tabular tables' numbers: one a move beside the wobbly rod
+        tables = _streams.memory_bound(n_rows, moves, chunk=16) if wobbly_rod else 0
+    return FIXED_BYTES + kept + making + learner + streams + tables, kept
 
 
 def run_rod_toppling(n_seeds=100, n_episodes=300,
