@@ -2,10 +2,11 @@
 refused before it allocates anything.
 
 A bound is checked against the peak a run adds to a fresh process: the peak resident
-set (ru_maxrss) above the resident set once the run's code is loaded (icm imported
-and a tiny run made, which loads Numba's compiled loop or MuJoCo once). Linux resets
-the peak through /proc/self/clear_refs, so that the tiny run's own peak is not
-counted. The margin: a bound must be at least the measured peak, and at most 1.5
+set (VmHWM) above the resident set once the run's code is loaded (icm imported and a
+tiny run made, which loads Numba's compiled loop or MuJoCo once). Linux resets the
+peak through /proc/self/clear_refs, so that the tiny run's own peak is not counted.
+(Not ru_maxrss: Linux keeps in it the peak of the process the child was forked from,
+here pytest's, from before the exec.) The margin: a bound must be at least the measured peak, and at most 1.5
 times it. Memory, unlike time, barely varies from run to run (repeated runs here
 differ by less than 0.2 MB); the bounds carry their own 1 MB allowance for such
 noise (`icm.experiments._memory.FIXED_BYTES`), and at the sizes below the measured
@@ -29,7 +30,7 @@ from icm.experiments import actor_critic, curiosity, goal_oriented
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 MEASURE = textwrap.dedent("""
-    import gc, json, os, resource, sys
+    import gc, json, os
     os.environ.setdefault("MUJOCO_GL", "egl")
     import icm.experiments
     from icm import _validate
@@ -42,13 +43,15 @@ MEASURE = textwrap.dedent("""
         bounds.append(nbytes)
         return check(what, nbytes)
     _validate.fits_in_memory = recording
+    def status(field):  # kB
+        with open("/proc/self/status") as lines:
+            return next(int(line.split()[1]) for line in lines if line.startswith(field))
     gc.collect()
     with open("/proc/self/clear_refs", "w") as clear:  # the peak so far is forgotten
         clear.write("5")
-    with open("/proc/self/status") as status:
-        rss = next(int(line.split()[1]) for line in status if line.startswith("VmRSS"))
+    rss = status("VmRSS:")
     result = run({call})
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - rss
+    peak = status("VmHWM:") - rss
     print(json.dumps({{"peak": peak * 1024, "bound": max(bounds)}}))
 """)
 
