@@ -359,6 +359,7 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progres
     wrong = np.abs(effects[:, None, :] - effects[None, :, :]).astype(float)
     truth = buttons.outcome_table(red_button)
     greens = buttons.green_candidates(red_button)
+    rows = np.arange(n_seeds)
     trials = progress_bar(range(n_trials), n_trials, "goal-oriented learner", progress,
                           unit="trial")
     for trial in trials:
@@ -369,7 +370,7 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progres
             agent.learn(layout, chosen, observed)
             for i, box in enumerate(_TASK_EFFECTS):
                 practice[:, trial, i] += observed == box
-            presses[np.arange(n_seeds), trial, chosen] += 1
+            presses[rows, trial, chosen] += 1
         values = agent.interest.values()
         per_layout = agent.predictor.effect.reshape(n_seeds, 4, n_actions)
         if agent.interest_per == "task":
