@@ -13,6 +13,36 @@ thousands of numbers it never uses.
 import numpy as np
 
 
+GENERATOR_BYTES = 1000
+"""An upper bound on the memory of one row's `numpy.random.Generator` and its share of
+the bookkeeping (measured: 450 to 900 bytes)."""
+
+
+def _max_chunk(n_rows, chunk=None):
+    """The most numbers a `Streams` of `n_rows` rows buffers per row."""
+    return int(chunk or max(16, min(4096, (1 << 23) // max(n_rows, 1))))
+
+
+def memory_bound(n_rows, draws_per_row, chunk=None, k=1):
+    """An upper bound on the bytes a `Streams(seeds, chunk)` of `n_rows` rows holds at
+    its largest, when no row draws more than `draws_per_row` numbers in all, `k` at a
+    time: the generators, and the buffer at the largest length those draws can make it
+    grow to together with the buffer before it (both are held while it grows).
+
+    The buffer grows (for every row) when a row needs more numbers than it holds;
+    after growing to each length, a row has kept fewer than `k` of its unused numbers,
+    so a row has had at least the sum of the lengths so far, less k - 1 per growth,
+    when the buffer must grow again.
+    """
+    largest = _max_chunk(n_rows, chunk)
+    lengths = [min(Streams.FIRST_CHUNK, largest)]
+    while lengths[-1] < largest and \
+            draws_per_row > sum(lengths) - (k - 1) * (len(lengths) - 1):
+        lengths.append(min(largest, 16 * lengths[-1]))
+    held = lengths[-1] + (lengths[-2] if len(lengths) > 1 else 0)
+    return n_rows * (GENERATOR_BYTES + 8 * held + 8)
+
+
 class Streams:
     """Per-row streams of uniform numbers in [0, 1).
 
@@ -30,7 +60,7 @@ class Streams:
         self.generators = [s if isinstance(s, np.random.Generator) else np.random.default_rng(s)
                            for s in seeds]
         n = len(self.generators)
-        self.max_chunk = int(chunk or max(16, min(4096, (1 << 23) // max(n, 1))))
+        self.max_chunk = _max_chunk(n, chunk)
         self.chunk = min(self.FIRST_CHUNK, self.max_chunk)
         self.buffer = np.empty((n, self.chunk))
         for row, generator in enumerate(self.generators):

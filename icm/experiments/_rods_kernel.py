@@ -35,8 +35,8 @@ def slope_weights(window):
 @numba.njit(cache=True, nogil=True)
 def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_sum,
          epsilon, alpha, gamma, lr, next_cell, topples, start, max_moves, n_episodes,
-         toppled_out, length_out, errors_out, found, keep, q_after, p_after, e_after,
-         signal, window, weights, history, count, wobbly, wobbles, env_draws, env_cursor):
+         toppled_out, length_out, errors_out, found, record, signal, window, weights,
+         history, count, wobbly, wobbles, env_draws, env_cursor):
     """Plays every row on, move by move, until it has played its episodes or used its
     buffer of uniform numbers (three a move, and with the wobbly rod one from the
     environment's buffer at a move beside it); returns True if every row is done.
@@ -46,8 +46,8 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
     signals the last `window` errors of each pair, history [row, cell, action, window],
     newest last, and its count of tries), the play's state (cell, episode, moves,
     error_sum, cursor, env_cursor), and the record of each episode (toppled_out,
-    length_out, errors_out, found [row, cell, action, rod], and, if `keep`, the
-    learner after it in q_after, p_after and e_after [row, episode, ...]).
+    length_out, errors_out, found [row, cell, action, rod], and what `record_episode`
+    keeps in the tuple `record`).
     """
     n, n_cells, n_actions = q.shape
     n_rods = predictions.shape[3]
@@ -143,30 +143,134 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
                     error_sum[r, i] = 0.0
                 if rod >= 0 and ep < found[r, c, a, rod]:
                     found[r, c, a, rod] = ep
-                if keep:
-                    q_after[r, ep] = q[r].ravel()
-                    p_after[r, ep] = predictions[r].ravel()
-                    e_after[r, ep] = last_error[r].ravel()
+                record_episode(r, ep, rod, q, predictions, last_error, found, record)
                 cell[r] = start
                 moves[r] = 0
                 episode[r] = ep + 1
     return done
 
 
+def recorder(n_rows, n_episodes, n_cells, n_actions, n_rods, pairs, snapshot_episodes,
+             threshold):
+    """The arrays `record_episode` fills, as the tuple it takes, for `n_rows` runs of
+    `n_episodes` episodes.
+
+    Args:
+      pairs: (cells, actions, rods), the map's pairs that topple a rod (red 0 or blue
+        1), as `icm.experiments.rod_toppling.toppling_pairs` gives them.
+      snapshot_episodes: the episodes (from 1) after which to keep a snapshot, besides
+        the four moments.
+      threshold: the error below which a rod is predicted well.
+    """
+    cells, actions, rods = (np.ascontiguousarray(a, dtype=np.int64) for a in pairs)
+    n_fixed = N_FIXED_RODS
+    n_slots = N_MOMENTS + len(snapshot_episodes)
+    return (cells, actions, rods, np.array(snapshot_episodes, dtype=np.int64).reshape(-1) - 1,
+            float(threshold),
+            np.zeros((n_rows, n_episodes, n_fixed)),  # rod_error
+            np.zeros((n_rows, n_episodes, n_fixed)),  # rod_error_toppled
+            np.full((n_rows, n_fixed), -1, dtype=np.int64),  # predicted_well_toppled
+            np.full((n_rows, n_slots), -1, dtype=np.int64),  # snapshot taken after
+            np.zeros((n_rows, n_slots, n_cells, n_actions)),  # q
+            np.zeros((n_rows, n_slots, n_cells, n_actions, n_rods)),  # predictions
+            np.zeros((n_rows, n_slots, n_cells, n_actions)))  # last_error
+
+
+RECORD_FIELDS = ("rod_error", "rod_error_toppled", "predicted_well_toppled",
+                 "snapshot_taken", "q_snapshots", "p_snapshots", "e_snapshots")
+"""The names of the arrays of a `recorder` tuple, from its sixth entry on."""
+N_FIXED_RODS = 2
+"""The rods that a move topples always or never, red and blue: the rods of `rod_error`."""
+N_MOMENTS = 4
+"""The moments of `icm.experiments.rod_toppling.MOMENTS`, in their order: the first
+episode, red predicted well (reading "all"), red predicted well (reading "toppled"),
+the first blue topple."""
+
+
+@numba.njit(cache=True, nogil=True)
+def record_episode(r, ep, rod, q, predictions, last_error, found, record):
+    """After episode `ep` (from 0) of row `r`, which ended with `rod` toppled (-1 none),
+    and after `found` [row, cell, action, rod] (the first episode each pair toppled each
+    rod, or more than any episode) took it in: keeps what the result needs of the
+    learner (q, predictions, last_error [row, cell, action, ...]) at this moment, in
+    the arrays of `record` (see `recorder`):
+
+    - rod_error [row, episode, rod]: the predictor's largest error (summed over the
+      rods, as it is paid) on the map's pairs that topple each rod;
+    - rod_error_toppled: the same over the pairs that have toppled it so far, NaN
+      before the first;
+    - predicted_well_toppled [row, rod]: the first episode (from 1) at which the
+      latter is below the threshold, -1 before;
+    - the snapshots of the learner [row, slot, ...] at each moment (slots as
+      `N_MOMENTS`, then the snapshot episodes), with the episode each was taken after
+      in snapshot_taken. The moment "red predicted well" is the first episode from
+      which rod_error stays below the threshold to the end of the run: it is known
+      only at the end, so its slot is taken again each time the error falls below the
+      threshold, and holds the last such episode (the moment, if it came).
+
+    The learner is only read: a run keeps a few snapshots per row, not the learner
+    after every episode. Called by `play` and, for the physics, by
+    `icm.experiments.rod_toppling.play_episodes`.
+    """
+    (pair_cells, pair_actions, pair_rods, snapshot_at, threshold, rod_error,
+     rod_error_toppled, well_toppled, taken, q_snap, p_snap, e_snap) = record
+    n_rods = predictions.shape[3]
+    for f in range(rod_error.shape[2]):
+        worst = -np.inf
+        known = -np.inf
+        seen = False
+        for p in range(pair_cells.shape[0]):
+            if pair_rods[p] != f:
+                continue
+            c, a = pair_cells[p], pair_actions[p]
+            total = 0.0
+            for i in range(n_rods):  # in order, as the one-agent sum
+                truth = 1.0 if i == f else 0.0
+                error = abs(truth - predictions[r, c, a, i])
+                total = error if i == 0 else total + error
+            if total > worst:
+                worst = total
+            if found[r, c, a, f] <= ep:
+                seen = True
+                if total > known:
+                    known = total
+        rod_error[r, ep, f] = worst
+        rod_error_toppled[r, ep, f] = known if seen else np.nan
+        if seen and known < threshold and well_toppled[r, f] < 0:
+            well_toppled[r, f] = ep + 1
+    below = rod_error[r, ep, 0] < threshold
+    for s in range(taken.shape[1]):
+        if s == 0:
+            now = ep == 0
+        elif s == 1:
+            now = below and (ep == 0 or not rod_error[r, ep - 1, 0] < threshold)
+        elif s == 2:
+            now = well_toppled[r, 0] == ep + 1
+        elif s == 3:
+            now = rod == 1 and taken[r, 3] < 0
+        else:
+            now = ep == snapshot_at[s - N_MOMENTS]
+        if now:
+            taken[r, s] = ep
+            q_snap[r, s] = q[r]
+            p_snap[r, s] = predictions[r]
+            e_snap[r, s] = last_error[r]
+
+
 def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, next_cell,
-             topples, start, max_moves, n_episodes, keep=True, bar=None,
-             reward="prediction_error", window=5, wobbles=None, env_streams=None):
+             topples, start, max_moves, n_episodes, pairs, snapshot_episodes, threshold,
+             bar=None, reward="prediction_error", window=5, wobbles=None, env_streams=None):
     """Plays `n_episodes` episodes of every row (see `play`), refilling the rows'
     streams of uniform numbers whenever they run out; `bar`, a tqdm progress bar over
     all rows' episodes, is moved on between the compiled loop's runs. `reward` names
     the reward signal, `window` its slope's length; with the wobbly rod, `wobbles`
     [cell, action] marks the moves beside it and `env_streams` are the tables' own
-    streams (`icm.envs.rods.RodTableBatch.streams`).
+    streams (`icm.envs.rods.RodTableBatch.streams`). `pairs`, `snapshot_episodes` and
+    `threshold` are those of `recorder`.
 
     Returns:
-      A dict: "toppled", "length" [row, episode], "errors" [row, episode, rod],
-      "found" [row, cell, action, rod] (n_episodes where never), and if `keep`, the
-      learner after every episode, "q_after", "p_after", "e_after" [row, episode, ...].
+      A dict: "toppled", "length" [row, episode], "errors" [row, episode, rod], and the
+      arrays of `record_episode` by the names of `RECORD_FIELDS`.
     """
     n, n_cells, n_actions = q.shape
     n_rods = predictions.shape[3]
@@ -176,12 +280,10 @@ def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, nex
     error_sum = np.zeros((n, n_rods))
     out = {"toppled": np.full((n, n_episodes), -1, dtype=np.int64),
            "length": np.zeros((n, n_episodes), dtype=np.int64),
-           "errors": np.zeros((n, n_episodes, n_rods)),
-           "found": np.full((n, n_cells, n_actions, n_rods), n_episodes, dtype=np.int64)}
-    shape = (n, n_episodes) if keep else (0, 0)
-    out["q_after"] = np.zeros(shape + (n_cells * n_actions,))
-    out["p_after"] = np.zeros(shape + (n_cells * n_actions * n_rods,))
-    out["e_after"] = np.zeros(shape + (n_cells * n_actions,))
+           "errors": np.zeros((n, n_episodes, n_rods))}
+    found = np.full((n, n_cells, n_actions, n_rods), n_episodes, dtype=np.int64)
+    record = recorder(n, n_episodes, n_cells, n_actions, n_rods, pairs, snapshot_episodes,
+                      threshold)
     per_row = lambda value: np.ascontiguousarray(np.broadcast_to(
         np.asarray(value, dtype=float), (n,)))
     epsilon, alpha, gamma, lr = per_row(epsilon), per_row(alpha), per_row(gamma), per_row(lr)
@@ -203,13 +305,12 @@ def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, nex
         finished = play(q, predictions, last_error, streams.buffer, streams.cursor, cell,
                         episode, moves, error_sum, epsilon, alpha, gamma, lr, next_cell,
                         topples, start, max_moves, n_episodes, out["toppled"],
-                        out["length"], out["errors"], out["found"], keep, out["q_after"],
-                        out["p_after"], out["e_after"], signal, window, weights, history,
-                        count, wobbly, wobbles, env_draws, env_cursor)
+                        out["length"], out["errors"], found, record, signal, window,
+                        weights, history, count, wobbly, wobbles, env_draws, env_cursor)
         if bar is not None:
             bar.update(int(episode.sum()) - bar.n)
         if finished:
-            return out
+            return {**out, **dict(zip(RECORD_FIELDS, record[5:]))}
         unfinished = np.flatnonzero(episode < n_episodes)
         streams.refill(unfinished, 3)
         if wobbly:

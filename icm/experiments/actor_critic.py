@@ -9,11 +9,12 @@ import math
 
 import numpy as np
 
-from icm import _validate
+from icm import _streams, _validate
 from icm.envs import buttons
 from icm.experiments import _grid
+from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import check_run_size, run_seeds
+from icm.experiments._seeding import run_seeds
 from icm.experiments.goal_oriented import check_results, measures_table
 from icm.learners import actor_critic, predictors
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
@@ -189,8 +190,45 @@ def _check_run_arguments(n_seeds, n_trials, temperature, lr_actor, lr_critic, ga
         red_button=buttons.check_red_button(red_button),
         seed=_validate.root_seed("seed", seed))
     _validate.boolean("progress", progress)
-    check_run_size("run_actor_critic", checked["n_seeds"], checked["n_trials"], 64)
+    check_memory("run_actor_critic", {"n_seeds": checked["n_seeds"],
+                                      "n_trials": checked["n_trials"]},
+                 memory_needed(checked["n_seeds"], checked["n_trials"],
+                               checked["presses_per_trial"])[0])
     return checked
+
+
+LOOP_ROW_BYTES = 1500
+"""An upper bound on the temporaries of a press and of a trial's reduction, per row,
+besides the predictor's distances (counted from their shape)."""
+
+
+def memory_needed(n_rows, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
+                  one_action_weight=True):
+    """An upper bound on the memory a batch of `n_rows` runs of `run_actor_critic`
+    adds to the process, in bytes, counted from its arrays' shapes (see
+    `icm.experiments._memory`). `one_action_weight`: whether every row has the same
+    action weight (a grid may vary it: the predictor then computes each row's
+    distances anew at every press).
+
+    Returns:
+      (peak, kept): the bound on the run's peak, and the bytes of its result.
+    """
+    n_states = len(state_table()[0])
+    n_tasks, n_actions = len(TASKS), buttons.N_BUTTONS
+    row_trials = n_rows * n_trials
+    # The result, per row and trial: prediction_error, practice, press_probability
+    # [task]; reward, max_abs_value.
+    kept = 8 * row_trials * (3 * n_tasks + 2)
+    making = 8 * row_trials  # the masks that find the zero trials
+    n_keys = n_states * n_actions
+    learner = n_rows * (8 * n_states * (1 + n_actions)  # critic, actor
+                        + 16 * n_keys  # the predictor: distance, effect per key
+                        + 8 * n_keys * (1 if one_action_weight else 4)  # a press's distances
+                        + LOOP_ROW_BYTES)
+    presses = n_trials * presses_per_trial
+    streams = (_streams.memory_bound(n_rows, presses * actor_critic.DRAWS_PER_CHOICE)
+               + _streams.memory_bound(n_rows, n_trials))  # the consoles': a layout a trial
+    return FIXED_BYTES + kept + making + learner + streams, kept
 
 
 def run_actor_critic(n_seeds=100, n_trials=100,
@@ -287,8 +325,12 @@ def run_actor_critic_grid(grid, **arguments):
         a["epsilon"], a["action_weight"], a["presses_per_trial"], a["red_button"],
         a["seed"], progress) for a in full]
     first, n = settings[0], settings[0]["n_seeds"]
-    if len(settings) > 1:
-        check_run_size("run_actor_critic_grid", n * len(settings), first["n_trials"], 64)
+    if len(settings) > 1:  # the settings' rows side by side
+        check_memory("run_actor_critic_grid", {"settings": len(settings), "n_seeds": n,
+                                               "n_trials": first["n_trials"]},
+                     memory_needed(n * len(settings), first["n_trials"],
+                                   first["presses_per_trial"],
+                                   len({s["action_weight"] for s in settings}) == 1)[0])
     seeds = run_seeds(first["seed"], n, 2) * len(settings)
     red_button = first["red_button"]
     states, start_states, probes = state_table(red_button)
@@ -330,18 +372,23 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, start_s
           probes, rewarded, progress):
     """Plays every trial of a batched actor-critic run and gathers the result.
 
-    The loop plays and keeps, after each trial, the actor's preferences at the start
-    states, the predictor's answers to the probes and the critic's largest value; the
-    result's arrays are computed from those afterwards, for all trials at once."""
+    After each trial the loop reduces what happened to the result's numbers for that
+    trial: the boxes opened, section 4.1's test of the predictor on the probes, the
+    actor's policy at the start states and the critic's largest value; a run keeps its
+    result and nothing per press."""
     n_seeds, n_effects = len(env), len(buttons.EFFECTS)
-    outcomes = np.zeros((n_seeds, n_trials, presses_per_trial), dtype=np.int64)
+    practice = np.zeros((n_seeds, n_trials, len(TASKS)), dtype=np.int64)
     reward_out = np.zeros((n_seeds, n_trials))
     max_abs_value = np.zeros((n_seeds, n_trials))
-    starts = np.zeros((n_seeds, n_trials, len(start_states), agent.n_actions))
+    error_out = np.zeros((n_seeds, n_trials, len(TASKS)))
+    press_probability = np.zeros((n_seeds, n_trials, len(TASKS)))
     probe_keys = agent.predictor.keys(np.array([p[1] for p in probes]),
                                       np.array([p[2] for p in probes]))
-    answers = np.zeros((n_seeds, n_trials, len(probes)), dtype=np.int64)
     effects = np.asarray(buttons.EFFECTS)
+    # Section 4.1's test: the predictor's error on the probes, red alone, and green
+    # averaged over its four places (added in order, as one run at a time would).
+    errors = np.array([[math.dist(p, o) for o in buttons.EFFECTS] for p in buttons.EFFECTS])
+    n_green = sum(1 for task, *_ in probes if task == "green")
     trials = progress_bar(range(n_trials), n_trials, "actor-critic", progress, unit="trial")
     for trial in trials:
         layout = env.new_trials()
@@ -353,30 +400,22 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, start_s
             external = (observed == rewarded).astype(float)
             r, _ = agent.learn(state, actions, next_state, observed, external, 1.0)
             reward_out[:, trial] += r
-            outcomes[:, trial, press] = observed
+            practice[:, trial] += effects[observed]  # the boxes opened
             state = next_state
-        starts[:, trial] = agent.actor[:, start_states]
-        answers[:, trial] = agent.predictor.effect[:, probe_keys]
+        answers = agent.predictor.effect[:, probe_keys]
+        for i, (task, _, _, truth) in enumerate(probes):
+            error = errors[answers[:, i], truth]
+            if task == "red":
+                error_out[:, trial, 0] = error
+            else:
+                error_out[:, trial, 1] += error / n_green
+        # The policy at the start of a trial, averaged over the layouts.
+        policy = agent.policy_of(agent.actor[:, start_states])  # [seed, layout, action]
+        for layout, green in enumerate(buttons.green_candidates(red_button)):
+            press_probability[:, trial, 0] += policy[:, layout, red_button] / len(start_states)
+            press_probability[:, trial, 1] += policy[:, layout, green] / len(start_states)
         max_abs_value[:, trial] = np.abs(agent.critic).max(axis=1)
 
-    practice = effects[outcomes].sum(axis=2)  # the boxes opened in each trial
-    # Section 4.1's test: the predictor's error on the probes, red alone, and green
-    # averaged over its four places (added in order, as one run at a time would).
-    errors = np.array([[math.dist(p, o) for o in buttons.EFFECTS] for p in buttons.EFFECTS])
-    error_out = np.zeros((n_seeds, n_trials, len(TASKS)))
-    n_green = sum(1 for task, *_ in probes if task == "green")
-    for i, (task, _, _, truth) in enumerate(probes):
-        error = errors[answers[..., i], truth]
-        if task == "red":
-            error_out[..., 0] = error
-        else:
-            error_out[..., 1] += error / n_green
-    # The policy at the start of a trial, averaged over the layouts.
-    policy = agent.policy_of(starts)  # [seed, trial, layout, action]
-    press_probability = np.zeros((n_seeds, n_trials, len(TASKS)))
-    for layout, green in enumerate(buttons.green_candidates(red_button)):
-        press_probability[..., 0] += policy[:, :, layout, red_button] / len(start_states)
-        press_probability[..., 1] += policy[:, :, layout, green] / len(start_states)
     zero = first_from_which(np.moveaxis(error_out, 1, 2) == 0)
     zero = np.where(zero >= 0, zero + 1, -1)
     return ActorCriticResult(settings, error_out, zero, practice, press_probability,

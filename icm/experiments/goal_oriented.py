@@ -9,11 +9,12 @@ import dataclasses
 
 import numpy as np
 
-from icm import _validate
+from icm import _streams, _validate
 from icm.envs import buttons
 from icm.experiments import _grid
+from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES, check_memory
 from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import check_run_size, run_seeds
+from icm.experiments._seeding import run_seeds
 from icm.learners import goal_oriented, interest, predictors
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth, first_below,
                        first_from_which)
@@ -180,9 +181,57 @@ def _check_run_arguments(n_seeds, n_trials, epsilon, window, new_task_factor, re
         physics=_validate.boolean("physics", physics),
         seed=_validate.root_seed("seed", seed))
     _validate.boolean("progress", progress)
-    check_run_size("run_goal_oriented", checked["n_seeds"], checked["n_trials"], 160,
-                   bytes_per_seed=8 * (600 + 8 * checked["window"]))
+    check_memory("run_goal_oriented", {"n_seeds": checked["n_seeds"],
+                                       "n_trials": checked["n_trials"]},
+                 memory_needed(checked["n_seeds"], **_memory_arguments(checked))[0])
     return checked
+
+
+LOOP_ROW_BYTES = 1500
+"""An upper bound on the temporaries of a press and of a trial's reduction, per row,
+besides the predictor's distances (counted from their shape)."""
+
+
+def _memory_arguments(checked):
+    """The arguments of `memory_needed` from checked run arguments (but n_rows)."""
+    return {name: checked[name] for name in ("n_trials", "presses_per_trial", "window",
+                                             "interest_per", "noisy_button", "physics")}
+
+
+def memory_needed(n_rows, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
+                  window=interest.DEFAULT_WINDOW, interest_per="task", noisy_button=False,
+                  physics=False, one_action_weight=True):
+    """An upper bound on the memory a batch of `n_rows` runs of `run_goal_oriented`
+    adds to the process, in bytes, counted from its arrays' shapes (see
+    `icm.experiments._memory`). `one_action_weight`: whether every row has the same
+    action weight (a grid may vary it: the predictor then computes each row's
+    distances anew at every press).
+
+    Returns:
+      (peak, kept): the bound on the run's peak, and the bytes of its result.
+    """
+    n_actions, n_tasks = buttons.n_actions(noisy_button), len(TASKS)
+    n_keys = len(buttons.EFFECTS) if interest_per == "task" else n_actions
+    row_trials = n_rows * n_trials
+    # The result, per row and trial: interest, prediction_error, practice [task];
+    # button_share, action_interest [button].
+    kept = 8 * row_trials * (3 * n_tasks + 2 * n_actions)
+    # While it is made: the presses counted [button], and the masks that find the
+    # mastery trials.
+    making = 8 * row_trials * (n_actions + 1)
+    n_pairs = 4 * n_actions  # the predictor's keys: (layout, button)
+    learner = n_rows * (8 * n_keys * (window + 2)  # the interest: last errors, count, progress
+                        + 16 * n_pairs  # the predictor: distance, effect per key
+                        + 8 * n_pairs * (1 if one_action_weight else 4)  # a press's distances
+                        + LOOP_ROW_BYTES)
+    slopes = 8 * (window + 1) ** 2 * window  # the interest's table of slope weights
+    presses = n_trials * presses_per_trial
+    streams = _streams.memory_bound(n_rows, presses * goal_oriented.DRAWS_PER_CHOICE)
+    if physics:  # a simulated console per row
+        consoles = n_rows * PHYSICS_SCENE_BYTES
+    else:  # the tabular consoles' numbers: a layout per trial, one per noisy press
+        consoles = _streams.memory_bound(n_rows, n_trials + (presses if noisy_button else 0))
+    return FIXED_BYTES + kept + making + learner + slopes + streams + consoles, kept
 
 
 def run_goal_oriented(n_seeds=100, n_trials=100,
@@ -281,9 +330,14 @@ def run_goal_oriented_grid(grid, **arguments):
         a["interest"], a["interest_per"], a["noisy_button"], a["physics"], a["seed"],
         progress) for a in full]
     first, n = settings[0], settings[0]["n_seeds"]
-    if len(settings) > 1:
-        check_run_size("run_goal_oriented_grid", n * len(settings), first["n_trials"], 160,
-                       bytes_per_seed=8 * (600 + 8 * max(s["window"] for s in settings)))
+    if len(settings) > 1:  # the settings' rows side by side, the longest window for all
+        check_memory("run_goal_oriented_grid", {"settings": len(settings), "n_seeds": n,
+                                                "n_trials": first["n_trials"]},
+                     memory_needed(n * len(settings), **{
+                         **_memory_arguments(first),
+                         "window": max(s["window"] for s in settings),
+                         "one_action_weight": len({s["action_weight"] for s in settings}) == 1
+                     })[0])
     seeds = run_seeds(first["seed"], n, 2) * len(settings)
     env_seeds, agent_seeds = [s[0] for s in seeds], [s[1] for s in seeds]
     red_button, presses = first["red_button"], first["presses_per_trial"]
@@ -303,14 +357,22 @@ def run_goal_oriented_grid(grid, **arguments):
 def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progress):
     """Plays every trial of a batched run and gathers a GoalOrientedResult.
 
-    The loop only plays and keeps what happened (the presses, their outcomes, the
-    interest and the predictor after each trial); everything the result reports is
-    computed from those afterwards, for all trials at once."""
+    After each trial the loop reduces what happened (the presses, their outcomes, the
+    interest and the predictor) to the result's numbers for that trial, so that a run
+    keeps its result and nothing per press."""
     n_seeds, n_actions = len(env), env.n_actions
-    actions = np.zeros((n_seeds, n_trials, presses_per_trial), dtype=np.int64)
-    outcomes = np.zeros((n_seeds, n_trials, presses_per_trial), dtype=np.int64)
-    values = np.zeros((n_seeds, n_trials, agent.interest.n_keys))
-    predictions = np.zeros((n_seeds, n_trials) + agent.predictor.effect.shape[1:], dtype=np.int64)
+    practice = np.zeros((n_seeds, n_trials, len(TASKS)), dtype=np.int64)
+    presses = np.zeros((n_seeds, n_trials, n_actions), dtype=np.int64)
+    interest_out = np.zeros((n_seeds, n_trials, len(TASKS)))
+    action_interest = np.zeros((n_seeds, n_trials, n_actions))
+    error_out = np.zeros((n_seeds, n_trials, len(TASKS)))
+    # The share of the 20 (layout, button) pairs on which the predictor is wrong about
+    # each box: wrong[predicted effect, true effect, box] is 1 where they differ.
+    effects = np.asarray(buttons.EFFECTS)
+    wrong = np.abs(effects[:, None, :] - effects[None, :, :]).astype(float)
+    truth = buttons.outcome_table(red_button)
+    greens = buttons.green_candidates(red_button)
+    rows = np.arange(n_seeds)
     trials = progress_bar(range(n_trials), n_trials, "goal-oriented learner", progress,
                           unit="trial")
     for trial in trials:
@@ -319,31 +381,23 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progres
             chosen = agent.select_actions(layout)
             observed = env.press(chosen)
             agent.learn(layout, chosen, observed)
-            actions[:, trial, press], outcomes[:, trial, press] = chosen, observed
-        values[:, trial] = agent.interest.values()
-        predictions[:, trial] = agent.predictor.effect
+            for i, box in enumerate(_TASK_EFFECTS):
+                practice[:, trial, i] += observed == box
+            presses[rows, trial, chosen] += 1
+        values = agent.interest.values()
+        per_layout = agent.predictor.effect.reshape(n_seeds, 4, n_actions)
+        if agent.interest_per == "task":
+            interest_out[:, trial] = values[:, list(_TASK_EFFECTS)]
+            per_layout_interest = np.take_along_axis(values[:, None, :], per_layout, axis=2)
+        else:
+            interest_out[:, trial] = np.stack([values[:, red_button],
+                                               values[:, greens].mean(axis=1)], axis=1)
+            per_layout_interest = np.broadcast_to(values[:, None, :], per_layout.shape)
+        action_interest[:, trial] = np.moveaxis(per_layout_interest, 1, 0).mean(axis=0)
+        pairs = (per_layout[..., :buttons.N_BUTTONS] * len(effects) + truth).reshape(n_seeds, -1)
+        for box in range(len(TASKS)):
+            error_out[:, trial, box] = wrong[..., box].reshape(-1).take(pairs).mean(axis=1)
 
-    effects = np.asarray(buttons.EFFECTS)
-    practice = np.stack([(outcomes == buttons.RED_BOX).sum(axis=2),
-                         (outcomes == buttons.GREEN_BOX).sum(axis=2)], axis=2)
-    presses = np.stack([(actions == a).sum(axis=2) for a in range(n_actions)], axis=2)
-    per_layout = predictions.reshape(n_seeds, n_trials, 4, n_actions)
-    if agent.interest_per == "task":
-        interest_out = values[..., list(_TASK_EFFECTS)]
-        per_layout_interest = np.take_along_axis(values[:, :, None, :], per_layout, axis=3)
-    else:
-        greens = buttons.green_candidates(red_button)
-        interest_out = np.stack([values[..., red_button], values[..., greens].mean(axis=2)],
-                                axis=2)
-        per_layout_interest = np.broadcast_to(values[:, :, None, :], per_layout.shape)
-    action_interest = np.moveaxis(per_layout_interest, 2, 0).mean(axis=0)
-    # The share of the 20 (layout, button) pairs on which the predictor is wrong about
-    # each box: wrong[predicted effect, true effect, box] is 1 where they differ.
-    wrong = np.abs(effects[:, None, :] - effects[None, :, :]).astype(float)
-    pairs = (per_layout[..., :buttons.N_BUTTONS] * len(effects)
-             + buttons.outcome_table(red_button)).reshape(n_seeds, n_trials, -1)
-    error_out = np.stack([wrong[..., box].reshape(-1).take(pairs).mean(axis=2)
-                          for box in range(2)], axis=2)
     mastery = first_from_which(np.moveaxis(error_out, 1, 2) == 0)
     mastery = np.where(mastery >= 0, mastery + 1, -1)
     share = presses / presses_per_trial

@@ -6,10 +6,11 @@ import dataclasses
 
 import numpy as np
 
-from icm import _validate
+from icm import _streams, _validate
 from icm.envs import rods
+from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES, check_memory
 from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import check_run_size, run_seeds
+from icm.experiments._seeding import run_seeds
 from icm.learners import interest, predictors, q_learning
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
                        first_from_which)
@@ -313,12 +314,56 @@ def _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma, predictor_l
         seed=_validate.root_seed("seed", seed),
         first_run=_validate.integer("first_run", first_run, 0, _validate.MAX_SEED))
     _validate.boolean("progress", progress)
-    n_moments = len(MOMENTS) + len(episodes)
-    per_seed = n_moments * (N_STATES * N_ACTIONS * (1 + len(RODS)) + N_STATES) * 8
-    history = n_episodes * N_STATES * (N_ACTIONS * (1 + len(RODS)) + 1) * 8  # one run's
-    check_run_size("run_rod_toppling", checked["n_seeds"], n_episodes, 64,
-                   per_seed + history / checked["n_seeds"])
+    check_memory("run_rod_toppling", {"n_seeds": checked["n_seeds"], "n_episodes": n_episodes},
+                 memory_needed(checked["n_seeds"], n_episodes, checked["reward"],
+                               checked["window"], checked["wobbly_rod"], checked["physics"],
+                               checked["max_moves"], len(episodes))[0])
     return checked
+
+
+LOOP_ROW_BYTES = 500
+"""An upper bound on the play's own small arrays and temporaries, per row."""
+
+
+def memory_needed(n_rows, n_episodes, reward="prediction_error", window=interest.DEFAULT_WINDOW,
+                  wobbly_rod=False, physics=False, max_moves=rods.DEFAULT_MAX_MOVES,
+                  n_snapshot_episodes=0):
+    """An upper bound on the memory a batch of `n_rows` runs of `run_rod_toppling` adds
+    to the process, in bytes, counted from its arrays' shapes (see
+    `icm.experiments._memory`). The learner is kept at the moments only, so that
+    memory grows with the episodes by the result alone.
+
+    Returns:
+      (peak, kept): the bound on the run's peak, and the bytes of its result.
+    """
+    n_rods = len(rods.rod_names(wobbly_rod))
+    n_fixed, pairs = len(RODS), N_STATES * N_ACTIONS
+    n_snapshots = len(MOMENTS) + n_snapshot_episodes
+    # The result, per row and episode: toppled, episode_length; prediction_error [rod];
+    # rod_error, rod_error_toppled [red and blue] ...
+    kept = 8 * n_rows * n_episodes * (2 + n_rods + 2 * n_fixed)
+    # ... per row and snapshot: q_table, predictions [cell, action, ...], confidence [cell].
+    kept += 8 * n_rows * n_snapshots * (pairs * (1 + n_rods) + N_STATES)
+    # While it is made: the masks that find the moments, per episode; the snapshots as
+    # the loop keeps them (q, predictions, last errors) and the confidence's terms.
+    making = n_rows * (8 * n_episodes + 8 * n_snapshots * pairs * (2 + n_rods + 2))
+    # The learner: q, predictions, last errors, and the first topple of each pair.
+    learner = n_rows * (8 * pairs * (2 + 2 * n_rods) + LOOP_ROW_BYTES)
+    # The reward's slope table, and its last errors, count (and progress) per pair: the
+    # compiled loop keeps its own (the batched learner's, never written, take no memory).
+    kmax = 1 if reward == "prediction_error" else window
+    learner += 8 * (kmax + 1) ** 2 * kmax
+    if physics:
+        learner += n_rows * 8 * pairs * (kmax + 2)
+    elif reward != "prediction_error":
+        learner += n_rows * 8 * pairs * ((window if reward == "learning_progress" else 1) + 1)
+    moves = n_episodes * max_moves  # at most
+    streams = _streams.memory_bound(n_rows, moves * q_learning.DRAWS_PER_CHOICE)
+    if physics:  # a simulated table per row
+        tables = n_rows * PHYSICS_SCENE_BYTES
+    else:  # the tabular tables' numbers: one a move beside the wobbly rod
+        tables = _streams.memory_bound(n_rows, moves, chunk=16) if wobbly_rod else 0
+    return FIXED_BYTES + kept + making + learner + streams + tables, kept
 
 
 def run_rod_toppling(n_seeds=100, n_episodes=300,
@@ -409,12 +454,12 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
         raw = _rods_kernel.play_all(
             agent.streams, agent.q, agent.predictor.predictions, agent.predictor.last_error,
             epsilon, alpha, gamma, predictor_lr, env.next_cell, env.topples,
-            rods.cell_number(start_cell), max_moves, n_episodes, bar=bar, reward=reward,
-            window=window, wobbles=env.wobbles if wobbly_rod else None,
-            env_streams=env.streams)
+            rods.cell_number(start_cell), max_moves, n_episodes, toppling_pairs(), extra,
+            WELL_PREDICTED_ERROR, bar=bar, reward=reward, window=window,
+            wobbles=env.wobbles if wobbly_rod else None, env_streams=env.streams)
         if bar is not None:
             bar.close()
-        played = summarize(raw, N_STATES, N_ACTIONS, n_rods, extra)
+        played = summarize(raw, extra)
     rod_error = played["rod_error"]
     predicted_well = first_from_which(np.moveaxis(rod_error < WELL_PREDICTED_ERROR, 1, 2))
     predicted_well = np.where(predicted_well >= 0, predicted_well + 1, -1)
@@ -449,19 +494,21 @@ def play_episodes(env, agent, n_episodes, max_moves, snapshot_episodes=(), progr
 
     The rows move independently: each acts at every iteration until it has played its
     episodes, starting a new episode (hand over the start cell) as soon as its last one
-    ended with a topple or after `max_moves` moves. The tabular runs use the compiled
-    loop of `icm.experiments._rods_kernel` instead, which gives the same numbers.
+    ended with a topple or after `max_moves` moves. After each episode the compiled
+    `icm.experiments._rods_kernel.record_episode` keeps what the result needs, as the
+    compiled loop of the tabular runs does (which gives the same numbers).
     """
+    from icm.experiments import _rods_kernel  # here: it loads Numba
+
     n = agent.q.shape[0]
     n_states, n_actions = agent.q.shape[1:]
     n_rods = agent.predictor.predictions.shape[-1]
     raw = {"toppled": np.full((n, n_episodes), -1, dtype=np.int64),
            "length": np.zeros((n, n_episodes), dtype=np.int64),
-           "errors": np.zeros((n, n_episodes, n_rods)),
-           "found": np.full((n, n_states, n_actions, n_rods), n_episodes, dtype=np.int64),
-           "q_after": np.zeros((n, n_episodes, n_states * n_actions)),
-           "p_after": np.zeros((n, n_episodes, n_states * n_actions * n_rods)),
-           "e_after": np.zeros((n, n_episodes, n_states * n_actions))}
+           "errors": np.zeros((n, n_episodes, n_rods))}
+    found = np.full((n, n_states, n_actions, n_rods), n_episodes, dtype=np.int64)
+    record = _rods_kernel.recorder(n, n_episodes, n_states, n_actions, n_rods,
+                                   toppling_pairs(), snapshot_episodes, WELL_PREDICTED_ERROR)
     state = np.full(n, env.start)
     episode = np.zeros(n, dtype=np.int64)
     moves = np.zeros(n, dtype=np.int64)
@@ -486,12 +533,13 @@ def play_episodes(env, agent, n_episodes, max_moves, snapshot_episodes=(), progr
         raw["toppled"][done, ep] = top
         raw["length"][done, ep] = moves[done]
         raw["errors"][done, ep] = error_sum[done]
-        raw["q_after"][done, ep] = agent.q[done].reshape(len(done), -1)
-        raw["p_after"][done, ep] = agent.predictor.predictions[done].reshape(len(done), -1)
-        raw["e_after"][done, ep] = agent.predictor.last_error[done].reshape(len(done), -1)
         hit = top >= 0
         pairs = (done[hit], cells[ended][hit], actions[ended][hit], top[hit])
-        raw["found"][pairs] = np.minimum(raw["found"][pairs], ep[hit])
+        found[pairs] = np.minimum(found[pairs], ep[hit])
+        for row, row_episode, rod in zip(done.tolist(), ep.tolist(), top.tolist()):
+            _rods_kernel.record_episode(row, row_episode, rod, agent.q,
+                                        agent.predictor.predictions,
+                                        agent.predictor.last_error, found, record)
         state[done], moves[done], error_sum[done] = env.start, 0, 0.0
         episode[done] += 1
         env.new_episodes(done)
@@ -500,16 +548,19 @@ def play_episodes(env, agent, n_episodes, max_moves, snapshot_episodes=(), progr
             bar.update(len(done))
     if bar is not None:
         bar.close()
-    return summarize(raw, n_states, n_actions, n_rods, snapshot_episodes)
+    raw.update(zip(_rods_kernel.RECORD_FIELDS, record[5:]))
+    return summarize(raw, snapshot_episodes)
 
 
-def summarize(raw, n_states, n_actions, n_rods, snapshot_episodes=()):
+def summarize(raw, snapshot_episodes=()):
     """The summary of played episodes (`play_episodes`, or the compiled loop).
 
     Args:
-      raw: over [row, episode], "toppled", "length", "errors" [..., rod], and the
-        learner after each episode, "q_after", "p_after", "e_after" (flattened);
-        "found" [row, cell, action, rod], the first episode each pair toppled each rod.
+      raw: over [row, episode], "toppled", "length", "errors" [..., rod], and what
+        `icm.experiments._rods_kernel.record_episode` kept: "rod_error",
+        "rod_error_toppled" [..., rod], "predicted_well_toppled" [row, rod], and the
+        learner's snapshots [row, slot, ...] "q_snapshots", "p_snapshots",
+        "e_snapshots", each taken after episode "snapshot_taken" [row, slot].
 
     Returns:
       A dict of arrays: over [row, episode], "toppled" (0 red, 1 blue, -1 none),
@@ -518,38 +569,12 @@ def summarize(raw, n_states, n_actions, n_rods, snapshot_episodes=()):
       `RodTopplingResult`); "predicted_well_toppled" [row, rod]; and the snapshots
       over [row, snapshot] at the `MOMENTS` and after the `snapshot_episodes`,
       "snapshot_episode" (-1: never), "q" [..., cell, action], "predictions" [..., cell,
-      action, rod], "confidence" [..., cell].
+      action, rod], "confidence" [..., cell] (where a moment never came, they hold
+      whatever the slot holds: the caller masks them).
     """
     n, n_episodes = raw["toppled"].shape
-    out = {key: raw[key] for key in ("toppled", "length", "errors")}
-    pair_cells, pair_actions, pair_rods = toppling_pairs()
-    pairs = pair_cells * n_actions + pair_actions
-    # The predictor's error on every toppling pair of the map, after every episode.
-    p_after = raw["p_after"].reshape(n, n_episodes, n_states * n_actions, n_rods)
-    predicted = p_after[:, :, pairs]  # [row, episode, pair, rod]
-    truth = (pair_rods[:, None] == np.arange(n_rods)).astype(float)
-    difference = np.abs(truth - predicted)
-    pair_error = difference[..., 0]
-    for r in range(1, n_rods):
-        pair_error = pair_error + difference[..., r]
-    found = raw["found"].reshape(n, n_states * n_actions, n_rods)[:, pairs, pair_rods]
-    known = found[:, None, :] <= np.arange(n_episodes)[None, :, None]  # [row, ep, pair]
-    n_fixed = len(RODS)  # the rods that a move topples always or never: red and blue
-    out["rod_error"] = np.zeros((n, n_episodes, n_fixed))
-    out["rod_error_toppled"] = np.full((n, n_episodes, n_fixed), np.nan)
-    out["predicted_well_toppled"] = np.full((n, n_fixed), -1, dtype=np.int64)
-    for r in range(n_fixed):
-        mine = pair_rods == r
-        out["rod_error"][..., r] = pair_error[..., mine].max(axis=2)
-        # Reading "toppled": only the map's pairs that have toppled the rod so far.
-        seen = known[..., mine]
-        known_error = np.where(seen, pair_error[..., mine], -np.inf).max(axis=2)
-        any_seen = seen.any(axis=2)
-        out["rod_error_toppled"][..., r] = np.where(any_seen, known_error, np.nan)
-        good = any_seen & (known_error < WELL_PREDICTED_ERROR)
-        out["predicted_well_toppled"][:, r] = np.where(good.any(axis=1),
-                                                       np.argmax(good, axis=1) + 1, -1)
-
+    out = {key: raw[key] for key in ("toppled", "length", "errors", "rod_error",
+                                     "rod_error_toppled", "predicted_well_toppled")}
     # The moments, and the learner at each of them.
     red_well = first_from_which(out["rod_error"][..., 0] < WELL_PREDICTED_ERROR)
     blue = out["toppled"] == 1
@@ -558,12 +583,15 @@ def summarize(raw, n_states, n_actions, n_rods, snapshot_episodes=()):
                        np.where(blue.any(axis=1), np.argmax(blue, axis=1), -1)]
                       + [np.full(n, e - 1) for e in snapshot_episodes], axis=1)
     chosen = np.maximum(chosen, -1)  # a moment that never came: -1
-    out["snapshot_episode"] = np.where(chosen >= 0, chosen + 1, -1)
-    rows, index = np.arange(n)[:, None], np.maximum(chosen, 0)
-    out["q"] = raw["q_after"][rows, index].reshape(chosen.shape + (n_states, n_actions))
-    out["predictions"] = raw["p_after"][rows, index].reshape(
-        chosen.shape + (n_states, n_actions, n_rods))
-    last_error = raw["e_after"][rows, index].reshape(chosen.shape + (n_states, n_actions))
+    came = chosen >= 0
+    if not np.array_equal(raw["snapshot_taken"][came], chosen[came]):
+        raise RuntimeError("a snapshot was not taken at its moment: the recorder and "
+                           "summarize disagree")
+    out["snapshot_episode"] = np.where(came, chosen + 1, -1)
+    out["q"] = raw["q_snapshots"]
+    out["predictions"] = raw["p_snapshots"]
+    last_error = raw["e_snapshots"]
+    n_actions = last_error.shape[-1]
     capped = np.where(np.isnan(last_error), predictors.UNTRIED_ERROR,
                       np.minimum(last_error, 1.0))
     total = capped[..., 0]
