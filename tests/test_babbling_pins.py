@@ -25,7 +25,14 @@ def run():
 
 
 def _with_goals(result):
-    """The rollouts that had a goal, as (seed, rollout) pairs."""
+    """The rollouts that had a goal.
+
+    Args:
+      result: a `GoalBabblingResult`.
+
+    Returns:
+      A list of (seed, rollout) pairs, rollouts counted from 0.
+    """
     return [(k, i) for k in range(result.n_seeds) for i in range(result.n_rollouts)
             if result.regions[k, i] >= 0]
 

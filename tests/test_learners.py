@@ -9,10 +9,11 @@ import pytest
 import icm
 from icm.envs import buttons
 from icm.learners import (GoalOrientedAgent, LearningProgressInterest, LinearPredictor,
-                          NearestNeighbourPredictor, QLearner, interest, least_squares_slope,
-                          predictors)
+                          NearestNeighbourPredictor, QLearner, least_squares_slope)
 from icm.learners.goal_oriented import GoalOrientedBatch
-from icm.learners.interest import make_interest
+from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW, InterestTable,
+                                   make_interest)
+from icm.learners.predictors import DEFAULT_LINEAR_LR, LinearPredictorTable
 from icm.learners.q_learning import QLearnerBatch
 
 RED_TASK = ((0, 0), (1, 0))
@@ -252,12 +253,12 @@ def _defaults(function, *names):
 def test_the_window_is_the_papers_k_of_5():
     # Section 3.1: "d_t is the first derivative of the last k elements of H_t. In our
     # implementation, k was fixed at 5."
-    assert interest.DEFAULT_WINDOW == 5
+    assert DEFAULT_WINDOW == 5
     assert LearningProgressInterest().window == 5
     assert make_interest().window == 5
     # By behaviour: after errors 0, 1, 0, 0, 0, 0 the interest is the progress over the
     # last five (1, 0, 0, 0, 0), 0.2; a window of 4 would give 0, one of 6 gives 3/35.
-    one, table = LearningProgressInterest(), interest.InterestTable(1, 1)
+    one, table = LearningProgressInterest(), InterestTable(1, 1)
     for error in [0, 1, 0, 0, 0, 0]:
         one.record("t", error)
         table.record(None, np.array([0]), np.array([float(error)]))
@@ -269,14 +270,14 @@ def test_the_window_is_the_papers_k_of_5():
 
 def test_the_linear_predictors_rate_is_the_papers_0_2():
     # Section 4.2: "A linear predictor with a learning rate = 0.2 is used."
-    assert predictors.DEFAULT_LINEAR_LR == 0.2
+    assert DEFAULT_LINEAR_LR == 0.2
     predictor = LinearPredictor(4, 1)
     assert predictor.lr == 0.2
     # By behaviour: each topple moves the prediction a fifth of the way to 1.
     errors = [predictor.update(0, 0, [1.0]) for _ in range(3)]
     assert errors == pytest.approx([1.0, 0.8, 0.64])
     assert predictor.predict(0, 0)[0] == pytest.approx(1 - 0.8 ** 3)
-    assert predictors.LinearPredictorTable(1, 1, 4, 1).lr.tolist() == [0.2]
+    assert LinearPredictorTable(1, 1, 4, 1).lr.tolist() == [0.2]
     assert QLearner(15, 4).predictor.lr == 0.2
     assert QLearnerBatch([0], 15, 4, 2).predictor.lr.tolist() == [0.2]
     assert _defaults(icm.experiments.run_rod_toppling, "predictor_lr") == [0.2]
@@ -285,10 +286,10 @@ def test_the_linear_predictors_rate_is_the_papers_0_2():
 def test_a_new_task_gets_the_papers_50_percent_of_the_mean_interest():
     # Section 3.1: "The interest for new tasks (witnessed only one time) is fixed at 50%
     # of the average interest for other tasks."
-    assert interest.DEFAULT_NEW_TASK_FACTOR == 0.5
+    assert DEFAULT_NEW_TASK_FACTOR == 0.5
     assert LearningProgressInterest().new_task_factor == 0.5
     # By behaviour: known tasks of interest 0.2 and 1, a task seen once gets 0.3.
-    one, table = LearningProgressInterest(), interest.InterestTable(1, 3)
+    one, table = LearningProgressInterest(), InterestTable(1, 3)
     for task, errors in ((0, [1, 0, 0, 0, 0]), (1, [1, 0]), (2, [1])):
         for error in errors:
             one.record(task, error)

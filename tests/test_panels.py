@@ -314,8 +314,14 @@ def _grid_without_runs(name):
 
 
 def _positions(binding):
-    """The values an HTML range input of `binding` (min, max, step) can take: min +
-    k step up to max."""
+    """The values an HTML range input can take: min + k * step, up to max.
+
+    Args:
+      binding: a Vega-Lite parameter's "bind" dict (input "range", min, max, step).
+
+    Returns:
+      The positions, in increasing order, as an array.
+    """
     count = int(np.floor((binding["max"] - binding["min"]) / binding["step"] + 1e-9)) + 1
     return binding["min"] + binding["step"] * np.arange(count)
 

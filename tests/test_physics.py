@@ -12,6 +12,8 @@ from dm_env import test_utils
 import icm
 from icm.envs import buttons, icub, rods
 
+from test_envs import _noisy_boxes
+
 
 # --- the model --------------------------------------------------------------------
 
@@ -580,8 +582,6 @@ def test_a_button_pushed_in_by_hand_is_pressed_past_8_mm(depth_mm, pressed):
 
 
 def test_each_press_of_the_physics_noisy_button_opens_what_its_own_draw_says():
-    from test_envs import _noisy_boxes
-
     # As on the tabular console (test_envs): one draw per trial, then one per press.
     seed, presses = 3, 3
     draws = np.random.default_rng(seed).random(2 * (1 + presses)).reshape(2, 1 + presses)
