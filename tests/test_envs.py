@@ -152,3 +152,62 @@ def test_layouts_and_press_outcome_describe_the_rules():
         green = int(np.flatnonzero(lights == buttons.GREEN)[0])
         assert buttons.press_outcome(lights, 2).tolist() == [1, 0]
         assert buttons.press_outcome(lights, green).tolist() == [0, 1]
+
+
+# --- the noisy button: the outcome of each draw, not only their frequencies ------------
+
+# The rules (icm.envs.buttons.rules): one uniform number u per press of the noisy button
+# opens the red box if u < 1/3, the green box if u < 2/3, and nothing otherwise.
+NOISY_DRAWS = [(0.0, (1, 0)), (0.2, (1, 0)), (0.3333, (1, 0)),
+               (0.3334, (0, 1)), (0.5, (0, 1)), (0.6666, (0, 1)),
+               (0.6667, (0, 0)), (0.9, (0, 0)), (0.9999, (0, 0))]
+
+
+def _noisy_boxes(u):
+    """The boxes a press of the noisy button opens for the uniform draw `u`, written out
+    from the rules (not through `noisy_outcome`).
+
+    Args:
+      u: a uniform number in [0, 1).
+
+    Returns:
+      (red, green), 1 for the box that opens.
+    """
+    return (1, 0) if u < 1 / 3 else (0, 1) if u < 2 / 3 else (0, 0)
+
+
+def test_the_noisy_buttons_outcome_for_given_draws():
+    for u, boxes in NOISY_DRAWS:
+        assert _noisy_boxes(u) == boxes
+        assert tuple(buttons.noisy_outcome(u).tolist()) == boxes, u
+        assert buttons.EFFECTS[buttons.noisy_effect(u)] == boxes, u
+    # The same, element-wise, as the batched consoles use it.
+    draws = np.array([u for u, _ in NOISY_DRAWS])
+    assert [buttons.EFFECTS[e] for e in buttons.noisy_effect(draws)] == \
+        [boxes for _, boxes in NOISY_DRAWS]
+
+
+def test_each_press_of_the_noisy_button_opens_what_its_own_draw_says():
+    # The draws of a seed are known in advance: one per trial (its layout), then one
+    # per press of the noisy button, in that order. Press it 3 times a trial, 4 trials.
+    seed, presses = 17, 3
+    draws = np.random.default_rng(seed).random(4 * (1 + presses))
+    expected = [_noisy_boxes(u) for trial in draws.reshape(4, 1 + presses)
+                for u in trial[1:]]
+    assert {(1, 0), (0, 1), (0, 0)} <= set(expected)  # the seed shows every outcome
+    env = buttons.ButtonConsole(seed=seed, presses_per_trial=presses, noisy_button=True)
+    env.reset()
+    seen = []
+    while len(seen) < len(expected):
+        step = env.step(buttons.NOISY_BUTTON)
+        if not step.first():
+            seen.append(tuple(step.observation["boxes"].tolist()))
+    assert seen == expected
+    # The batched consoles: row k draws what a console seeded like it draws.
+    batch = buttons.ButtonConsoleBatch([seed, seed], noisy_button=True)
+    effects = []
+    for _ in range(4):
+        batch.new_trials()
+        for _ in range(presses):
+            effects.append(batch.press([buttons.NOISY_BUTTON, 0])[0])
+    assert [buttons.EFFECTS[e] for e in effects] == expected

@@ -1,13 +1,20 @@
 """Predictor, interest module and goal-oriented agent: hand-computed cases."""
 
 import collections
+import inspect
 
 import numpy as np
 import pytest
 
+import icm
 from icm.envs import buttons
-from icm.learners import (GoalOrientedAgent, LearningProgressInterest,
-                          NearestNeighbourPredictor, least_squares_slope)
+from icm.learners import (GoalOrientedAgent, LearningProgressInterest, LinearPredictor,
+                          NearestNeighbourPredictor, QLearner, least_squares_slope)
+from icm.learners.goal_oriented import GoalOrientedBatch
+from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW, InterestTable,
+                                   make_interest)
+from icm.learners.predictors import DEFAULT_LINEAR_LR, LinearPredictorTable
+from icm.learners.q_learning import QLearnerBatch
 
 RED_TASK = ((0, 0), (1, 0))
 GREEN_TASK = ((0, 0), (0, 1))
@@ -225,3 +232,69 @@ def test_agent_is_deterministic_per_seed():
 def test_bad_arguments_raise_value_error_naming_the_argument(make, message):
     with pytest.raises(ValueError, match=message):
         make()
+
+
+# --- the paper's published constants, each asserted as the paper prints it -----------------
+
+def _defaults(function, *names):
+    """The default values of parameters `names` of `function`, in order.
+
+    Args:
+      function: a function or class.
+      *names: parameter names.
+
+    Returns:
+      A list of the defaults.
+    """
+    parameters = inspect.signature(function).parameters
+    return [parameters[name].default for name in names]
+
+
+def test_the_window_is_the_papers_k_of_5():
+    # Section 3.1: "d_t is the first derivative of the last k elements of H_t. In our
+    # implementation, k was fixed at 5."
+    assert DEFAULT_WINDOW == 5
+    assert LearningProgressInterest().window == 5
+    assert make_interest().window == 5
+    # By behaviour: after errors 0, 1, 0, 0, 0, 0 the interest is the progress over the
+    # last five (1, 0, 0, 0, 0), 0.2; a window of 4 would give 0, one of 6 gives 3/35.
+    one, table = LearningProgressInterest(), InterestTable(1, 1)
+    for error in [0, 1, 0, 0, 0, 0]:
+        one.record("t", error)
+        table.record(None, np.array([0]), np.array([float(error)]))
+    assert one.interest("t") == pytest.approx(0.2)
+    assert table.values()[0, 0] == pytest.approx(0.2)
+    assert _defaults(GoalOrientedBatch, "window") == [5]
+    assert _defaults(icm.experiments.run_goal_oriented, "window") == [5]
+
+
+def test_the_linear_predictors_rate_is_the_papers_0_2():
+    # Section 4.2: "A linear predictor with a learning rate = 0.2 is used."
+    assert DEFAULT_LINEAR_LR == 0.2
+    predictor = LinearPredictor(4, 1)
+    assert predictor.lr == 0.2
+    # By behaviour: each topple moves the prediction a fifth of the way to 1.
+    errors = [predictor.update(0, 0, [1.0]) for _ in range(3)]
+    assert errors == pytest.approx([1.0, 0.8, 0.64])
+    assert predictor.predict(0, 0)[0] == pytest.approx(1 - 0.8 ** 3)
+    assert LinearPredictorTable(1, 1, 4, 1).lr.tolist() == [0.2]
+    assert QLearner(15, 4).predictor.lr == 0.2
+    assert QLearnerBatch([0], 15, 4, 2).predictor.lr.tolist() == [0.2]
+    assert _defaults(icm.experiments.run_rod_toppling, "predictor_lr") == [0.2]
+
+
+def test_a_new_task_gets_the_papers_50_percent_of_the_mean_interest():
+    # Section 3.1: "The interest for new tasks (witnessed only one time) is fixed at 50%
+    # of the average interest for other tasks."
+    assert DEFAULT_NEW_TASK_FACTOR == 0.5
+    assert LearningProgressInterest().new_task_factor == 0.5
+    # By behaviour: known tasks of interest 0.2 and 1, a task seen once gets 0.3.
+    one, table = LearningProgressInterest(), InterestTable(1, 3)
+    for task, errors in ((0, [1, 0, 0, 0, 0]), (1, [1, 0]), (2, [1])):
+        for error in errors:
+            one.record(task, error)
+            table.record(None, np.array([task]), np.array([float(error)]))
+    assert [one.interest(task) for task in range(3)] == pytest.approx([0.2, 1.0, 0.3])
+    assert table.values()[0] == pytest.approx([0.2, 1.0, 0.3])
+    assert _defaults(GoalOrientedBatch, "new_task_factor") == [0.5]
+    assert _defaults(icm.experiments.run_goal_oriented, "new_task_factor") == [0.5]

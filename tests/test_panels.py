@@ -287,3 +287,109 @@ def test_a_longer_window_lengthens_the_mastery_gap(own_grid):
     gaps = summary["default_gaps"]
     assert gaps[-1] > gaps[0] + 2
     assert summary["longer_window_larger"] >= 0.8 * summary["pairs"]
+
+
+# --- the static sliders stop only on the grid; the live band spans low to high ---------
+
+def _grid_without_runs(name):
+    """Panel `name`'s whole grid of settings with placeholder curves and cells (every
+    setting, no run): what the static panels are built from, cheaply.
+
+    Args:
+      name: a panel of `panels.PANELS`.
+
+    Returns:
+      A `panels.PanelGrid`.
+    """
+    spec = panels.PANELS[name]
+    settings = tuple(spec.settings())
+    curves = {"x": np.array([1, 2]), "xlabel": "trial",
+              "groups": [{"title": "", "ylabel": "", "series": {
+                  "red": (np.array([0.5, 0.5]), np.array([0.25, 0.25]), np.array([1.0, 1.0]))}}]}
+    cells = None
+    if name == "figure5":
+        cells = tuple({"red_first": 1.0, "gap": 20.0, "gap_low": 18.0, "gap_high": 22.0,
+                       "gap_seeds": 100} for _ in settings)
+    return panels.PanelGrid(name, settings, tuple(curves for _ in settings), cells)
+
+
+def _positions(binding):
+    """The values an HTML range input can take: min + k * step, up to max.
+
+    Args:
+      binding: a Vega-Lite parameter's "bind" dict (input "range", min, max, step).
+
+    Returns:
+      The positions, in increasing order, as an array.
+    """
+    count = int(np.floor((binding["max"] - binding["min"]) / binding["step"] + 1e-9)) + 1
+    return binding["min"] + binding["step"] * np.arange(count)
+
+
+@pytest.mark.parametrize("name", sorted(panels.PANELS))
+def test_every_static_slider_position_is_a_value_of_the_precomputed_grid(name):
+    grid = _grid_without_runs(name)
+    spec = grid.spec
+    made = [interactive.curves_panel(grid)]
+    if name == "figure5":
+        made.append(interactive.sweep_panel(grid))
+    for panel in made:
+        rows = panel.spec["datasets"][interactive.DATASET]
+        for param in panel.spec["params"]:
+            control, binding = param["name"], param["bind"]
+            if binding["input"] == "radio":
+                assert binding["options"] == list(spec.choices[control])
+                continue
+            assert binding["input"] == "range"
+            positions = _positions(binding)
+            grid_values = np.array(spec.sliders[control], dtype=float)
+            # The slider stops at exactly the grid's values, no more and no fewer ...
+            assert len(positions) == len(grid_values), control
+            assert np.allclose(positions, grid_values, atol=1e-9, rtol=0), control
+            # ... starts at the library's default ...
+            assert np.isclose(positions, param["value"], atol=1e-9).any(), control
+            assert param["value"] == pytest.approx(spec.defaults[control])
+            # ... and at each of them the page's data has rows to draw.
+            in_rows = np.array([row[control] for row in rows], dtype=float)
+            for position in positions:
+                assert (np.abs(in_rows - position) < 1e-6).any(), (control, position)
+
+
+@pytest.mark.parametrize("name, make, fixed", [
+    ("figure5", widgets.figure5_panel, {"n_seeds": 6, "n_trials": 12}),
+    ("figure6", widgets.figure6_panel, {"n_seeds": 6, "n_trials": 12}),
+    ("figure7", widgets.figure7_panel, {"n_seeds": 8, "n_episodes": 60})])
+def test_the_live_panels_band_spans_from_its_low_to_its_high_bound(name, make, fixed,
+                                                                   monkeypatch):
+    drawn = []
+    real = figures.panel_figure
+
+    def spy(panel_name, curves):
+        figure = real(panel_name, curves)
+        drawn.append((curves, figure))
+        return figure
+
+    monkeypatch.setattr(figures, "panel_figure", spy)
+    make(static=False, **fixed)
+    (curves, figure), = drawn
+    ax = figure.axes[0]
+    series = curves["groups"][0]["series"]
+    assert len(ax.collections) == len(series)  # one band per series, in order
+    spread = 0.0
+    for band, (label, (mean, low, high)) in zip(ax.collections, series.items()):
+        assert np.all(low <= mean) and np.all(mean <= high), label
+        vertices = np.concatenate([path.vertices for path in band.get_paths()])
+        for x, lo, hi in zip(curves["x"], low, high):
+            ys = vertices[np.isclose(vertices[:, 0], x), 1]
+            assert ys.min() == pytest.approx(lo) and ys.max() == pytest.approx(hi), (label, x)
+        spread = max(spread, float(np.max(high - low)))
+    assert spread > 0.05  # the bands are not lines
+
+
+@pytest.mark.parametrize("name", sorted(panels.PANELS))
+def test_the_static_panels_band_spans_from_its_low_to_its_high_bound(name):
+    panel = interactive.curves_panel(_grid_without_runs(name))
+    band, line = panel.spec["layer"]
+    assert band["mark"]["type"] == "area"
+    assert (band["encoding"]["y"]["field"], band["encoding"]["y2"]["field"]) == ("low", "high")
+    assert line["encoding"]["y"]["field"] == "mean"

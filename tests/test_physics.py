@@ -12,6 +12,8 @@ from dm_env import test_utils
 import icm
 from icm.envs import buttons, icub, rods
 
+from test_envs import _noisy_boxes
+
 
 # --- the model --------------------------------------------------------------------
 
@@ -440,3 +442,156 @@ def test_learners_give_identical_results_on_the_noisy_physics():
     assert (tabular.toppled == 2).any()
     for field in ("toppled", "episode_length", "prediction_error", "q_table"):
         np.testing.assert_array_equal(getattr(tabular, field), getattr(physics, field))
+
+
+# --- the physics thresholds, each tried on both sides ------------------------------------
+
+def _tilt_rod(physics, name, degrees, azimuth=0.0):
+    """Puts rod `name` at rest, tilted by hand `degrees` from upright, its top leaning
+    towards `azimuth` degrees (0: away from the robot, along +x; 90: along +y), its
+    base resting on the table by the corner it leans over.
+
+    Args:
+      physics: a `RodsPhysics`, its episode initialised (the rods stand upright).
+      name: "red" or "blue".
+      degrees: the tilt from upright.
+      azimuth: the direction the top leans to, in degrees about the vertical.
+    """
+    model = physics.model
+    joint = model.name2id(f"{name}_rod", "joint")
+    qpos, dof = model.jnt_qposadr[joint], model.jnt_dofadr[joint]
+    half = model.geom_size[model.name2id(f"{name}_rod", "geom")]
+    lean = np.array([np.cos(np.deg2rad(azimuth)), np.sin(np.deg2rad(azimuth)), 0.0])
+    quat = np.zeros(4)
+    mujoco.mju_axisAngle2Quat(quat, np.cross([0.0, 0.0, 1.0], lean), np.deg2rad(degrees))
+    rotation = np.zeros(9)
+    mujoco.mju_quat2Mat(rotation, quat)
+    # The corner of the base it leans over stays where it was: the rod pivots on it.
+    corner = np.array([np.copysign(half[0], lean[0]), np.copysign(half[1], lean[1]), -half[2]])
+    upright = model.qpos0[qpos:qpos + 3]
+    physics.data.qpos[qpos:qpos + 3] = upright + corner - rotation.reshape(3, 3) @ corner
+    physics.data.qpos[qpos + 3:qpos + 7] = quat
+    physics.data.qvel[dof:dof + 6] = 0.0
+    physics.forward()
+
+
+@pytest.fixture(scope="module")
+def rod_scene():
+    physics = rods.load_physics()
+    return physics, rods.RodsTask()
+
+
+@pytest.mark.parametrize("rod", rods.ROD_NAMES)
+@pytest.mark.parametrize("degrees, toppled", [(40, False), (50, True), (70, True)])
+def test_a_rod_tilted_by_hand_counts_as_toppled_past_45_degrees(rod_scene, rod, degrees,
+                                                                toppled):
+    physics, task = rod_scene
+    with physics.reset_context():
+        task.initialize_episode(physics)
+    _tilt_rod(physics, rod, degrees, azimuth=30.0)  # an oblique lean: no axis is special
+    assert np.rad2deg(physics.rod_tilt(rod)) == pytest.approx(degrees)
+    expected = [int(toppled and name == rod) for name in rods.ROD_NAMES]
+    assert physics.rods_toppled().tolist() == expected
+    assert task.get_termination(physics) == (0.0 if toppled else None)
+
+
+def _step_beside_a_tipping_rod(degrees, **velocity):
+    """Tilts the red rod by hand (`_tilt_rod`) at the start of an episode, then takes a
+    step that does not move the hand (backward from cell (0, 0), off the grid): only
+    the physics runs, for as long as the step waits for the rod.
+
+    Args:
+      degrees: the red rod's tilt before the step.
+      **velocity: optional "up" (m/s) and "spin" (rad/s about the rod's long axis):
+        the rod is thrown.
+
+    Returns:
+      (the step, the `PhysicsRodTable`, simulated seconds the step took).
+    """
+    env = rods.PhysicsRodTable(start_cell=(0, 0))
+    env.reset()
+    physics = env.physics
+    _tilt_rod(physics, "red", degrees)
+    dof = physics.model.jnt_dofadr[physics.model.name2id("red_rod", "joint")]
+    physics.data.qvel[dof + 2] = velocity.get("up", 0.0)
+    physics.data.qvel[dof + 5] = velocity.get("spin", 0.0)
+    start = physics.data.time
+    step = env.step(1)
+    return step, env, physics.data.time - start
+
+
+def test_a_tipping_rod_is_waited_for_until_it_lies_still():
+    # Tilted 25 degrees, past its balance (atan(1.2 / 3.5) = 19 degrees), the red rod
+    # falls; it is still moving when the 0.3 s of settling are over.
+    step, env, elapsed = _step_beside_a_tipping_rod(25.0)
+    assert step.observation["rods"].tolist() == [1, 0]
+    assert step.last() and step.discount == 0.0
+    # The step returns once the rod lies still on the table: after the settling time,
+    # well before the longest wait is over.
+    assert np.rad2deg(env.physics.rod_tilt("red")) == pytest.approx(90.0, abs=2.0)
+    assert np.abs(env.physics.named.data.qvel[["red_rod", "blue_rod"]]).max() < 0.05
+    assert 0.3 < elapsed < 0.6
+
+
+def test_a_tipping_rod_is_waited_for_one_second_at_most():
+    # A rod that does not come to rest (thrown up, spinning, tilted 30 degrees): the
+    # step settles 0.3 s, then waits 1 s for it, and no longer.
+    step, env, elapsed = _step_beside_a_tipping_rod(30.0, up=8.0, spin=5.0)
+    assert elapsed == pytest.approx(0.3 + 1.0, abs=1e-9)
+    assert np.abs(env.physics.named.data.qvel["red_rod"]).max() > 1.0  # still flying
+    assert step.mid() and step.observation["rods"].tolist() == [0, 0]  # at 30 degrees
+
+
+def test_a_light_touch_of_a_few_millimetres_is_not_a_press():
+    # The red button pushed by a movement that ends with the fingertip on its cap's top
+    # (it goes in 3 to 5 mm) or 1.4 cm below it (about 1 cm: a press, past 8 mm).
+    env = buttons.PhysicsButtonConsole(seed=0, presses_per_trial=1)
+    physics, motions, red = env.physics, env.motions, env.red_button
+    arm = icub.Arm(physics)
+    cap = physics.named.data.geom_xpos[f"button{red}_cap"].copy()
+    top = cap[2] + physics.named.model.geom_size[f"button{red}_cap"][1]
+    for below, pressed in ((0.0, False), (0.002, False), (0.014, True)):
+        down = arm.solve([cap[0], cap[1], top - below], start=motions.above[red])
+        motion = [(motions.above[red], 0.45), (down, 0.3), (down, 0.15),
+                  (motions.above[red], 0.25), (motions.home, 0.45)]
+        env.press_motions = buttons.physics.check_press_motions([motion] * buttons.N_BUTTONS)
+        env.reset()
+        boxes = env.press(red)
+        depth = env.task.deepest[red]
+        if pressed:
+            assert 0.009 < depth < 0.012, below
+            assert env.task.press_log == [red] and boxes.tolist() == [1, 0]
+        else:
+            assert 0.002 < depth < 0.005, below  # touched, and pushed in a little
+            assert env.task.press_log == [] and boxes.tolist() == [0, 0]
+            assert np.all(env.physics.lid_angles() < np.deg2rad(3))
+
+
+@pytest.mark.parametrize("depth_mm, pressed", [(3, False), (6, False), (9, True), (12, True)])
+def test_a_button_pushed_in_by_hand_is_pressed_past_8_mm(depth_mm, pressed):
+    physics = buttons.load_physics()
+    task = buttons.ButtonsTask(random=0)
+    with physics.reset_context():
+        task.initialize_episode(physics)
+    red = task.red_button
+    physics.named.data.qpos[f"button{red}"] = -depth_mm / 1000
+    task.update(physics)
+    assert task.press_log == ([red] if pressed else [])
+    assert physics.data.ctrl[physics.model.name2id("red_lid", "actuator")] == \
+        (pytest.approx(buttons.LID_OPEN_ANGLE) if pressed else 0.0)
+
+
+def test_each_press_of_the_physics_noisy_button_opens_what_its_own_draw_says():
+    # As on the tabular console (test_envs): one draw per trial, then one per press.
+    seed, presses = 3, 3
+    draws = np.random.default_rng(seed).random(2 * (1 + presses)).reshape(2, 1 + presses)
+    expected = [_noisy_boxes(u) for trial in draws for u in trial[1:]]
+    assert len(set(expected)) == 3
+    env = buttons.PhysicsButtonConsole(seed=seed, presses_per_trial=presses, noisy_button=True)
+    env.reset()
+    seen = []
+    while len(seen) < len(expected):
+        step = env.step(buttons.NOISY_BUTTON)
+        if not step.first():
+            seen.append(tuple(step.observation["boxes"].tolist()))
+    assert seen == expected

@@ -8,7 +8,8 @@ import numpy as np
 from icm import _streams, _validate
 from icm.learners._common import check_keys, check_state, check_values, read_observation
 from icm.learners.goal_oriented import DRAWS_PER_CHOICE, epsilon_greedy, epsilon_greedy_rows
-from icm.learners.predictors import NearestNeighbourPredictor, NearestNeighbourTable
+from icm.learners.predictors import (DEFAULT_ACTION_WEIGHT, NearestNeighbourPredictor,
+                                     NearestNeighbourTable)
 
 DEFAULT_TEMPERATURE = 0.2
 """Softmax temperature. With rewards of 0 or 1 and the default learning rates, one
@@ -348,7 +349,7 @@ class ActorCriticBatch:
     def __init__(self, seeds, states, effects, n_actions, temperature=DEFAULT_TEMPERATURE,
                  lr_actor=DEFAULT_LR_ACTOR, lr_critic=DEFAULT_LR_CRITIC, gamma=DEFAULT_GAMMA,
                  reward="intrinsic", variant="standard", action_selection="softmax",
-                 epsilon=DEFAULT_EPSILON, action_weight=10.0):
+                 epsilon=DEFAULT_EPSILON, action_weight=DEFAULT_ACTION_WEIGHT):
         self.streams = _streams.Streams(seeds)
         n = len(self.streams)
         per_row = lambda value, dtype=float: np.broadcast_to(np.asarray(value, dtype=dtype), (n,))

@@ -17,8 +17,10 @@ import numpy as np
 
 from icm import _streams, _validate
 from icm.learners._common import check_keys, check_values, read_observation
-from icm.learners.interest import InterestTable, LearningProgressInterest
-from icm.learners.predictors import NearestNeighbourPredictor, NearestNeighbourTable
+from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW, InterestTable,
+                                   LearningProgressInterest)
+from icm.learners.predictors import (DEFAULT_ACTION_WEIGHT, NearestNeighbourPredictor,
+                                     NearestNeighbourTable)
 
 DEFAULT_EPSILON = 0.1
 INTEREST_PER = ("task", "region")
@@ -213,8 +215,9 @@ class GoalOrientedBatch:
     """
 
     def __init__(self, seeds, contexts, effects, n_actions, epsilon=DEFAULT_EPSILON,
-                 action_weight=10.0, interest="learning_progress", window=5,
-                 new_task_factor=0.5, reading="progress", interest_per="task"):
+                 action_weight=DEFAULT_ACTION_WEIGHT, interest="learning_progress",
+                 window=DEFAULT_WINDOW, new_task_factor=DEFAULT_NEW_TASK_FACTOR,
+                 reading="progress", interest_per="task"):
         self.streams = _streams.Streams(seeds)
         n = len(self.streams)
         self.n_actions = n_actions

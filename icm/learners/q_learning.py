@@ -11,7 +11,7 @@ import numpy as np
 from icm import _streams, _validate
 from icm.learners.goal_oriented import DRAWS_PER_CHOICE, epsilon_greedy, epsilon_greedy_rows
 from icm.learners.interest import DEFAULT_WINDOW, SIGNALS, InterestTable, make_interest
-from icm.learners.predictors import LinearPredictor, LinearPredictorTable
+from icm.learners.predictors import DEFAULT_LINEAR_LR, LinearPredictor, LinearPredictorTable
 
 DEFAULT_ALPHA = 0.5
 """Q-learning step size (the paper's alpha; its value is not given). The reward of a
@@ -199,7 +199,8 @@ class QLearnerBatch:
 
     def __init__(self, seeds, n_states, n_actions, n_outputs, alpha=DEFAULT_ALPHA,
                  gamma=DEFAULT_GAMMA, epsilon=DEFAULT_EPSILON, initial_q=DEFAULT_INITIAL_Q,
-                 predictor_lr=0.2, reward="prediction_error", window=DEFAULT_WINDOW):
+                 predictor_lr=DEFAULT_LINEAR_LR, reward="prediction_error",
+                 window=DEFAULT_WINDOW):
         self.streams = _streams.Streams(seeds)
         n = len(self.streams)
         per_row = lambda value: np.broadcast_to(np.asarray(value, dtype=float), (n,))
