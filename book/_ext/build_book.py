@@ -112,6 +112,10 @@ def main(argv=None):
               "missed it (a bug: please report it)", file=sys.stderr)
         return 1
     if status:
+        warnings = [line for line in log.splitlines() if "WARNING" in line or "ERROR" in line]
+        if warnings:
+            print("build_book: the warnings and errors of the build:\n  "
+                  + "\n  ".join(warnings), file=sys.stderr)
         print("build_book: the book did not build (see the log above). If it mentions the "
               "execution cache or a notebook it cannot read, `make clean` empties _build "
               "and the next build starts afresh.", file=sys.stderr)
