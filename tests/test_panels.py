@@ -107,7 +107,7 @@ def small_grid(request, monkeypatch):
     sliders = {**spec.sliders, **SMALL[name]}
     sliders = {k: (v if k in SMALL[name] else (spec.defaults[k],)) for k, v in sliders.items()}
     choices = {k: v[:2] for k, v in spec.choices.items()}
-    small = dataclasses.replace(spec, sliders=sliders, choices=choices,
+    small = dataclasses.replace(spec, grids={**sliders, **choices},
                                 fixed={**spec.fixed, "n_seeds": 10})
     monkeypatch.setitem(panels.PANELS, name, small)
     panels._precompute.cache_clear()
@@ -247,8 +247,7 @@ def test_panels_are_static_while_the_book_is_built(monkeypatch, small_grid):
 
 def test_the_live_sweep_panel_draws_the_cells_of_the_grids_runs(monkeypatch):
     spec = panels.PANELS["figure5"]
-    small = dataclasses.replace(spec, sliders={**spec.sliders, "epsilon": (0.0, 0.1),
-                                               "window": (3, 5)},
+    small = dataclasses.replace(spec, grids={"epsilon": (0.0, 0.1), "window": (3, 5)},
                                 fixed={**spec.fixed, "n_seeds": 5, "n_trials": 20})
     monkeypatch.setitem(panels.PANELS, "figure5", small)
     panel = widgets.sweep_panel(static=False)

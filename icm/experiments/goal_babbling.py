@@ -512,11 +512,10 @@ def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True)
     _validate.instance("babbling", babbling, GoalBabblingResult,
                        "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
     n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
+    _validate.boolean("progress", progress)
     settings = _goal_oriented._check_run_arguments(
-        babbling.n_seeds, n_trials, goal_oriented.DEFAULT_EPSILON, interest.DEFAULT_WINDOW,
-        interest.DEFAULT_NEW_TASK_FACTOR, "progress", predictors.DEFAULT_ACTION_WEIGHT,
-        buttons.DEFAULT_PRESSES_PER_TRIAL, buttons.DEFAULT_RED_BUTTON, "learning_progress",
-        "task", False, True, seed, progress)
+        babbling.n_seeds, n_trials, buttons.DEFAULT_PRESSES_PER_TRIAL,
+        buttons.DEFAULT_RED_BUTTON, False, True, seed, goal_oriented.GoalOrientedSettings())
     settings["formed_by"] = babbling.strategy
     seeds = run_seeds(settings["seed"], babbling.n_seeds, 2)
     lab = MovementLab()

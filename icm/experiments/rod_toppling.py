@@ -7,6 +7,7 @@ import dataclasses
 import numpy as np
 
 from icm import _streams, _validate
+from icm._settings import with_settings
 from icm.envs import rods
 from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES, check_memory
 from icm.experiments._progress import progress_bar
@@ -284,10 +285,11 @@ def _median_of_found(episodes):
     return float(np.median(found)) if found.size else float("nan")
 
 
-def _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma, predictor_lr,
-                         initial_q, reward, window, wobbly_rod, physics, start_cell,
-                         max_moves, snapshot_episodes, seed, first_run, progress):
-    """The arguments of `run_rod_toppling`, checked and normalised, as a dict."""
+def _check_run_arguments(n_seeds, n_episodes, wobbly_rod, physics, start_cell, max_moves,
+                         snapshot_episodes, seed, first_run, progress, settings):
+    """The run's own arguments (its learner's `settings` are checked already), checked
+    and normalised, with the settings' values, as the result's `settings` dict; the
+    run's memory is checked too."""
     n_episodes = _validate.integer_at_least("n_episodes", n_episodes, 1)
     if isinstance(snapshot_episodes, (str, bytes)) or \
             not hasattr(snapshot_episodes, "__iter__"):
@@ -299,13 +301,6 @@ def _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma, predictor_l
     checked = dict(
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
         n_episodes=n_episodes,
-        epsilon=_validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0),
-        alpha=_validate.learning_rate("alpha", alpha),
-        gamma=_validate.in_closed_interval("gamma", gamma, 0.0, 1.0),
-        predictor_lr=_validate.learning_rate("predictor_lr", predictor_lr),
-        initial_q=_validate.non_negative("initial_q", initial_q),
-        reward=_validate.one_of("reward", reward, q_learning.REWARDS),
-        window=_validate.integer_at_least("window", window, 2),
         wobbly_rod=_validate.boolean("wobbly_rod", wobbly_rod),
         physics=_validate.boolean("physics", physics),
         start_cell=rods.check_start_cell(start_cell, rods.load_topple_map()["standable"]),
@@ -314,6 +309,7 @@ def _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma, predictor_l
         seed=_validate.root_seed("seed", seed),
         first_run=_validate.integer("first_run", first_run, 0, _validate.MAX_SEED))
     _validate.boolean("progress", progress)
+    checked = {**checked, **settings.as_dict()}
     check_memory("run_rod_toppling", {"n_seeds": checked["n_seeds"], "n_episodes": n_episodes},
                  memory_needed(checked["n_seeds"], n_episodes, checked["reward"],
                                checked["window"], checked["wobbly_rod"], checked["physics"],
@@ -366,14 +362,8 @@ def memory_needed(n_rows, n_episodes, reward="prediction_error", window=interest
     return FIXED_BYTES + kept + making + learner + streams + tables, kept
 
 
+@with_settings(q_learning.QLearnerSettings)
 def run_rod_toppling(n_seeds=100, n_episodes=300,
-                     epsilon=q_learning.DEFAULT_EPSILON,
-                     alpha=q_learning.DEFAULT_ALPHA,
-                     gamma=q_learning.DEFAULT_GAMMA,
-                     predictor_lr=predictors.DEFAULT_LINEAR_LR,
-                     initial_q=q_learning.DEFAULT_INITIAL_Q,
-                     reward="prediction_error",
-                     window=interest.DEFAULT_WINDOW,
                      wobbly_rod=False,
                      physics=False,
                      start_cell=rods.DEFAULT_START_CELL,
@@ -381,7 +371,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
                      snapshot_episodes=(),
                      seed=0,
                      first_run=0,
-                     progress=True):
+                     progress=True,
+                     settings=None):
     """Runs the curious Q-learner on the rods, once per seed.
 
     Each run builds the rod environment (`icm.envs.load("rods", physics=...)`), a
@@ -393,15 +384,6 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
     Args:
       n_seeds: number of independent runs (>= 1).
       n_episodes: episodes per run (>= 1).
-      epsilon: probability of a random move, in [0, 1].
-      alpha: Q-learning step size, in (0, 1].
-      gamma: discount, in [0, 1].
-      predictor_lr: the linear predictor's learning rate, in (0, 1] (paper: 0.2).
-      initial_q: Q of every pair before it is tried (>= 0).
-      reward: the intrinsic reward: "prediction_error" (the paper's, default),
-        "learning_progress", "novelty" or "random" (see
-        `icm.learners.q_learning.REWARDS`).
-      window: errors in the learning-progress slope (>= 2).
       wobbly_rod: add the wobbly rod, which a move beside it topples half of the time
         (see `icm.envs.rods.rules`); the predictor then predicts three rods.
       physics: False for the tabular twin, True for the simulated iCub (each move
@@ -418,6 +400,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
         first_run..first_run+n_seeds-1 of the root seed, so that one run of a large
         batch can be rerun alone (`n_seeds=1, first_run=i`).
       progress: show a progress bar when the run lasts over a second.
+      settings: the learner's settings, a `icm.learners.q_learning.QLearnerSettings`
+        (or give them one by one as keyword arguments, listed below).
 
     Returns:
       A `RodTopplingResult`.
@@ -426,10 +410,12 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
       ValueError: for any argument outside its allowed range, or a run too large for
         this machine's memory.
     """
-    settings = _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma,
-                                    predictor_lr, initial_q, reward, window, wobbly_rod,
-                                    physics, start_cell, max_moves, snapshot_episodes, seed,
-                                    first_run, progress)
+    learner = settings
+    settings = _check_run_arguments(n_seeds, n_episodes, wobbly_rod, physics, start_cell,
+                                    max_moves, snapshot_episodes, seed, first_run, progress,
+                                    learner)
+    n_seeds, n_episodes, max_moves = (settings["n_seeds"], settings["n_episodes"],
+                                      settings["max_moves"])
     extra, seed, start_cell = (settings["snapshot_episodes"], settings["seed"],
                                settings["start_cell"])
     names = MOMENTS + tuple(f"episode {e}" for e in extra)
@@ -439,9 +425,7 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
     env_seeds = [s[0] for s in seeds]
     n_rods = len(rods.rod_names(wobbly_rod))
     agent = q_learning.QLearnerBatch([s[1] for s in seeds], N_STATES, N_ACTIONS, n_rods,
-                                     alpha=alpha, gamma=gamma, epsilon=epsilon,
-                                     initial_q=initial_q, predictor_lr=predictor_lr,
-                                     reward=reward, window=window)
+                                     settings=learner)
     if physics:
         env = rods.PhysicsRodTableBatch(n_seeds, start_cell, wobbly_rod, env_seeds)
         played = play_episodes(env, agent, n_episodes, max_moves, extra, progress)
@@ -453,9 +437,10 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
                            unit="episode")
         raw = _rods_kernel.play_all(
             agent.streams, agent.q, agent.predictor.predictions, agent.predictor.last_error,
-            epsilon, alpha, gamma, predictor_lr, env.next_cell, env.topples,
-            rods.cell_number(start_cell), max_moves, n_episodes, toppling_pairs(), extra,
-            WELL_PREDICTED_ERROR, bar=bar, reward=reward, window=window,
+            learner.epsilon, learner.alpha, learner.gamma, learner.predictor_lr,
+            env.next_cell, env.topples, rods.cell_number(start_cell), max_moves, n_episodes,
+            toppling_pairs(), extra, WELL_PREDICTED_ERROR, bar=bar, reward=learner.reward,
+            window=learner.window,
             wobbles=env.wobbles if wobbly_rod else None, env_streams=env.streams)
         if bar is not None:
             bar.close()

@@ -15,22 +15,75 @@ agents at once (a leading row axis), as the batched learners use them. A test sh
 the two give identical numbers.
 """
 
+import dataclasses
 import math
 import operator
 
 import numpy as np
 
 from icm import _validate
+from icm._settings import Setting, Slider
 from icm.learners._common import check_state
 
-DEFAULT_WINDOW = 5
-DEFAULT_NEW_TASK_FACTOR = 0.5
 READINGS = ("progress", "literal")
 """How the slope d of the error history becomes interest:
 "progress": max(-d, 0), errors going down are interesting (learning progress);
 "literal": max(d, 0), the paper's printed "d_t if d_t > 0", errors going up."""
 SIGNALS = ("learning_progress", "prediction_error", "novelty", "random")
 """The interest signals, by name (see `make_interest`)."""
+NEW_TASK_MEANS = ("known", "witnessed")
+"""Which tasks the mean behind a new task's share averages (see `NEW_TASK_MEAN`)."""
+SHORT_HISTORIES = ("slope", "zero")
+"""The interest of a task witnessed 2 to k-1 times (see `SHORT_HISTORY`)."""
+
+WINDOW = Setting(
+    default=5, label="errors in the learning-progress slope (k)", kind="integer", low=2,
+    high=100, paper=5,
+    source='section 3.1: "the first derivative of the last 5 elements of H_t" and "In '
+           'our implementation, k was fixed at 5"',
+    slider=Slider(live=(2, 20, 1), grid=(3, 5, 7, 9, 11)))
+"""k, the errors in the least-squares slope (and in the prediction-error signal's mean)."""
+NEW_TASK_FACTOR = Setting(
+    default=0.5, label="share of the mean interest a new task gets", kind="real", low=0.0,
+    high=1.0, paper=0.5,
+    source='section 3.1: "The interest for new tasks (witnessed only one time) is fixed '
+           'at 50% of the average interest for other tasks"; the same section also says '
+           '"If H_t contains 0 or one element, i_t is zero", which is a factor of 0',
+    slider=Slider(live=(0.0, 1.0, 0.05), grid=(0.0, 0.25, 0.5, 0.75, 1.0)))
+"""The share of the mean interest of the other tasks that a task seen once gets."""
+READING = Setting(
+    default="progress", label="reading of the interest formula", kind="choice",
+    choices=READINGS,
+    source='section 3.1 calls the interest the derivative of the error history and prints '
+           '"d_t if d_t > 0, 0 otherwise", errors going up; learning progress, the drive '
+           'the paper builds on, is errors going down. The book takes "progress" and shows '
+           'both',
+    swept=READINGS)
+"""How the slope becomes interest (`READINGS`)."""
+SIGNAL = Setting(
+    default="learning_progress", label="interest signal", kind="choice", choices=SIGNALS,
+    paper="learning_progress", per_row=False,
+    source="section 3.1: the interest of a task is the derivative of its error history")
+"""Which interest signal (`SIGNALS`); the chapter "Which curiosity?" compares them."""
+NEW_TASK_MEAN = Setting(
+    default="known", label="tasks averaged for a new task's share", kind="choice",
+    choices=NEW_TASK_MEANS,
+    source='"50% of the average interest for other tasks" does not say which: the book '
+           'averages the tasks witnessed at least twice ("known", whose interest is '
+           'defined); "witnessed" averages every other task witnessed, one seen once '
+           'counting 0')
+"""Which tasks the mean behind a new task's share averages (`NEW_TASK_MEANS`)."""
+SHORT_HISTORY = Setting(
+    default="slope", label="interest of a task seen fewer than k times", kind="choice",
+    choices=SHORT_HISTORIES,
+    source="the paper defines the interest from the last k errors and for a task seen "
+           "once or never, not for one seen 2 to k-1 times: the book takes the slope of "
+           'all its errors ("slope"); "zero" gives it no interest until it has k')
+"""The interest of a task witnessed 2 to k-1 times (`SHORT_HISTORIES`)."""
+_MEAN_WINDOW = dataclasses.replace(WINDOW, low=1, name="window")
+"""The window of the signals that average errors (one error is a mean)."""
+DEFAULT_WINDOW = WINDOW.default
+DEFAULT_NEW_TASK_FACTOR = NEW_TASK_FACTOR.default
 
 
 def least_squares_slope(values):
@@ -83,14 +136,19 @@ class LearningProgressInterest(_ErrorHistories):
     For a task t with error history H_t (most recent last):
       - never witnessed: interest 0;
       - witnessed once (a new task): `new_task_factor` times the mean interest of the
-        other known tasks (those witnessed at least twice), 0 if there are none;
-      - otherwise: d = least-squares slope of the last `window` errors (of all of
-        them while there are fewer), and interest max(-d, 0) (reading "progress") or
-        max(d, 0) (reading "literal", the paper's printed formula).
+        other tasks (with `new_task_mean="known"`, those witnessed at least twice; with
+        "witnessed", every other task witnessed, one seen once counting 0), 0 if there
+        are none;
+      - otherwise: d = least-squares slope of the last `window` errors (with
+        `short_history="slope"`, of all of them while there are fewer; with "zero",
+        interest 0 until there are `window`), and interest max(-d, 0) (reading
+        "progress") or max(d, 0) (reading "literal", the paper's printed formula).
 
     The paper says both "if H_t contains 0 or one element, i_t is zero" and "the
     interest for new tasks is fixed at 50% of the average interest for other tasks";
-    `new_task_factor=0` is the first reading, the default 0.5 the second.
+    `new_task_factor=0` is the first reading, the default 0.5 the second. Where the
+    paper is silent (which tasks the mean averages, a task seen 2 to k-1 times) the
+    defaults are the book's choices, stated in `NEW_TASK_MEAN` and `SHORT_HISTORY`.
 
     Tasks are hashable keys that can be sorted among themselves (numbers, strings, or
     tuples of them), added as they are first recorded (the paper's goal space
@@ -99,23 +157,27 @@ class LearningProgressInterest(_ErrorHistories):
     on the order in which the tasks were met.
 
     Args:
-      window: k, the number of most recent errors in the slope (integer >= 2; paper: 5).
+      window: k, the number of most recent errors in the slope (`WINDOW`).
       new_task_factor: share of the mean interest of the other tasks that a task
-        witnessed once receives (in [0, 1]; paper: 0.5).
+        witnessed once receives (`NEW_TASK_FACTOR`).
       reading: "progress" (default) or "literal"; see `READINGS`.
+      new_task_mean: "known" (default) or "witnessed"; see `NEW_TASK_MEAN`.
+      short_history: "slope" (default) or "zero"; see `SHORT_HISTORY`.
 
     Raises:
-      ValueError: for a window < 2, a factor outside [0, 1] or an unknown reading.
+      ValueError: for any argument outside what its `Setting` allows.
     """
 
-    def __init__(self, window=DEFAULT_WINDOW, new_task_factor=DEFAULT_NEW_TASK_FACTOR,
-                 reading="progress"):
+    def __init__(self, window=WINDOW.default, new_task_factor=NEW_TASK_FACTOR.default,
+                 reading=READING.default, new_task_mean=NEW_TASK_MEAN.default,
+                 short_history=SHORT_HISTORY.default):
         super().__init__()
-        self.window = _validate.integer_at_least("window", window, 2)
-        self.new_task_factor = _validate.in_closed_interval(
-            "new_task_factor", new_task_factor, 0.0, 1.0)
-        self.reading = _validate.one_of("reading", reading, READINGS)
-        self._sign = -1.0 if reading == "progress" else 1.0
+        self.window = WINDOW.check(window, "window")
+        self.new_task_factor = NEW_TASK_FACTOR.check(new_task_factor, "new_task_factor")
+        self.reading = READING.check(reading, "reading")
+        self.new_task_mean = NEW_TASK_MEAN.check(new_task_mean, "new_task_mean")
+        self.short_history = SHORT_HISTORY.check(short_history, "short_history")
+        self._sign = -1.0 if self.reading == "progress" else 1.0
         self._weights = {n: _slope_weights(n) for n in range(2, self.window + 1)}
         self._known = {}  # interest of tasks witnessed at least twice
         self._interest = {}
@@ -133,6 +195,8 @@ class LearningProgressInterest(_ErrorHistories):
         self._update_new_task_interests()
 
     def _known_interest(self, history):
+        if self.short_history == "zero" and len(history) < self.window:
+            return 0.0
         recent = history[-self.window:]
         slope = sum(map(operator.mul, self._weights[len(recent)], recent))
         return max(0.0, self._sign * slope)
@@ -140,7 +204,7 @@ class LearningProgressInterest(_ErrorHistories):
     def _update_new_task_interests(self):
         interests = dict(self._known)
         total = sum(self._known[task] for task in sorted(self._known))
-        count = len(self._known)
+        count = len(self._known) if self.new_task_mean == "known" else len(self._history) - 1
         for task, history in self._history.items():
             if len(history) == 1:  # a new task: never in self._known
                 interests[task] = self.new_task_factor * (total / count if count else 0.0)
@@ -202,8 +266,9 @@ class RandomInterest(_ErrorHistories):
         return 0.0
 
 
-def make_interest(signal="learning_progress", window=DEFAULT_WINDOW,
-                  new_task_factor=DEFAULT_NEW_TASK_FACTOR, reading="progress"):
+def make_interest(signal=SIGNAL.default, window=WINDOW.default,
+                  new_task_factor=NEW_TASK_FACTOR.default, reading=READING.default,
+                  new_task_mean=NEW_TASK_MEAN.default, short_history=SHORT_HISTORY.default):
     """The interest module of a signal, by name (see `SIGNALS`).
 
     Args:
@@ -211,8 +276,8 @@ def make_interest(signal="learning_progress", window=DEFAULT_WINDOW,
         "novelty" or "random".
       window: errors in the slope (learning progress, >= 2) or in the mean
         (prediction error).
-      new_task_factor, reading: learning progress only (see
-        `LearningProgressInterest`).
+      new_task_factor, reading, new_task_mean, short_history: learning progress only
+        (see `LearningProgressInterest`).
 
     Raises:
       ValueError: for an unknown signal (the message lists the known ones) or a bad
@@ -220,7 +285,8 @@ def make_interest(signal="learning_progress", window=DEFAULT_WINDOW,
     """
     signal = _validate.one_of("interest", signal, SIGNALS)
     if signal == "learning_progress":
-        return LearningProgressInterest(window, new_task_factor, reading)
+        return LearningProgressInterest(window, new_task_factor, reading, new_task_mean,
+                                        short_history)
     if signal == "prediction_error":
         return PredictionErrorInterest(window)
     return NoveltyInterest() if signal == "novelty" else RandomInterest()
@@ -240,18 +306,38 @@ class InterestTable:
       n_keys: tasks (or regions) per agent.
       signal: one of `SIGNALS`.
       window: per row or one for all (see `make_interest`).
-      new_task_factor: per row or one for all (learning progress).
-      reading: "progress" or "literal", per row or one for all (learning progress).
+      new_task_factor, reading, new_task_mean, short_history: per row or one for all
+        (learning progress; see `LearningProgressInterest`).
+
+    Raises:
+      ValueError: for a value its `Setting` refuses, or one array per setting that does
+        not hold one value per row.
     """
 
-    def __init__(self, n_rows, n_keys, signal="learning_progress", window=DEFAULT_WINDOW,
-                 new_task_factor=DEFAULT_NEW_TASK_FACTOR, reading="progress"):
-        self.signal = _validate.one_of("interest", signal, SIGNALS)
-        self.n_rows, self.n_keys = n_rows, n_keys
-        self.window = np.broadcast_to(np.asarray(window, dtype=np.int64), (n_rows,)).copy()
-        self.factor = np.broadcast_to(np.asarray(new_task_factor, dtype=float), (n_rows,))
-        readings = np.broadcast_to(np.asarray(reading, dtype=object), (n_rows,))
+    def __init__(self, n_rows, n_keys, signal=SIGNAL.default, window=WINDOW.default,
+                 new_task_factor=NEW_TASK_FACTOR.default, reading=READING.default,
+                 new_task_mean=NEW_TASK_MEAN.default, short_history=SHORT_HISTORY.default):
+        self.signal = SIGNAL.check(signal, "interest")
+        self.n_rows = _validate.integer_at_least("n_rows", n_rows, 1)
+        self.n_keys = _validate.integer_at_least("n_keys", n_keys, 1)
+
+        def rows(spec, value, name, dtype):
+            checked = spec.check_rows(value, name)
+            if np.ndim(checked) == 1 and len(checked) != n_rows:
+                raise ValueError(f"{name} must be one value or one per row ({n_rows}), "
+                                 f"got {len(checked)} values")
+            return np.broadcast_to(np.asarray(checked, dtype=dtype), (n_rows,))
+
+        # Learning progress needs two errors for a slope; a mean needs one.
+        window_spec = WINDOW if self.signal == "learning_progress" else _MEAN_WINDOW
+        self.window = rows(window_spec, window, "window", np.int64).copy()
+        self.factor = rows(NEW_TASK_FACTOR, new_task_factor, "new_task_factor", float)
+        readings = rows(READING, reading, "reading", object)
         self.sign = np.where(readings == "progress", -1.0, 1.0)
+        means = rows(NEW_TASK_MEAN, new_task_mean, "new_task_mean", object)
+        self._witnessed_mean = None if np.all(means == "known") else means == "witnessed"
+        histories = rows(SHORT_HISTORY, short_history, "short_history", object)
+        self._zero_short = None if np.all(histories == "slope") else histories == "zero"
         self.kmax = int(self.window.max())
         self.errors = np.zeros((n_rows, n_keys, self.kmax))  # the last kmax, newest last
         self.count = np.zeros((n_rows, n_keys), dtype=np.int64)
@@ -289,6 +375,9 @@ class InterestTable:
             slope = weights[:, 0] * history[:, 0]
             for i in range(1, self.kmax):  # in order, as the one-agent sum adds them
                 slope = slope + weights[:, i] * history[:, i]
+            if self._zero_short is not None:  # no interest before `window` errors
+                zero = self._zero_short if every else self._zero_short[rows]
+                slope = np.where(zero & (count < window), 0.0, slope)
             # With one error (n = 1) the weights are 0: the interest stays 0, unused.
             self._flat_known[flat] = np.maximum(0.0, (self.sign if every else self.sign[rows])
                                                 * slope)
@@ -320,5 +409,8 @@ class InterestTable:
         for i in range(1, self.n_keys):  # in the tasks' order, as the one-agent sum
             total = total + interest[:, i]
             n_known = n_known + known[:, i]
+        if self._witnessed_mean is not None:  # every other task witnessed, not the known
+            others = (count >= 1).sum(axis=1) - 1
+            n_known = np.where(self._witnessed_mean[rows], others, n_known)
         new = self.factor[rows] * (total / np.maximum(n_known, 1))  # 0 if none is known
         return interest + (count == 1) * new[:, None]  # a task seen once: the new share

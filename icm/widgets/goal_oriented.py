@@ -1,18 +1,11 @@
 """The Figure 5 panel and the epsilon x window sweep: sliders that rerun the
 goal-oriented learner."""
 
-from icm.learners import goal_oriented, interest
-from icm.widgets._common import curves_panel, panel, slider, wants_static
+from icm.widgets._common import curves_panel, live_sliders, panel, slider, wants_static
 
-FIGURE5_SLIDERS = {
-    "epsilon": dict(min=0.0, max=1.0, step=0.05, value=goal_oriented.DEFAULT_EPSILON),
-    "window": dict(min=2, max=20, step=1, value=interest.DEFAULT_WINDOW),
-    "new_task_factor": dict(min=0.0, max=1.0, step=0.05,
-                            value=interest.DEFAULT_NEW_TASK_FACTOR),
-}
-"""Slider ranges of the live `figure5_panel`: the allowed ranges of the learner's
-arguments (window capped at 20 to stay readable). Every value of the static panel's
-grid (`icm.experiments.panels.PANELS["figure5"]`) is on these sliders."""
+FIGURE5_SLIDERS = live_sliders("figure5")
+"""Slider ranges of the live `figure5_panel`, from its settings' `Slider.live` (see
+`icm.widgets._common.live_sliders`)."""
 
 
 def figure5_panel(static=None, **fixed):
@@ -34,7 +27,7 @@ def figure5_panel(static=None, **fixed):
     Raises:
       ValueError: for a fixed argument the panel cannot hold.
     """
-    return curves_panel("figure5", FIGURE5_SLIDERS, static, fixed)
+    return curves_panel("figure5", static, fixed)
 
 
 def sweep_panel(static=None):
@@ -59,7 +52,8 @@ def sweep_panel(static=None):
     factors = spec.sliders["new_task_factor"]
     factor = slider("new_task_factor", dict(min=factors[0], max=factors[-1],
                                             step=factors[1] - factors[0],
-                                            value=spec.defaults["new_task_factor"]))
+                                            value=spec.defaults["new_task_factor"]),
+                    spec.setting("new_task_factor").label)
 
     def draw(new_task_factor):
         settings = [s for s in spec.settings()
