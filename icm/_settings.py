@@ -16,6 +16,7 @@ their help, the robustness study's settings and the API reference. Adding a sett
 a learner is one entry in its settings class (CONTRIBUTING shows an example).
 """
 
+import collections.abc
 import dataclasses
 import functools
 import inspect
@@ -24,6 +25,23 @@ import math
 import numpy as np
 
 from icm import _validate
+
+class Names(collections.abc.Sequence):
+    """A live tuple of names: `produce()` is asked at every use, so that the choices of
+    a setting can follow a registry (the interest signals) as it grows."""
+
+    def __init__(self, produce):
+        self._produce = produce
+
+    def __getitem__(self, index):
+        return self._produce()[index]
+
+    def __len__(self):
+        return len(self._produce())
+
+    def __repr__(self):
+        return repr(self._produce())
+
 
 KINDS = ("real", "integer", "choice")
 """What a setting holds: a real number, an integer, or one of a few names."""
@@ -83,7 +101,9 @@ class Setting:
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {self.kind!r}")
-        if self.kind == "choice" and self.default not in self.choices:
+        # Live choices (`Names`) may still be filling when the setting is declared.
+        if self.kind == "choice" and not isinstance(self.choices, Names) and \
+                self.default not in self.choices:
             raise ValueError(f"{self.label}: the default {self.default!r} is not among "
                              f"the choices {self.choices}")
 
@@ -99,8 +119,8 @@ class Setting:
         what = "an integer" if self.kind == "integer" else "a number"
         if self.low is not None and self.high is not None:
             left, right = "(" if self.low_open else "[", ")" if self.high_open else "]"
-            if self.kind == "integer":
-                return f"{what} from {self.low} to {self.high}"
+            if self.kind == "integer":  # as icm._validate.integer says it
+                return f"{what} in {self.low}..{self.high}"
             return f"{what} in {left}{self.low:g}, {self.high:g}{right}"
         if self.low is not None:
             return f"{what} {'>' if self.low_open else '>='} {self.low:g}"
@@ -311,8 +331,16 @@ def with_settings(settings_cls):
             raise TypeError(f"{function.__name__} must take settings as its last parameter")
         names = settings_cls.names()
 
+        own_names = [p.name for p in parameters]
+
         @functools.wraps(function)
         def run(*args, **kwargs):
+            unknown = [k for k in kwargs if k not in names and k not in own_names]
+            if unknown:
+                raise _validate.ArgumentTypeError(
+                    f"{', '.join(map(repr, unknown))} is not an argument of "
+                    f"{function.__name__}; its arguments are "
+                    f"{', '.join(own_names[:-1] + list(names) + ['settings'])}")
             given = {name: kwargs.pop(name) for name in list(kwargs) if name in names}
             base = kwargs.pop("settings", None)
             if base is None:

@@ -1,7 +1,7 @@
 """The batched learners give identical numbers to the per-agent ones, seed by seed.
 
 The experiments run all seeds at once (`GoalOrientedBatch`, `ActorCriticBatch`,
-`QLearnerBatch` on the batched twins). Here each run is replayed with the per-agent
+the compiled loop of the Q-learner on the batched twins). Here each run is replayed with the per-agent
 classes the book teaches (`GoalOrientedAgent`, `ActorCritic`, `QLearner`, one tabular
 environment per seed, the same seeds), and every recorded array must be equal, not
 close: same choices, same floats.

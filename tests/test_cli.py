@@ -63,7 +63,7 @@ def test_figure5_is_written_as_an_image(tmp_path):
     (["figure5", "--seeds", "0"], "--seeds"),
     (["figure5", "--seeds", "many"], "--seeds"),
     (["figure5", "--epsilon", "2"], "--epsilon: must be a number in [0, 1], got '2'"),
-    (["figure5", "--window", "1"], "--window: must be an integer from 2 to 100"),
+    (["figure5", "--window", "1"], "--window: must be an integer in 2..100"),
     (["figure5", "--reading", "sideways"], "--reading"),
     (["figure5", "--out", "fig.gif"], "--out must end in"),
     (["figure5", "--out", "/no/such/folder/fig.png"], "does not exist"),

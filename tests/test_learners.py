@@ -14,8 +14,7 @@ from icm.learners import interest, predictors
 from icm.learners.goal_oriented import GoalOrientedBatch, GoalOrientedSettings
 from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW, InterestTable,
                                    make_interest)
-from icm.learners.predictors import DEFAULT_LINEAR_LR, LinearPredictorTable
-from icm.learners.q_learning import QLearnerBatch
+from icm.learners.predictors import DEFAULT_LINEAR_LR
 
 RED_TASK = ((0, 0), (1, 0))
 GREEN_TASK = ((0, 0), (0, 1))
@@ -284,9 +283,8 @@ def test_the_linear_predictors_rate_is_the_papers_0_2():
     errors = [predictor.update(0, 0, [1.0]) for _ in range(3)]
     assert errors == pytest.approx([1.0, 0.8, 0.64])
     assert predictor.predict(0, 0)[0] == pytest.approx(1 - 0.8 ** 3)
-    assert LinearPredictorTable(1, 1, 4, 1).lr.tolist() == [0.2]
     assert QLearner(15, 4).predictor.lr == 0.2
-    assert QLearnerBatch([0], 15, 4, 2).predictor.lr.tolist() == [0.2]
+    assert QLearner.from_settings(15, 4, 2).predictor.lr == 0.2
     assert _defaults(icm.experiments.run_rod_toppling, "predictor_lr") == [0.2]
     assert predictors.LINEAR_LR.paper == 0.2
 

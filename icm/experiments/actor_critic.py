@@ -17,7 +17,7 @@ from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import run_seeds
 from icm.experiments.goal_oriented import check_results, measures_table
-from icm.learners import actor_critic, predictors
+from icm.learners import action_selection, actor_critic, predictors
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
                        first_from_which)
 
@@ -218,7 +218,7 @@ def memory_needed(n_rows, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PE
                         + 8 * n_keys * (1 if one_action_weight else 4)  # a press's distances
                         + LOOP_ROW_BYTES)
     presses = n_trials * presses_per_trial
-    streams = (_streams.memory_bound(n_rows, presses * actor_critic.DRAWS_PER_CHOICE)
+    streams = (_streams.memory_bound(n_rows, presses * action_selection.DRAWS_PER_CHOICE)
                + _streams.memory_bound(n_rows, n_trials))  # the consoles': a layout a trial
     return FIXED_BYTES + kept + making + learner + streams, kept
 

@@ -16,7 +16,7 @@ from icm.experiments import _grid
 from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES, check_memory
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import run_seeds
-from icm.learners import goal_oriented, interest, predictors
+from icm.learners import action_selection, goal_oriented, interest, predictors
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth, first_below,
                        first_from_which)
 
@@ -219,7 +219,7 @@ def memory_needed(n_rows, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PE
                         + LOOP_ROW_BYTES)
     slopes = 8 * (window + 1) ** 2 * window  # the interest's table of slope weights
     presses = n_trials * presses_per_trial
-    streams = _streams.memory_bound(n_rows, presses * goal_oriented.DRAWS_PER_CHOICE)
+    streams = _streams.memory_bound(n_rows, presses * action_selection.DRAWS_PER_CHOICE)
     if physics:  # a simulated console per row
         consoles = n_rows * PHYSICS_SCENE_BYTES
     else:  # the tabular consoles' numbers: a layout per trial, one per noisy press

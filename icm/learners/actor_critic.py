@@ -7,8 +7,9 @@ import numpy as np
 
 from icm import _streams, _validate
 from icm.learners._common import check_keys, check_state, check_values, read_observation
-from icm.learners.action_selection import (DRAWS_PER_CHOICE, _softmax, epsilon_greedy,
-                                           epsilon_greedy_rows, softmax)  # noqa: F401
+from icm.learners import action_selection
+from icm.learners.action_selection import (_softmax, epsilon_greedy, epsilon_greedy_rows,
+                                           softmax)  # noqa: F401 (softmax: its API)
 from icm._settings import Settings, Slider, setting, setting_from, settings_class
 from icm.learners import predictors as _predictors
 from icm.learners.predictors import NearestNeighbourPredictor, NearestNeighbourTable
@@ -227,7 +228,7 @@ class ActorCritic:
         or, with `action_selection="epsilon_greedy"`, uniformly at random with
         probability epsilon and otherwise one of the most preferred (ties at random).
         Either way it draws `DRAWS_PER_CHOICE` numbers (the softmax uses the first)."""
-        draws = self._random.random(DRAWS_PER_CHOICE)
+        draws = self._random.random(action_selection.DRAWS_PER_CHOICE)
         if self.action_selection == "epsilon_greedy":
             return epsilon_greedy(self.preferences(self.state(observation)), self.epsilon,
                                   draws)
@@ -423,7 +424,7 @@ class ActorCriticBatch:
 
     def select_actions(self, states):
         """One action per row, in its state (`states`, [rows])."""
-        draws = self.streams.draw(k=DRAWS_PER_CHOICE)
+        draws = self.streams.draw(k=action_selection.DRAWS_PER_CHOICE)
         preferences = self.actor.reshape(-1, self.n_actions).take(
             self.rows * self.actor.shape[1] + states, axis=0)
         if self.action_selection == "epsilon_greedy":

@@ -19,7 +19,8 @@ from icm._settings import Setting, Settings, Slider, setting, setting_from, sett
 from icm.learners import interest as _interest
 from icm.learners import predictors as _predictors
 from icm.learners._common import check_keys, check_values, read_observation
-from icm.learners.action_selection import DRAWS_PER_CHOICE, epsilon_greedy, epsilon_greedy_rows
+from icm.learners import action_selection
+from icm.learners.action_selection import epsilon_greedy, epsilon_greedy_rows
 from icm.learners.interest import InterestTable, make_interest
 from icm.learners.predictors import NearestNeighbourPredictor, NearestNeighbourTable
 
@@ -161,7 +162,7 @@ class GoalOrientedAgent:
 
     def select_action(self, observation):
         """Epsilon-greedy on interest; ties between the most interesting are random."""
-        draws = self._random.random(DRAWS_PER_CHOICE)
+        draws = self._random.random(action_selection.DRAWS_PER_CHOICE)
         return epsilon_greedy(self.action_interests(observation), self.epsilon, draws)
 
     def learn(self, observation, action, next_observation):
@@ -271,7 +272,7 @@ class GoalOrientedBatch:
 
     def select_actions(self, contexts):
         """Epsilon-greedy on interest, one action per row."""
-        draws = self.streams.draw(k=DRAWS_PER_CHOICE)
+        draws = self.streams.draw(k=action_selection.DRAWS_PER_CHOICE)
         return epsilon_greedy_rows(self.action_interests(contexts), self.epsilon, draws)
 
     def learn(self, contexts, actions, observed):

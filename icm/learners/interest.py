@@ -22,15 +22,20 @@ import operator
 import numpy as np
 
 from icm import _validate
-from icm._settings import Setting, Slider
+from icm._settings import Names, Setting, Slider
 from icm.learners._common import check_state
 
 READINGS = ("progress", "literal")
 """How the slope d of the error history becomes interest:
 "progress": max(-d, 0), errors going down are interesting (learning progress);
 "literal": max(d, 0), the paper's printed "d_t if d_t > 0", errors going up."""
-SIGNALS = ("learning_progress", "prediction_error", "novelty", "random")
-"""The interest signals, by name (see `make_interest`)."""
+SIGNAL_CLASSES = {}
+"""The registry of interest signals: {name: class}, filled by `interest_signal`. A
+signal is one class (an `InterestSignal`) and its entry here: `make_interest`, the
+batched `InterestTable`, the settings' choices and the CLI all read this registry."""
+SIGNALS = Names(lambda: tuple(SIGNAL_CLASSES))
+"""The interest signals, by name, in the order they were registered (a live view of
+`SIGNAL_CLASSES`)."""
 NEW_TASK_MEANS = ("known", "witnessed")
 """Which tasks the mean behind a new task's share averages (see `NEW_TASK_MEAN`)."""
 SHORT_HISTORIES = ("slope", "zero")
@@ -101,17 +106,55 @@ def least_squares_slope(values):
     return float(x @ (y - y.mean()) / (x @ x))
 
 
-def _slope_weights(n):
+def slope_weights(n):
     """Weights w with slope = w @ y for n equally spaced values (w sums to 0)."""
     x = np.arange(n) - (n - 1) / 2.0
     return tuple((x / (x @ x)).tolist())
 
 
-class _ErrorHistories:
-    """Per-task error histories, shared by the signals."""
+def interest_signal(cls):
+    """Registers `cls` (an `InterestSignal` with a `NAME`) in `SIGNAL_CLASSES`."""
+    if not (isinstance(cls, type) and issubclass(cls, InterestSignal)):
+        raise _validate.ArgumentTypeError(f"an interest signal must be a subclass of "
+                                          f"InterestSignal, got {_validate.show(cls)}")
+    _validate.text("NAME", cls.NAME)
+    SIGNAL_CLASSES[cls.NAME] = cls
+    return cls
+
+
+class InterestSignal:
+    """The base of the interest signals: per-task error histories for one agent, and
+    the signal's batched form for `InterestTable`.
+
+    A signal subclasses this, sets `NAME` (its registry key) and `SETTINGS` (the
+    names of the settings its constructor takes: among window, new_task_factor,
+    reading, new_task_mean, short_history), implements `record(task, error)` and
+    `interest(task)` for one agent, and `table_values(table, rows)` (and, if it keeps
+    state as errors come, `table_record`) for many; then `@interest_signal` registers
+    it. CONTRIBUTING shows an example.
+    """
+
+    NAME = None
+    SETTINGS = ()
+    WINDOW_SETTING = _MEAN_WINDOW
+    """The setting that checks `window` in `InterestTable` (a mean needs one error, a
+    slope two)."""
 
     def __init__(self):
         self._history = {}
+
+    @staticmethod
+    def table_record(table, flat, history, count, rows):
+        """Called by `InterestTable.record` after it appended errors: `flat` are the
+        (row, key) entries recorded, `history` their new last errors [entries, kmax],
+        `count` their new counts, `rows` the rows (None: every row, in order). The
+        default keeps nothing more."""
+
+    @staticmethod
+    def table_values(table, rows):
+        """The interest of every key of `rows` of `table` (an `InterestTable`), [rows,
+        n_keys], computed as the one-agent class computes it."""
+        raise NotImplementedError
 
     @property
     def tasks(self):
@@ -130,7 +173,8 @@ class _ErrorHistories:
         return task, history
 
 
-class LearningProgressInterest(_ErrorHistories):
+@interest_signal
+class LearningProgressInterest(InterestSignal):
     """Interest of each task as learning progress over its last `window` errors.
 
     For a task t with error history H_t (most recent last):
@@ -168,6 +212,10 @@ class LearningProgressInterest(_ErrorHistories):
       ValueError: for any argument outside what its `Setting` allows.
     """
 
+    NAME = "learning_progress"
+    SETTINGS = ("window", "new_task_factor", "reading", "new_task_mean", "short_history")
+    WINDOW_SETTING = WINDOW
+
     def __init__(self, window=WINDOW.default, new_task_factor=NEW_TASK_FACTOR.default,
                  reading=READING.default, new_task_mean=NEW_TASK_MEAN.default,
                  short_history=SHORT_HISTORY.default):
@@ -178,7 +226,7 @@ class LearningProgressInterest(_ErrorHistories):
         self.new_task_mean = NEW_TASK_MEAN.check(new_task_mean, "new_task_mean")
         self.short_history = SHORT_HISTORY.check(short_history, "short_history")
         self._sign = -1.0 if self.reading == "progress" else 1.0
-        self._weights = {n: _slope_weights(n) for n in range(2, self.window + 1)}
+        self._weights = {n: slope_weights(n) for n in range(2, self.window + 1)}
         self._known = {}  # interest of tasks witnessed at least twice
         self._interest = {}
 
@@ -214,8 +262,43 @@ class LearningProgressInterest(_ErrorHistories):
         """The current interest of `task` (0.0 for a task never witnessed)."""
         return self._interest.get(check_state("task", task), 0.0)
 
+    @staticmethod
+    def table_record(table, flat, history, count, rows):
+        """Keeps each recorded task's learning progress, from its second error on."""
+        every = rows is None
+        window = table.window if every else table.window[rows]
+        n = np.minimum(count, window)
+        weights = table._weights_of_one_window.take(n, axis=0) \
+            if table._one_window is not None else table.weights[window, n]
+        slope = weights[:, 0] * history[:, 0]
+        for i in range(1, table.kmax):  # in order, as the one-agent sum adds them
+            slope = slope + weights[:, i] * history[:, i]
+        if table._zero_short is not None:  # no interest before `window` errors
+            zero = table._zero_short if every else table._zero_short[rows]
+            slope = np.where(zero & (count < window), 0.0, slope)
+        # With one error (n = 1) the weights are 0: the interest stays 0, unused.
+        table._flat_known[flat] = np.maximum(0.0, (table.sign if every else table.sign[rows])
+                                             * slope)
 
-class PredictionErrorInterest(_ErrorHistories):
+    @staticmethod
+    def table_values(table, rows):
+        """The known tasks' progress, and a new task's share of their mean."""
+        count = table.count[rows]
+        # A task's learning progress is kept from its second error on; before, it is 0.
+        known, interest = count >= 2, table.known[rows]
+        total, n_known = interest[:, 0], known[:, 0].astype(np.int64)
+        for i in range(1, table.n_keys):  # in the tasks' order, as the one-agent sum
+            total = total + interest[:, i]
+            n_known = n_known + known[:, i]
+        if table._witnessed_mean is not None:  # every other task witnessed, not the known
+            others = (count >= 1).sum(axis=1) - 1
+            n_known = np.where(table._witnessed_mean[rows], others, n_known)
+        new = table.factor[rows] * (total / np.maximum(n_known, 1))  # 0 if none is known
+        return interest + (count == 1) * new[:, None]  # a task seen once: the new share
+
+
+@interest_signal
+class PredictionErrorInterest(InterestSignal):
     """Interest of each task as its recent prediction error: the mean of its last
     `window` errors (0 for a task never witnessed). What is still mispredicted is
     interesting, whether or not it can be learned.
@@ -224,9 +307,12 @@ class PredictionErrorInterest(_ErrorHistories):
       window: errors in the mean (integer >= 1).
     """
 
-    def __init__(self, window=DEFAULT_WINDOW):
+    NAME = "prediction_error"
+    SETTINGS = ("window",)
+
+    def __init__(self, window=WINDOW.default):
         super().__init__()
-        self.window = _validate.integer_at_least("window", window, 1)
+        self.window = _MEAN_WINDOW.check(window, "window")
 
     def record(self, task, error):
         """Appends the prediction error made when `task` was witnessed."""
@@ -237,8 +323,20 @@ class PredictionErrorInterest(_ErrorHistories):
         recent = self._history.get(check_state("task", task), ())[-self.window:]
         return sum(recent) / len(recent) if recent else 0.0
 
+    @staticmethod
+    def table_values(table, rows):
+        """The mean of each task's last `window` errors."""
+        count = table.count[rows]
+        n = np.minimum(count, table.window[rows][:, None])
+        errors = table.errors[rows]
+        total = np.zeros(count.shape)
+        for i in range(table.kmax):  # the last n, oldest first
+            total = total + np.where(i >= table.kmax - n, errors[..., i], 0.0)
+        return np.where(n > 0, total / np.maximum(n, 1), 0.0)
 
-class NoveltyInterest(_ErrorHistories):
+
+@interest_signal
+class NoveltyInterest(InterestSignal):
     """Count-based novelty: interest 1 / sqrt(1 + n) for a task witnessed n times (1
     for a task never witnessed), whatever the errors."""
 
@@ -246,13 +344,21 @@ class NoveltyInterest(_ErrorHistories):
         """Counts one more witnessing of `task` (the error is kept in its history)."""
         self._append(task, error)
 
+    NAME = "novelty"
+
     def interest(self, task):
         """1 / sqrt(1 + times `task` was witnessed)."""
         n = len(self._history.get(check_state("task", task), ()))
         return 1.0 / math.sqrt(1.0 + n)
 
+    @staticmethod
+    def table_values(table, rows):
+        """1 / sqrt(1 + count) for every task."""
+        return 1.0 / np.sqrt(1.0 + table.count[rows])
 
-class RandomInterest(_ErrorHistories):
+
+@interest_signal
+class RandomInterest(InterestSignal):
     """The baseline: every task has interest 0, so every action ties and the actor's
     random tie-breaking presses uniformly at random."""
 
@@ -260,10 +366,17 @@ class RandomInterest(_ErrorHistories):
         """Keeps the error in the task's history; the interest stays 0."""
         self._append(task, error)
 
+    NAME = "random"
+
     def interest(self, task):
         """0.0, whatever the task."""
         check_state("task", task)
         return 0.0
+
+    @staticmethod
+    def table_values(table, rows):
+        """0 for every task."""
+        return np.zeros(table.count[rows].shape)
 
 
 def make_interest(signal=SIGNAL.default, window=WINDOW.default,
@@ -283,13 +396,10 @@ def make_interest(signal=SIGNAL.default, window=WINDOW.default,
       ValueError: for an unknown signal (the message lists the known ones) or a bad
         argument of the signal.
     """
-    signal = _validate.one_of("interest", signal, SIGNALS)
-    if signal == "learning_progress":
-        return LearningProgressInterest(window, new_task_factor, reading, new_task_mean,
-                                        short_history)
-    if signal == "prediction_error":
-        return PredictionErrorInterest(window)
-    return NoveltyInterest() if signal == "novelty" else RandomInterest()
+    cls = SIGNAL_CLASSES[SIGNAL.check(signal, "interest")]
+    given = dict(window=window, new_task_factor=new_task_factor, reading=reading,
+                 new_task_mean=new_task_mean, short_history=short_history)
+    return cls(**{name: given[name] for name in cls.SETTINGS})
 
 
 class InterestTable:
@@ -318,6 +428,7 @@ class InterestTable:
                  new_task_factor=NEW_TASK_FACTOR.default, reading=READING.default,
                  new_task_mean=NEW_TASK_MEAN.default, short_history=SHORT_HISTORY.default):
         self.signal = SIGNAL.check(signal, "interest")
+        self._signal = SIGNAL_CLASSES[self.signal]
         self.n_rows = _validate.integer_at_least("n_rows", n_rows, 1)
         self.n_keys = _validate.integer_at_least("n_keys", n_keys, 1)
 
@@ -329,7 +440,7 @@ class InterestTable:
             return np.broadcast_to(np.asarray(checked, dtype=dtype), (n_rows,))
 
         # Learning progress needs two errors for a slope; a mean needs one.
-        window_spec = WINDOW if self.signal == "learning_progress" else _MEAN_WINDOW
+        window_spec = self._signal.WINDOW_SETTING
         self.window = rows(window_spec, window, "window", np.int64).copy()
         self.factor = rows(NEW_TASK_FACTOR, new_task_factor, "new_task_factor", float)
         readings = rows(READING, reading, "reading", object)
@@ -346,7 +457,7 @@ class InterestTable:
         # position i (zero before the last n), so that a sum over i is the slope.
         self.weights = np.zeros((self.kmax + 1, self.kmax + 1, self.kmax))
         for n in range(2, self.kmax + 1):
-            self.weights[:, n, self.kmax - n:] = _slope_weights(n)
+            self.weights[:, n, self.kmax - n:] = slope_weights(n)
         self._values = None  # the interest of every task, until the next record
         self._one_window = int(self.window[0]) if np.all(self.window == self.window[0]) else None
         if self._one_window is not None:
@@ -367,20 +478,7 @@ class InterestTable:
         self._flat_errors[flat] = history
         count = self._flat_count.take(flat) + 1
         self._flat_count[flat] = count
-        if self.signal == "learning_progress":
-            window = self.window if every else self.window[rows]
-            n = np.minimum(count, window)
-            weights = self._weights_of_one_window.take(n, axis=0) \
-                if self._one_window is not None else self.weights[window, n]
-            slope = weights[:, 0] * history[:, 0]
-            for i in range(1, self.kmax):  # in order, as the one-agent sum adds them
-                slope = slope + weights[:, i] * history[:, i]
-            if self._zero_short is not None:  # no interest before `window` errors
-                zero = self._zero_short if every else self._zero_short[rows]
-                slope = np.where(zero & (count < window), 0.0, slope)
-            # With one error (n = 1) the weights are 0: the interest stays 0, unused.
-            self._flat_known[flat] = np.maximum(0.0, (self.sign if every else self.sign[rows])
-                                                * slope)
+        self._signal.table_record(self, flat, history, count, rows)
 
     def values(self, rows=None):
         """The interest of every task of agents `rows` (default all), [rows, n_keys]."""
@@ -391,26 +489,4 @@ class InterestTable:
         return self._compute(rows)
 
     def _compute(self, rows):
-        count = self.count[rows]
-        if self.signal == "random":
-            return np.zeros(count.shape)
-        if self.signal == "novelty":
-            return 1.0 / np.sqrt(1.0 + count)
-        if self.signal == "prediction_error":
-            n = np.minimum(count, self.window[rows][:, None])
-            errors = self.errors[rows]
-            total = np.zeros(count.shape)
-            for i in range(self.kmax):  # the last n, oldest first
-                total = total + np.where(i >= self.kmax - n, errors[..., i], 0.0)
-            return np.where(n > 0, total / np.maximum(n, 1), 0.0)
-        # A task's learning progress is kept from its second error on; before, it is 0.
-        known, interest = count >= 2, self.known[rows]
-        total, n_known = interest[:, 0], known[:, 0].astype(np.int64)
-        for i in range(1, self.n_keys):  # in the tasks' order, as the one-agent sum
-            total = total + interest[:, i]
-            n_known = n_known + known[:, i]
-        if self._witnessed_mean is not None:  # every other task witnessed, not the known
-            others = (count >= 1).sum(axis=1) - 1
-            n_known = np.where(self._witnessed_mean[rows], others, n_known)
-        new = self.factor[rows] * (total / np.maximum(n_known, 1))  # 0 if none is known
-        return interest + (count == 1) * new[:, None]  # a task seen once: the new share
+        return self._signal.table_values(self, rows)

@@ -8,15 +8,17 @@ the same errors (`REWARDS`)."""
 
 import numpy as np
 
-from icm import _streams, _validate
-from icm._settings import Settings, Slider, setting, setting_from, settings_class
+from icm import _validate
+from icm._settings import Names, Settings, Slider, setting, setting_from, settings_class
 from icm.learners import interest as _interest
 from icm.learners import predictors as _predictors
-from icm.learners.action_selection import DRAWS_PER_CHOICE, epsilon_greedy, epsilon_greedy_rows
-from icm.learners.interest import DEFAULT_WINDOW, SIGNALS, InterestTable, make_interest
-from icm.learners.predictors import LinearPredictor, LinearPredictorTable
+from icm.learners import action_selection
+from icm.learners.action_selection import epsilon_greedy
+from icm.learners.interest import DEFAULT_WINDOW, SIGNALS, make_interest
+from icm.learners.predictors import LinearPredictor
 
-REWARDS = ("prediction_error",) + tuple(s for s in SIGNALS if s != "prediction_error")
+REWARDS = Names(lambda: ("prediction_error",) + tuple(s for s in SIGNALS
+                                                      if s != "prediction_error"))
 """The intrinsic rewards, by name: the interest signals of `icm.learners.interest`,
 each kept per (state, action) pair and fed the predictor's error on every move:
 
@@ -33,8 +35,8 @@ _RATE_SLIDER = Slider(live=(0.05, 1.0, 0.05), grid=(0.1, 0.3, 0.5, 0.7, 0.9))
 class QLearnerSettings(Settings):
     """The curious Q-learner's settings (section 3.3, equation 3; section 4.2). Each is
     a `icm._settings.Setting`: see `QLearnerSettings.specs()` for its range, the
-    paper's value and where it comes from. Values may be one per batch row (arrays)
-    in `QLearnerBatch`."""
+    paper's value and where it comes from. Values may be one per batch row (arrays),
+    as the compiled loop of `icm.experiments.run_rod_toppling` takes them."""
 
     epsilon: float = setting(
         default=0.1, label="probability of a random move (epsilon)", kind="real", low=0.0,
@@ -177,7 +179,7 @@ class QLearner:
         """Epsilon-greedy: a random action with probability epsilon, else a greedy one
         (ties broken uniformly at random)."""
         state = self._check(state)
-        draws = self._random.random(DRAWS_PER_CHOICE)
+        draws = self._random.random(action_selection.DRAWS_PER_CHOICE)
         return epsilon_greedy(self._q[state], self.epsilon, draws)
 
     def update(self, state, action, reward, next_state, discount=1.0):
@@ -216,104 +218,19 @@ class QLearner:
         Returns:
           The intrinsic reward: by default the absolute error of the prediction for
           (state, action) before this observation; with another `reward`, that
-          signal of the pair after recording this error (see `REWARDS`).
+          signal of the pair after recording this error (see `REWARDS`). The error on
+          each of the outcome's entries is kept in `last_errors`.
         """
         state, action = self._check(state, action)
-        error = self.predictor.update(state, action, observed)
+        per_output = getattr(self.predictor, "update_per_output", None)
+        if per_output is not None:  # kept: what each output of the move surprised
+            self.last_errors = per_output(state, action, observed)
+            error = sum(self.last_errors)
+        else:
+            error = self.predictor.update(state, action, observed)
+            self.last_errors = [error]
         self.reward_signal.record((state, action), error)
         reward = self.reward_signal.interest((state, action))
         if self.reward != "random":
             self.update(state, action, reward, next_state, discount)
         return reward
-
-
-class QLearnerBatch:
-    """`QLearner` with a `LinearPredictor`, for many agents (rows) at once: Q
-    [row, state, action], the predictor's table beside it.
-
-    Rows act independently: `select_actions` and `learn` take the rows that act, so that
-    agents can be at different moves of different episodes. Row k makes exactly the
-    choices and updates of a `QLearner` (and its `LinearPredictor`) seeded like it,
-    drawing `DRAWS_PER_CHOICE` numbers per choice. Settings may differ per row.
-
-    Args:
-      seeds: one seed per row.
-      n_states, n_actions, n_outputs: the tables' size.
-      settings: a `QLearnerSettings` (default the library's); its per-row settings may
-        hold one value per row (arrays).
-      **values: settings given one by one instead, checked like a new
-        `QLearnerSettings`.
-
-    Raises:
-      ValueError: for a setting its `icm._settings.Setting` refuses, or settings given
-        both ways.
-    """
-
-    def __init__(self, seeds, n_states, n_actions, n_outputs, settings=None, **values):
-        self.streams = _streams.Streams(seeds)
-        n = len(self.streams)
-        if settings is None:
-            settings = QLearnerSettings.from_arguments(values, "QLearnerBatch")
-        elif values:
-            raise ValueError(f"give the settings either as settings or one by one, got "
-                             f"both (settings and {', '.join(values)})")
-        self.settings = _validate.instance("settings", settings, QLearnerSettings)
-        self.alpha = settings.per_row("alpha", n)
-        self.gamma = settings.per_row("gamma", n)
-        self.epsilon = settings.per_row("epsilon", n)
-        self.q = np.empty((n, n_states, n_actions))
-        self.q[:] = settings.per_row("initial_q", n)[:, None, None]
-        self.predictor = LinearPredictorTable(n, n_states, n_actions, n_outputs,
-                                              settings.per_row("predictor_lr", n))
-        self.reward = settings.reward
-        self.window = settings.per_row("window", n)
-        self.reward_signal = InterestTable(
-            n, n_states * n_actions, self.reward,
-            1 if self.reward == "prediction_error" else self.window, 0.0)
-        self._rows = np.arange(n)
-        self._q_by_state = self.q.reshape(n * n_states, n_actions)  # views of q
-        self._q_flat = self.q.reshape(-1)
-
-    def _values(self, rows, states):
-        """Q(s, .) of each of `rows` in its state, [len(rows), n_actions]."""
-        return self._q_by_state.take(rows * self.q.shape[1] + states, axis=0)
-
-    def select_actions(self, rows, states):
-        """Epsilon-greedy on Q, one action for each of `rows` in its state."""
-        every = len(rows) == len(self._rows)
-        draws = self.streams.draw(None if every else rows, k=DRAWS_PER_CHOICE)
-        return epsilon_greedy_rows(self._values(rows, states),
-                                   self.epsilon if every else self.epsilon[rows], draws)
-
-    def update(self, rows, states, actions, rewards, next_states, discounts, pairs=None):
-        """Equation 3 for each of `rows`; returns the TD errors."""
-        following = self._values(rows, next_states)
-        best_next = following[:, 0]
-        for a in range(1, following.shape[1]):
-            best_next = np.maximum(best_next, following[:, a])
-        target = rewards + np.where(discounts > 0,
-                                    self.gamma[rows] * discounts * best_next, 0.0)
-        pairs = self.predictor.pair_index(rows, states, actions) if pairs is None else pairs
-        q = self._q_flat.take(pairs)
-        td_error = target - q
-        self._q_flat[pairs] = q + self.alpha[rows] * td_error
-        return td_error
-
-    def learn(self, rows, states, actions, observed, next_states, discounts):
-        """Each of `rows` teaches its predictor, pays itself its intrinsic reward (by
-        default the predictor's absolute error on the move, summed over the outputs in
-        order) and updates Q; returns the errors per output [len(rows), n_outputs]."""
-        pairs = self.predictor.pair_index(rows, states, actions)
-        errors = self.predictor.update(rows, states, actions, observed, pairs)
-        error = errors[:, 0]
-        for i in range(1, errors.shape[1]):
-            error = error + errors[:, i]
-        if self.reward == "prediction_error":
-            reward = error
-        else:
-            keys = states * self.q.shape[2] + actions
-            self.reward_signal.record(rows, keys, error)
-            reward = self.reward_signal.values(rows)[np.arange(len(rows)), keys]
-        if self.reward != "random":
-            self.update(rows, states, actions, reward, next_states, discounts, pairs)
-        return errors
