@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 import icm
-from icm import _settings, _validate, cli, widgets
+from icm import _settings, cli, widgets
 from icm.envs import buttons
 from icm.envs.rods import rules as rod_rules
-from icm.experiments import panels, robustness
+from icm.experiments import panel_data, robustness
 from icm.learners import action_selection, actor_critic, goal_oriented, interest, q_learning
 from icm.learners.goal_oriented import GoalOrientedBatch, GoalOrientedSettings
 
@@ -120,7 +120,7 @@ def test_a_settings_object_and_keywords_give_the_same_run():
 
 
 def test_panels_cli_grids_and_robustness_are_derived_from_the_settings():
-    for name, panel in panels.PANELS.items():
+    for name, panel in panel_data.PANELS.items():
         settings_cls = panel.run.settings_class
         for control, grid in panel.sliders.items():
             assert grid == settings_cls.spec(control).slider.grid

@@ -30,8 +30,9 @@ from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments._babbling_physics import (  # noqa: F401 (the times are re-exported)
     HOLD_TIME, REACH_TIME, RETRACT_TIME, MovementLab)
 from icm.experiments._progress import progress_bar
+from icm.experiments.results import check_results
 from icm.experiments._seeding import check_run_size, run_seeds
-from icm.learners import goal_oriented, interest, predictors
+from icm.learners import goal_oriented, interest
 from icm.stats import PANEL_RESAMPLES, bootstrap_band
 
 STRATEGIES = ("random_motor", "random_goal", "learning_progress")
@@ -539,7 +540,7 @@ def comparison_table(results):
     Args:
       results: a dict {row label: GoalBabblingResult}.
     """
-    _goal_oriented.check_results("results", results, GoalBabblingResult)
+    check_results("results", results, GoalBabblingResult)
     lines = ["| strategy | seeds | rollouts | test error at the end, cm (95% band) "
              "| buttons pressed (of 5) | seeds pressing all 5 | rollouts that pressed a button |",
              "|---|---|---|---|---|---|---|"]

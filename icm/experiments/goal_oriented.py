@@ -13,10 +13,11 @@ from icm import _streams, _validate
 from icm._settings import with_settings
 from icm.envs import buttons
 from icm.experiments import _grid
+from icm.experiments.results import check_results, measures_table
 from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES, check_memory
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import run_seeds
-from icm.learners import action_selection, goal_oriented, interest, predictors
+from icm.learners import action_selection, goal_oriented, interest
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth, first_below,
                        first_from_which)
 
@@ -378,37 +379,6 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progres
     share = presses / presses_per_trial
     return GoalOrientedResult(settings, interest_out, error_out, mastery, practice, share,
                               action_interest)
-
-
-def check_results(name, results, cls):
-    """Returns `results` if it is a non-empty dict {label: `cls` instance}, else raises
-    (an ArgumentTypeError naming the label of a wrong entry)."""
-    if not isinstance(results, dict) or not results:
-        raise _validate.ArgumentTypeError(
-            f"{name} must be a non-empty dict {{label: {cls.__name__}}}, got "
-            f"{_validate.show(results)}")
-    for label, result in results.items():
-        if not isinstance(label, str):
-            raise _validate.ArgumentTypeError(f"{name} must be labelled by strings (they "
-                                              f"become column or legend labels), got the "
-                                              f"label {label!r}")
-        _validate.instance(f"{name}[{label!r}]", result, cls)
-    return results
-
-
-def measures_table(results, measures):
-    """A Markdown table with one column per run and one row per measure: narrow enough
-    for a book page however many measures there are.
-
-    Args:
-      results: a dict {column label: result}.
-      measures: a list of (row label, function of a result giving the cell's text).
-    """
-    labels = list(results)
-    lines = ["| | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
-    for name, cell in measures:
-        lines.append(f"| {name} | " + " | ".join(cell(r) for r in results.values()) + " |")
-    return "\n".join(lines)
 
 
 def comparison_table(results):

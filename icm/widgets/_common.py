@@ -1,4 +1,4 @@
-"""Shared pieces of the interactive panels."""
+"""Shared pieces of the interactive panel_data."""
 
 import os
 
@@ -121,12 +121,12 @@ def _png(figure):
 
 
 def live_sliders(name):
-    """The live sliders of panel `name` (one of `icm.experiments.panels.PANELS`): for
+    """The live sliders of panel `name` (one of `icm.experiments.panel_data.PANELS`): for
     each, {min, max, step, value} from its setting's `Slider.live` and default. Every
     value of the static panel's grid is on them (a test checks it)."""
-    from icm.experiments import panels
+    from icm.experiments import panel_data
 
-    spec = panels.spec(name)
+    spec = panel_data.spec(name)
     out = {}
     for slider_name in spec.slider_names:
         setting = spec.setting(slider_name)
@@ -136,27 +136,27 @@ def live_sliders(name):
 
 
 def curves_panel(name, static, fixed, per_row=2):
-    """Panel `name` of `icm.experiments.panels.PANELS`: live (ipywidgets sliders and the
+    """Panel `name` of `icm.experiments.panel_data.PANELS`: live (ipywidgets sliders and the
     panel's choices, from its settings, that rerun `panel_curves_for`) or static (its
     precomputed grid as a Vega-Lite figure), as `wants_static(static)` says."""
     from icm import figures
-    from icm.experiments import panels
+    from icm.experiments import panel_data
 
-    spec = panels.spec(name)
+    spec = panel_data.spec(name)
     sliders = live_sliders(name)
     check_fixed(fixed, spec.controls, run_arguments(spec.run, spec.controls))
     if wants_static(static):
         if fixed:
             raise ValueError(f"the static panel shows its precomputed grid and cannot hold "
                              f"{', '.join(fixed)} fixed; use static=False")
-        from icm.figures import interactive
+        from icm.figures import static_panels
 
-        return interactive.curves_panel(panels.precompute(name))
+        return static_panels.curves_panel(panel_data.precompute(name))
     controls = {n: slider(n, s, spec.setting(n).label) for n, s in sliders.items()}
     for n, options in spec.choices.items():
         controls[n] = choice(n, options, spec.setting(n).label)
 
     def draw(**values):
-        return figures.panel_figure(name, panels.panel_curves_for(name, fixed, **values))
+        return figures.panel_figure(name, panel_data.panel_curves_for(name, fixed, **values))
 
     return panel(controls, draw, per_row=per_row)

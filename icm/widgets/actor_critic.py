@@ -1,13 +1,13 @@
 """The Figure 6 panel: sliders and choices that rerun the actor-critic."""
 
-from icm.experiments import panels
+from icm.experiments import panel_data
 from icm.widgets._common import curves_panel, live_sliders
 
 FIGURE6_SLIDERS = live_sliders("figure6")
 """Slider ranges of the live `figure6_panel`, from its settings' `Slider.live` (see
 `icm.widgets._common.live_sliders`)."""
 
-FIGURE6_CHOICES = panels.spec("figure6").choices
+FIGURE6_CHOICES = panel_data.spec("figure6").choices
 """Choices of `figure6_panel`, first option the default: which reading of the paper's
 formulas (see `icm.learners.actor_critic.VARIANTS`)."""
 
@@ -24,7 +24,7 @@ def figure6_panel(static=None, **fixed):
         reward="extrinsic", gamma=0.9); live panel only.
 
     Returns:
-      An `ipywidgets.VBox` or an `icm.figures.interactive.StaticPanel`.
+      An `ipywidgets.VBox` or an `icm.figures.static_panels.StaticPanel`.
 
     Raises:
       ValueError: for a fixed argument the panel cannot hold.

@@ -14,7 +14,7 @@ def figure5_panel(static=None, **fixed):
 
     Args:
       static: True for the static version (a Vega-Lite figure over the precomputed
-        grid of `icm.experiments.panels`, which moves in the HTML book without a
+        grid of `icm.experiments.panel_data`, which moves in the HTML book without a
         kernel), False for the live ipywidgets panel that reruns the learner on every
         change; None (default): static while the book is built, live otherwise.
       **fixed: other arguments of `run_goal_oriented`, held fixed (e.g.
@@ -22,7 +22,7 @@ def figure5_panel(static=None, **fixed):
 
     Returns:
       An `ipywidgets.VBox` (sliders above the figure) or an
-      `icm.figures.interactive.StaticPanel`.
+      `icm.figures.static_panels.StaticPanel`.
 
     Raises:
       ValueError: for a fixed argument the panel cannot hold.
@@ -39,16 +39,16 @@ def sweep_panel(static=None):
       static: as in `figure5_panel`.
 
     Returns:
-      An `ipywidgets.VBox` or an `icm.figures.interactive.StaticPanel`.
+      An `ipywidgets.VBox` or an `icm.figures.static_panels.StaticPanel`.
     """
     from icm import figures
-    from icm.experiments import panels
+    from icm.experiments import panel_data
 
     if wants_static(static):
-        from icm.figures import interactive
+        from icm.figures import static_panels
 
-        return interactive.sweep_panel(panels.precompute("figure5"))
-    spec = panels.spec("figure5")
+        return static_panels.sweep_panel(panel_data.precompute("figure5"))
+    spec = panel_data.spec("figure5")
     factors = spec.sliders["new_task_factor"]
     factor = slider("new_task_factor", dict(min=factors[0], max=factors[-1],
                                             step=factors[1] - factors[0],
@@ -59,7 +59,7 @@ def sweep_panel(static=None):
         settings = [s for s in spec.settings()
                     if abs(s["new_task_factor"] - factors[0]) < 1e-9]
         settings = [dict(s, new_task_factor=new_task_factor) for s in settings]
-        cells = [panels.sweep_cell(panels.panel_run("figure5", **s)) for s in settings]
+        cells = [panel_data.sweep_cell(panel_data.panel_run("figure5", **s)) for s in settings]
         return figures.sweep_figure(settings, cells)
 
     return panel({"new_task_factor": factor}, draw)

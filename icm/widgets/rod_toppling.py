@@ -20,7 +20,7 @@ def figure7_panel(static=None, **fixed):
         n_episodes=300); live panel only.
 
     Returns:
-      An `ipywidgets.VBox` or an `icm.figures.interactive.StaticPanel`.
+      An `ipywidgets.VBox` or an `icm.figures.static_panels.StaticPanel`.
 
     Raises:
       ValueError: for a fixed argument the panel cannot hold.

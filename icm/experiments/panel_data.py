@@ -358,7 +358,7 @@ def sweep_summary(grid):
       the shortest) out of "pairs".
     """
     _validate.instance("grid", grid, PanelGrid,
-                       "a PanelGrid (from icm.experiments.panels.precompute)")
+                       "a PanelGrid (from icm.experiments.panel_data.precompute)")
     if grid.cells is None:
         raise ValueError(f"grid must be the figure5 grid, got the {grid.name} grid")
     spec_ = grid.spec

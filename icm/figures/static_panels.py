@@ -1,6 +1,6 @@
 """Static interactive panels: Vega-Lite figures whose sliders redraw them in the browser,
 with no Python kernel, from a grid of settings computed beforehand
-(`icm.experiments.panels.precompute`).
+(`icm.experiments.panel_data.precompute`).
 
 Each figure is a Vega-Lite specification, a declarative description written here as
 a plain dict: each slider is a parameter bound to a range input, and the marks draw
@@ -19,8 +19,8 @@ import math
 import numpy as np
 
 from icm import _validate
-from icm.experiments import panels as _panels
-from icm.figures.panels import SERIES_COLOURS
+from icm.experiments import panel_data as _panel_data
+from icm.figures.panel_plots import SERIES_COLOURS
 
 DIGITS = 4
 """Decimals kept in the page's data: far finer than a pixel of the figure."""
@@ -141,8 +141,8 @@ def _specification(rows, params, transform, body):
 def curves_rows(grid):
     """The page's data of a curves panel: one row per setting and series, the series'
     points as arrays (x, mean, low, high)."""
-    _validate.instance("grid", grid, _panels.PanelGrid,
-                       "a PanelGrid (from icm.experiments.panels.precompute)")
+    _validate.instance("grid", grid, _panel_data.PanelGrid,
+                       "a PanelGrid (from icm.experiments.panel_data.precompute)")
     rows = []
     for setting, curves in zip(grid.settings, grid.curves):
         x = [int(v) for v in curves["x"]]
@@ -165,8 +165,8 @@ def curves_panel(grid, width=560, height=280):
     Returns:
       A `StaticPanel`.
     """
-    _validate.instance("grid", grid, _panels.PanelGrid,
-                       "a PanelGrid (from icm.experiments.panels.precompute)")
+    _validate.instance("grid", grid, _panel_data.PanelGrid,
+                       "a PanelGrid (from icm.experiments.panel_data.precompute)")
     width = _validate.integer("width", width, 200, 2000)
     height = _validate.integer("height", height, 100, 2000)
     spec = grid.spec
@@ -207,8 +207,8 @@ def curves_panel(grid, width=560, height=280):
 def sweep_rows(grid):
     """The page's data of the sweep panel: one row per setting of the Figure 5 grid with
     its `sweep_cell` numbers."""
-    _validate.instance("grid", grid, _panels.PanelGrid,
-                       "a PanelGrid (from icm.experiments.panels.precompute)")
+    _validate.instance("grid", grid, _panel_data.PanelGrid,
+                       "a PanelGrid (from icm.experiments.panel_data.precompute)")
     if grid.cells is None:
         raise ValueError(f"grid must be the figure5 grid (its runs give the sweep), got "
                          f"the {grid.name} grid")
