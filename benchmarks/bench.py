@@ -215,13 +215,13 @@ def main(argv=None):
         go()
         row(name, *best_of(repeats, go), 0.15)
 
-    from icm.experiments import panels
+    from icm.experiments import panel_data
 
     for name, target in (("figure5", 5.0), ("figure6", 20.0), ("figure7", 20.0)):
-        spec = panels.PANELS[name]
-        panels._precompute.cache_clear()
+        spec = panel_data.PANELS[name]
+        panel_data._precompute.cache_clear()
         start = time.perf_counter()
-        panels.precompute(name, progress=False)
+        panel_data.precompute(name, progress=False)
         seconds = time.perf_counter() - start
         reference, _ = best_of(1, reference_workload)
         row(f"{name} static panel grid, {len(spec.settings())} settings x "

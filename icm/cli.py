@@ -11,7 +11,7 @@ import sys
 
 from icm import experiments
 from icm.experiments import goal_babbling, rod_toppling
-from icm.learners import actor_critic, goal_oriented, interest, predictors, q_learning
+from icm.learners import actor_critic, goal_oriented, q_learning
 
 
 def _figures():
@@ -28,9 +28,8 @@ def _figure1(args):
 
 def _figure5(args):
     figures = _figures()
-    result = experiments.run_goal_oriented(
-        n_seeds=args.seeds, n_trials=args.trials, epsilon=args.epsilon, window=args.window,
-        new_task_factor=args.new_task_factor, reading=args.reading, seed=args.seed)
+    result = experiments.run_goal_oriented(n_seeds=args.seeds, n_trials=args.trials,
+                                           seed=args.seed, **_settings_of(args))
     return figures.figure5(result)
 
 
@@ -91,6 +90,43 @@ def _check_out(parser, out):
         out.unlink()
 
 
+SETTINGS_DEST = "settings_"
+"""Prefix of the parsed settings' names (args.settings_epsilon, ...)."""
+
+
+def _setting_type(spec):
+    """An argparse type for one learner setting: the value, checked by its `Setting`
+    (argparse shows the message, "must be ...", after the option's name)."""
+    def parse(text):
+        try:
+            value = {"real": float, "integer": int}.get(spec.kind, str)(text)
+            return spec.check(value)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be {spec.allowed()}, got {text!r}") \
+                from None
+    parse.__name__ = spec.name  # what argparse would show for an unexpected error
+    return parse
+
+
+def _settings_options(parser, settings_class):
+    """An option for every setting of a learner's `settings_class`, from its `Setting`:
+    the name with dashes, its type and range, and help with its label, range, default
+    and the paper's value or the lack of one."""
+    for name, spec in settings_class.specs().items():
+        paper = f"the paper's: {spec.paper}" if spec.published else "the paper gives none"
+        parser.add_argument(
+            "--" + name.replace("_", "-"), dest=SETTINGS_DEST + name, type=_setting_type(spec),
+            default=spec.default, choices=spec.choices or None, metavar=None if spec.choices
+            else name.upper(),
+            help=f"{spec.label}, {spec.allowed()} (default {spec.default}; {paper})")
+
+
+def _settings_of(args):
+    """The learner settings parsed into `args`, as keyword arguments of a run."""
+    return {name[len(SETTINGS_DEST):]: value for name, value in vars(args).items()
+            if name.startswith(SETTINGS_DEST)}
+
+
 def _no_options(parser):
     """Figure 1 has no options beyond --seed, --out and --dpi."""
 
@@ -100,26 +136,13 @@ def _figure5_options(parser):
                         help="number of independent runs (default 200)")
     parser.add_argument("--trials", type=_positive_int, default=60,
                         help="trials per run (default 60)")
-    parser.add_argument("--epsilon", type=_number, default=goal_oriented.DEFAULT_EPSILON,
-                        help="probability of a random press, in [0, 1] "
-                             f"(default {goal_oriented.DEFAULT_EPSILON})")
-    parser.add_argument("--window", type=_integer_at_least(2), default=interest.DEFAULT_WINDOW,
-                        help="errors in the learning-progress slope, >= 2 "
-                             f"(default {interest.DEFAULT_WINDOW})")
-    parser.add_argument("--new-task-factor", type=_number,
-                        default=interest.DEFAULT_NEW_TASK_FACTOR,
-                        help="share of the mean interest given to a task seen once, in "
-                             f"[0, 1] (default {interest.DEFAULT_NEW_TASK_FACTOR})")
-    parser.add_argument("--reading", choices=interest.READINGS, default="progress",
-                        help="how the slope becomes interest (default progress)")
+    _settings_options(parser, goal_oriented.GoalOrientedSettings)
 
 
 def _figure6(args):
     figures = _figures()
-    result = experiments.run_actor_critic(
-        n_seeds=args.seeds, n_trials=args.trials, temperature=args.temperature,
-        lr_actor=args.lr_actor, lr_critic=args.lr_critic, gamma=args.gamma,
-        reward=args.reward, variant=args.variant, seed=args.seed)
+    result = experiments.run_actor_critic(n_seeds=args.seeds, n_trials=args.trials,
+                                          seed=args.seed, **_settings_of(args))
     return figures.figure6(result)
 
 
@@ -128,29 +151,14 @@ def _figure6_options(parser):
                         help="number of independent runs (default 200)")
     parser.add_argument("--trials", type=_positive_int, default=100,
                         help="trials per run (default 100)")
-    parser.add_argument("--temperature", type=_number, default=actor_critic.DEFAULT_TEMPERATURE,
-                        help="softmax temperature, > 0 "
-                             f"(default {actor_critic.DEFAULT_TEMPERATURE})")
-    parser.add_argument("--lr-actor", type=_number, default=actor_critic.DEFAULT_LR_ACTOR,
-                        help="actor learning rate in (0, 1] "
-                             f"(default {actor_critic.DEFAULT_LR_ACTOR})")
-    parser.add_argument("--lr-critic", type=_number, default=actor_critic.DEFAULT_LR_CRITIC,
-                        help="critic learning rate in (0, 1] "
-                             f"(default {actor_critic.DEFAULT_LR_CRITIC})")
-    parser.add_argument("--gamma", type=_number, default=actor_critic.DEFAULT_GAMMA,
-                        help=f"discount in [0, 1] (default {actor_critic.DEFAULT_GAMMA})")
-    parser.add_argument("--reward", choices=actor_critic.REWARDS, default="intrinsic",
-                        help="where the reward comes from (default intrinsic)")
-    parser.add_argument("--variant", choices=actor_critic.VARIANTS, default="standard",
-                        help="reading of the paper's TD error and reward (default standard)")
+    _settings_options(parser, actor_critic.ActorCriticSettings)
 
 
 def _figure7(args):
     figures = _figures()
     result = experiments.run_rod_toppling(
-        n_seeds=1, first_run=args.run, n_episodes=args.episodes, epsilon=args.epsilon,
-        alpha=args.alpha, gamma=args.gamma, predictor_lr=args.predictor_lr,
-        initial_q=args.initial_q, seed=args.seed)
+        n_seeds=1, first_run=args.run, n_episodes=args.episodes, seed=args.seed,
+        **_settings_of(args))
     figure = figures.figure7(result, seed=0, reading=args.reading)
     figure.suptitle(f"Run {args.run} of root seed {args.seed}, red predicted well read as "
                     f"\"{args.reading}\"", fontsize=10)
@@ -162,19 +170,7 @@ def _figure7_options(parser):
                         help="which run of the root seed to draw (>= 0, default 0)")
     parser.add_argument("--episodes", type=_positive_int, default=300,
                         help="episodes per run (default 300)")
-    parser.add_argument("--epsilon", type=_number, default=q_learning.DEFAULT_EPSILON,
-                        help=f"probability of a random move, in [0, 1] "
-                             f"(default {q_learning.DEFAULT_EPSILON})")
-    parser.add_argument("--alpha", type=_number, default=q_learning.DEFAULT_ALPHA,
-                        help=f"Q-learning rate in (0, 1] (default {q_learning.DEFAULT_ALPHA})")
-    parser.add_argument("--gamma", type=_number, default=q_learning.DEFAULT_GAMMA,
-                        help=f"discount in [0, 1] (default {q_learning.DEFAULT_GAMMA})")
-    parser.add_argument("--predictor-lr", type=_number, default=predictors.DEFAULT_LINEAR_LR,
-                        help="learning rate of the linear predictor in (0, 1] "
-                             f"(default {predictors.DEFAULT_LINEAR_LR}, the paper's)")
-    parser.add_argument("--initial-q", type=_number, default=q_learning.DEFAULT_INITIAL_Q,
-                        help="value of a move never tried "
-                             f"(default {q_learning.DEFAULT_INITIAL_Q})")
+    _settings_options(parser, q_learning.QLearnerSettings)
     parser.add_argument("--reading", choices=rod_toppling.READINGS, default="toppled",
                         help="when red counts as predicted well: on the pairs the robot "
                              "has toppled it from, or on all (default toppled)")

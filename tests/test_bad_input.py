@@ -637,12 +637,12 @@ def test_a_signal_comparison_refuses_a_world_or_key_it_did_not_run(signal_compar
 
 
 def test_panels_refuse_bad_settings_when_called_not_when_iterated():
-    from icm.experiments import panels
+    from icm.experiments import panel_data
 
-    refused(lambda: panels.panel_curves_for("figure5", fixed={"n_seeds": 0}),
+    refused(lambda: panel_data.panel_curves_for("figure5", fixed={"n_seeds": 0}),
             "fixed['n_seeds']", "0", "value")
-    refused(lambda: panels.panel_runs("figure5", [1, 2]), "settings", "1", "type")
-    refused(lambda: panels.panel_runs("figure5", [{"bogus": 1}]), "'bogus'", "epsilon",
+    refused(lambda: panel_data.panel_runs("figure5", [1, 2]), "settings", "1", "type")
+    refused(lambda: panel_data.panel_runs("figure5", [{"bogus": 1}]), "'bogus'", "epsilon",
             "value")
 
 
@@ -673,7 +673,7 @@ def test_figures_refuse_bad_sizes_labels_and_kinds():
 
 
 def test_a_static_panel_keeps_markup_in_its_data_out_of_the_page():
-    from icm.figures.interactive import StaticPanel
+    from icm.figures.static_panels import StaticPanel
 
     panel = StaticPanel({"$schema": "x", "title": "a <!--<script> b </script> & c"}, "t")
     page = panel.html()

@@ -1,7 +1,7 @@
 """The batched learners give identical numbers to the per-agent ones, seed by seed.
 
 The experiments run all seeds at once (`GoalOrientedBatch`, `ActorCriticBatch`,
-`QLearnerBatch` on the batched twins). Here each run is replayed with the per-agent
+the compiled loop of the Q-learner on the batched twins). Here each run is replayed with the per-agent
 classes the book teaches (`GoalOrientedAgent`, `ActorCritic`, `QLearner`, one tabular
 environment per seed, the same seeds), and every recorded array must be equal, not
 close: same choices, same floats.
@@ -19,7 +19,8 @@ from icm.experiments import goal_oriented as go_experiment
 from icm.experiments import rod_toppling as rod_experiment
 from icm.experiments._seeding import run_seeds
 from icm.learners import (ActorCritic, GoalOrientedAgent, LinearPredictor,
-                          NearestNeighbourPredictor, QLearner, interest)
+                          NearestNeighbourPredictor, QLearner)
+from icm.learners.goal_oriented import GoalOrientedSettings
 
 
 def obs_of(lights):
@@ -28,11 +29,12 @@ def obs_of(lights):
 
 # --- the goal-oriented learner ---------------------------------------------------------
 
-def reference_goal_oriented(n_seeds, n_trials, seed=0, epsilon=0.1, window=5,
-                            new_task_factor=0.5, reading="progress", action_weight=10.0,
-                            presses_per_trial=3, red_button=2, signal="learning_progress",
-                            interest_per="task", noisy_button=False):
-    """run_goal_oriented's arrays, from the per-agent classes, one seed at a time."""
+def reference_goal_oriented(n_seeds, n_trials, seed=0, presses_per_trial=3, red_button=2,
+                            noisy_button=False, **settings):
+    """run_goal_oriented's arrays, from the per-agent classes, one seed at a time, the
+    learner built from its settings (`GoalOrientedAgent.from_settings`)."""
+    settings = GoalOrientedSettings(**settings)
+    interest_per = settings.interest_per
     layouts = buttons.layouts(red_button)
     queries = [(tuple(l.tolist()), b) for l in layouts for b in range(buttons.N_BUTTONS)]
     truth = np.array([buttons.press_outcome(np.array(c), b) for c, b in queries])
@@ -45,10 +47,7 @@ def reference_goal_oriented(n_seeds, n_trials, seed=0, epsilon=0.1, window=5,
     for run, (env_seed, agent_seed) in enumerate(run_seeds(seed, n_seeds, 2)):
         env = buttons.ButtonConsole(red_button, presses_per_trial, noisy_button=noisy_button,
                                     seed=env_seed)
-        agent = GoalOrientedAgent(
-            n_actions, NearestNeighbourPredictor(action_weight),
-            interest.make_interest(signal, window, new_task_factor, reading), epsilon,
-            interest_per=interest_per, seed=agent_seed)
+        agent = GoalOrientedAgent.from_settings(n_actions, settings, seed=agent_seed)
         for trial in range(n_trials):
             step = env.reset()
             while not step.last():
@@ -78,23 +77,25 @@ GOAL_CASES = [
     {}, {"reading": "literal"}, {"action_weight": 1.0}, {"presses_per_trial": 5},
     {"epsilon": 0.0}, {"epsilon": 1.0}, {"window": 8, "new_task_factor": 0.0},
     {"red_button": 0},
-    {"signal": "prediction_error"}, {"signal": "novelty"}, {"signal": "random"},
-    {"interest_per": "region"}, {"interest_per": "region", "signal": "prediction_error"},
+    {"interest": "prediction_error"}, {"interest": "novelty"}, {"interest": "random"},
+    {"interest_per": "region"}, {"interest_per": "region", "interest": "prediction_error"},
     {"noisy_button": True}, {"noisy_button": True, "interest_per": "region",
-                             "signal": "prediction_error"},
+                             "interest": "prediction_error"},
     {"noisy_button": True, "interest_per": "region"},
-    {"noisy_button": True, "interest_per": "region", "signal": "novelty"},
-    {"noisy_button": True, "signal": "random", "red_button": 4},
+    {"noisy_button": True, "interest_per": "region", "interest": "novelty"},
+    {"noisy_button": True, "interest": "random", "red_button": 4},
+    # The readings of what the paper leaves open (the book's choice is the default).
+    {"new_task_mean": "witnessed"}, {"short_history": "zero"}, {"tie": "earliest"},
+    {"tie": "earliest", "action_weight": 1.0}, {"short_history": "zero", "window": 8},
+    {"new_task_mean": "witnessed", "interest_per": "region", "noisy_button": True},
 ]
 
 
 @pytest.mark.parametrize("case", GOAL_CASES, ids=lambda c: ",".join(f"{k}={v}" for k, v in c.items()) or "default")
 def test_goal_oriented_batch_equals_the_per_agent_learner(case):
-    kwargs = dict(case)
-    signal = kwargs.pop("signal", "learning_progress")
     batched = icm.experiments.run_goal_oriented(n_seeds=5, n_trials=30, seed=7,
-                                                interest=signal, progress=False, **kwargs)
-    reference = reference_goal_oriented(5, 30, seed=7, signal=signal, **kwargs)
+                                                progress=False, **case)
+    reference = reference_goal_oriented(5, 30, seed=7, **case)
     for name in ("interest", "prediction_error", "practice", "action_interest"):
         np.testing.assert_array_equal(getattr(batched, name), reference[name], err_msg=name)
     presses = batched.settings["presses_per_trial"]

@@ -8,7 +8,6 @@ notebooks of its own, many of them while a CPU burner runs on every core."""
 import asyncio
 import importlib.util
 import json
-import os
 import signal
 import subprocess
 import sys

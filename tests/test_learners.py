@@ -10,11 +10,11 @@ import icm
 from icm.envs import buttons
 from icm.learners import (GoalOrientedAgent, LearningProgressInterest, LinearPredictor,
                           NearestNeighbourPredictor, QLearner, least_squares_slope)
-from icm.learners.goal_oriented import GoalOrientedBatch
+from icm.learners import interest, predictors
+from icm.learners.goal_oriented import GoalOrientedBatch, GoalOrientedSettings
 from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW, InterestTable,
                                    make_interest)
-from icm.learners.predictors import DEFAULT_LINEAR_LR, LinearPredictorTable
-from icm.learners.q_learning import QLearnerBatch
+from icm.learners.predictors import DEFAULT_LINEAR_LR
 
 RED_TASK = ((0, 0), (1, 0))
 GREEN_TASK = ((0, 0), (0, 1))
@@ -236,6 +236,11 @@ def test_bad_arguments_raise_value_error_naming_the_argument(make, message):
 
 # --- the paper's published constants, each asserted as the paper prints it -----------------
 
+def _batch():
+    """A goal-oriented batch of one row with the library's settings."""
+    return GoalOrientedBatch([0], np.zeros((1, 5)), buttons.EFFECTS, 5)
+
+
 def _defaults(function, *names):
     """The default values of parameters `names` of `function`, in order.
 
@@ -264,7 +269,8 @@ def test_the_window_is_the_papers_k_of_5():
         table.record(None, np.array([0]), np.array([float(error)]))
     assert one.interest("t") == pytest.approx(0.2)
     assert table.values()[0, 0] == pytest.approx(0.2)
-    assert _defaults(GoalOrientedBatch, "window") == [5]
+    assert GoalOrientedSettings().window == 5 and interest.WINDOW.paper == 5
+    assert _batch().interest.window.tolist() == [5]
     assert _defaults(icm.experiments.run_goal_oriented, "window") == [5]
 
 
@@ -277,10 +283,10 @@ def test_the_linear_predictors_rate_is_the_papers_0_2():
     errors = [predictor.update(0, 0, [1.0]) for _ in range(3)]
     assert errors == pytest.approx([1.0, 0.8, 0.64])
     assert predictor.predict(0, 0)[0] == pytest.approx(1 - 0.8 ** 3)
-    assert LinearPredictorTable(1, 1, 4, 1).lr.tolist() == [0.2]
     assert QLearner(15, 4).predictor.lr == 0.2
-    assert QLearnerBatch([0], 15, 4, 2).predictor.lr.tolist() == [0.2]
+    assert QLearner.from_settings(15, 4, 2).predictor.lr == 0.2
     assert _defaults(icm.experiments.run_rod_toppling, "predictor_lr") == [0.2]
+    assert predictors.LINEAR_LR.paper == 0.2
 
 
 def test_a_new_task_gets_the_papers_50_percent_of_the_mean_interest():
@@ -296,5 +302,7 @@ def test_a_new_task_gets_the_papers_50_percent_of_the_mean_interest():
             table.record(None, np.array([task]), np.array([float(error)]))
     assert [one.interest(task) for task in range(3)] == pytest.approx([0.2, 1.0, 0.3])
     assert table.values()[0] == pytest.approx([0.2, 1.0, 0.3])
-    assert _defaults(GoalOrientedBatch, "new_task_factor") == [0.5]
+    assert GoalOrientedSettings().new_task_factor == 0.5
+    assert interest.NEW_TASK_FACTOR.paper == 0.5
+    assert _batch().interest.factor.tolist() == [0.5]
     assert _defaults(icm.experiments.run_goal_oriented, "new_task_factor") == [0.5]

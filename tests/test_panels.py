@@ -10,8 +10,8 @@ import pytest
 
 import icm
 from icm import figures, widgets
-from icm.experiments import panels
-from icm.figures import interactive
+from icm.experiments import panel_data
+from icm.figures import static_panels
 
 
 def same_result(one, other):
@@ -79,9 +79,9 @@ def test_a_grid_drawn_from_fresh_entropy_uses_one_root_seed_for_all_settings():
 
 # --- the panels' grids -------------------------------------------------------------
 
-@pytest.mark.parametrize("name", sorted(panels.PANELS))
+@pytest.mark.parametrize("name", sorted(panel_data.PANELS))
 def test_every_panel_grid_has_five_evenly_spaced_values_around_the_default(name):
-    spec = panels.PANELS[name]
+    spec = panel_data.PANELS[name]
     for slider, values in spec.sliders.items():
         assert len(values) >= 5
         assert np.allclose(np.diff(values), values[1] - values[0]), slider
@@ -103,23 +103,23 @@ def small_grid(request, monkeypatch):
     """Panel `name` with a small grid (2 x 2 settings and its choices, 10 seeds):
     `precompute` runs it as it runs the book's grid."""
     name = request.param
-    spec = panels.PANELS[name]
+    spec = panel_data.PANELS[name]
     sliders = {**spec.sliders, **SMALL[name]}
     sliders = {k: (v if k in SMALL[name] else (spec.defaults[k],)) for k, v in sliders.items()}
     choices = {k: v[:2] for k, v in spec.choices.items()}
-    small = dataclasses.replace(spec, sliders=sliders, choices=choices,
+    small = dataclasses.replace(spec, grids={**sliders, **choices},
                                 fixed={**spec.fixed, "n_seeds": 10})
-    monkeypatch.setitem(panels.PANELS, name, small)
-    panels._precompute.cache_clear()
-    yield name, panels.precompute(name, progress=False)
-    panels._precompute.cache_clear()
+    monkeypatch.setitem(panel_data.PANELS, name, small)
+    panel_data._precompute.cache_clear()
+    yield name, panel_data.precompute(name, progress=False)
+    panel_data._precompute.cache_clear()
 
 
 def test_the_precomputed_grid_equals_the_live_panels_call_at_every_setting(small_grid):
     name, grid = small_grid
     assert len(grid.settings) == len(grid.curves) >= 4
     for setting, curves in zip(grid.settings, grid.curves):
-        live = panels.thin(panels.panel_curves_for(name, **setting), grid.spec.every)
+        live = panel_data.thin(panel_data.panel_curves_for(name, **setting), grid.spec.every)
         assert np.array_equal(live["x"], curves["x"])
         for mine, theirs in zip(live["groups"], curves["groups"]):
             assert mine["series"].keys() == theirs["series"].keys()
@@ -127,14 +127,14 @@ def test_the_precomputed_grid_equals_the_live_panels_call_at_every_setting(small
                 for a, b in zip(mine["series"][key], theirs["series"][key]):
                     assert np.array_equal(a, b), (setting, key)
         if name == "figure5":
-            assert grid.cells[grid.index(**setting)] == panels.sweep_cell(
-                panels.panel_run(name, **setting))
+            assert grid.cells[grid.index(**setting)] == panel_data.sweep_cell(
+                panel_data.panel_run(name, **setting))
 
 
 def test_the_static_panel_holds_the_precomputed_numbers(small_grid):
     name, grid = small_grid
-    panel = interactive.curves_panel(grid)
-    rows = panel.spec["datasets"][interactive.DATASET]
+    panel = static_panels.curves_panel(grid)
+    rows = panel.spec["datasets"][static_panels.DATASET]
     spec = grid.spec
     for setting, curves in zip(grid.settings, grid.curves):
         thinned = curves
@@ -144,7 +144,7 @@ def test_the_static_panel_holds_the_precomputed_numbers(small_grid):
                 for k, v in setting.items()))
             assert row["x"] == [int(x) for x in thinned["x"]]
             for key, values in (("mean", mean), ("low", low), ("high", high)):
-                assert np.allclose(row[key], values, atol=0.5 * 10 ** -interactive.DIGITS)
+                assert np.allclose(row[key], values, atol=0.5 * 10 ** -static_panels.DIGITS)
     html = panel.html()
     assert html.count(panel.element_id) == 3  # the div, the specification, the script
     embedded = html.split(f'id="{panel.element_id}-spec">', 1)[1].split("</script>", 1)[0]
@@ -155,7 +155,7 @@ def test_the_static_panel_holds_the_precomputed_numbers(small_grid):
 def test_thinning_keeps_every_nth_point_and_the_last():
     curves = {"x": np.arange(1, 11), "xlabel": "t",
               "groups": [{"title": "", "ylabel": "", "series": {"red": (np.arange(10.0),) * 3}}]}
-    thinned = panels.thin(curves, 3)
+    thinned = panel_data.thin(curves, 3)
     assert thinned["x"].tolist() == [1, 4, 7, 10]
     assert thinned["groups"][0]["series"]["red"][0].tolist() == [0, 3, 6, 9]
 
@@ -163,9 +163,9 @@ def test_thinning_keeps_every_nth_point_and_the_last():
 def test_the_specifications_are_valid_vega_lite(small_grid):
     import altair as alt  # a test requirement (requirements.txt)
     name, grid = small_grid
-    panels_ = [interactive.curves_panel(grid)]
+    panels_ = [static_panels.curves_panel(grid)]
     if name == "figure5":
-        panels_.append(interactive.sweep_panel(grid))
+        panels_.append(static_panels.sweep_panel(grid))
     for panel in panels_:
         spec = {k: v for k, v in panel.spec.items() if k != "$schema"}
         cls = alt.HConcatChart if "hconcat" in spec else alt.LayerChart
@@ -174,21 +174,21 @@ def test_the_specifications_are_valid_vega_lite(small_grid):
 
 def test_panel_calls_refuse_bad_names_settings_and_fixed_arguments():
     with pytest.raises(ValueError, match="figure5, figure6, figure7|'figure5'"):
-        panels.panel_run("figure8")
+        panel_data.panel_run("figure8")
     with pytest.raises(ValueError, match="controls"):
-        panels.panel_run("figure5", colour=1)
+        panel_data.panel_run("figure5", colour=1)
     with pytest.raises(ValueError, match="cannot be held fixed"):
-        panels.panel_run("figure5", fixed={"epsilon": 0.2})
+        panel_data.panel_run("figure5", fixed={"epsilon": 0.2})
     with pytest.raises(TypeError, match="fixed"):
-        panels.panel_run("figure5", fixed=[1])
+        panel_data.panel_run("figure5", fixed=[1])
     with pytest.raises(ValueError, match="epsilon"):
-        panels.panel_run("figure5", epsilon=1.5)
+        panel_data.panel_run("figure5", epsilon=1.5)
     with pytest.raises(ValueError, match="grid has no setting"):
-        panels.PanelGrid("figure5", ({"epsilon": 0.1},), ({},)).index(epsilon=0.2)
+        panel_data.PanelGrid("figure5", ({"epsilon": 0.1},), ({},)).index(epsilon=0.2)
     with pytest.raises(TypeError, match="PanelGrid"):
-        interactive.curves_panel("figure5")
+        static_panels.curves_panel("figure5")
     with pytest.raises(ValueError, match="figure5 grid"):
-        interactive.sweep_panel(panels.PanelGrid("figure6", (), ()))
+        static_panels.sweep_panel(panel_data.PanelGrid("figure6", (), ()))
 
 
 # --- the widgets: live in Jupyter, static while the book is built --------------------
@@ -200,14 +200,14 @@ def test_panel_calls_refuse_bad_names_settings_and_fixed_arguments():
 def test_live_panels_have_the_grids_controls_and_rerun_the_panels_call(name, make, live_sliders,
                                                                        monkeypatch):
     calls = []
-    real = panels.panel_curves_for
+    real = panel_data.panel_curves_for
 
     def spy(panel_name, fixed=None, **setting):
         calls.append((panel_name, fixed, setting))
         return real(panel_name, fixed, **setting)
 
-    monkeypatch.setattr(panels, "panel_curves_for", spy)
-    spec = panels.PANELS[name]
+    monkeypatch.setattr(panel_data, "panel_curves_for", spy)
+    spec = panel_data.PANELS[name]
     fixed = {"n_seeds": 4} if name != "figure7" else {"n_seeds": 4, "n_episodes": 20}
     panel = make(static=False, **fixed)
     assert isinstance(panel, ipywidgets.VBox)
@@ -235,27 +235,26 @@ def test_panels_are_static_while_the_book_is_built(monkeypatch, small_grid):
             "figure7": widgets.figure7_panel}[name]
     monkeypatch.setenv("ICM_STATIC_PANELS", "1")
     panel = make()
-    assert isinstance(panel, interactive.StaticPanel)
-    assert panel.spec == interactive.curves_panel(grid).spec
+    assert isinstance(panel, static_panels.StaticPanel)
+    assert panel.spec == static_panels.curves_panel(grid).spec
     with pytest.raises(ValueError, match="static"):
         make(n_seeds=5)
     monkeypatch.setenv("ICM_STATIC_PANELS", "0")
-    assert isinstance(make(static=True), interactive.StaticPanel)
+    assert isinstance(make(static=True), static_panels.StaticPanel)
     with pytest.raises(TypeError, match="static"):
         make(static="yes")
 
 
 def test_the_live_sweep_panel_draws_the_cells_of_the_grids_runs(monkeypatch):
-    spec = panels.PANELS["figure5"]
-    small = dataclasses.replace(spec, sliders={**spec.sliders, "epsilon": (0.0, 0.1),
-                                               "window": (3, 5)},
+    spec = panel_data.PANELS["figure5"]
+    small = dataclasses.replace(spec, grids={"epsilon": (0.0, 0.1), "window": (3, 5)},
                                 fixed={**spec.fixed, "n_seeds": 5, "n_trials": 20})
-    monkeypatch.setitem(panels.PANELS, "figure5", small)
+    monkeypatch.setitem(panel_data.PANELS, "figure5", small)
     panel = widgets.sweep_panel(static=False)
     factor = panel.children[0].children[0]
     assert factor.description == "new_task_factor" and factor.value == 0.5
     drawn = figures.sweep_figure([{"epsilon": 0.0, "window": 3}], [
-        panels.sweep_cell(panels.panel_run("figure5", epsilon=0.0, window=3))])
+        panel_data.sweep_cell(panel_data.panel_run("figure5", epsilon=0.0, window=3))])
     assert len(drawn.axes) == 4  # two heatmaps and their colour bars
 
 
@@ -264,17 +263,17 @@ def test_the_live_sweep_panel_draws_the_cells_of_the_grids_runs(monkeypatch):
 @pytest.fixture(scope="module")
 def own_grid():
     """The Figure 5 grid on the tests' own root seed (the book uses seed 0)."""
-    spec = panels.PANELS["figure5"]
+    spec = panel_data.PANELS["figure5"]
     results = icm.experiments.run_goal_oriented_grid(spec.settings(), **{**spec.fixed,
                                                                          "seed": 11},
                                                      progress=False)
-    return panels.PanelGrid("figure5", tuple(spec.settings()),
+    return panel_data.PanelGrid("figure5", tuple(spec.settings()),
                             tuple({"x": [], "groups": []} for _ in results),
-                            tuple(panels.sweep_cell(r) for r in results))
+                            tuple(panel_data.sweep_cell(r) for r in results))
 
 
 def test_red_is_mastered_first_in_every_setting_of_the_sweep(own_grid):
-    summary = panels.sweep_summary(own_grid)
+    summary = panel_data.sweep_summary(own_grid)
     assert summary["runs"] == 12500
     assert summary["red_first_lowest"] >= 0.97
     assert 15 <= summary["gap_lowest"] <= summary["gap_highest"] <= 30
@@ -283,7 +282,7 @@ def test_red_is_mastered_first_in_every_setting_of_the_sweep(own_grid):
 def test_a_longer_window_lengthens_the_mastery_gap(own_grid):
     # Chapter 2: "A surprise stays in the slope of a longer window for longer, so the
     # learner lingers on a task it has already learned."
-    summary = panels.sweep_summary(own_grid)
+    summary = panel_data.sweep_summary(own_grid)
     gaps = summary["default_gaps"]
     assert gaps[-1] > gaps[0] + 2
     assert summary["longer_window_larger"] >= 0.8 * summary["pairs"]
@@ -296,12 +295,12 @@ def _grid_without_runs(name):
     setting, no run): what the static panels are built from, cheaply.
 
     Args:
-      name: a panel of `panels.PANELS`.
+      name: a panel of `panel_data.PANELS`.
 
     Returns:
-      A `panels.PanelGrid`.
+      A `panel_data.PanelGrid`.
     """
-    spec = panels.PANELS[name]
+    spec = panel_data.PANELS[name]
     settings = tuple(spec.settings())
     curves = {"x": np.array([1, 2]), "xlabel": "trial",
               "groups": [{"title": "", "ylabel": "", "series": {
@@ -310,7 +309,7 @@ def _grid_without_runs(name):
     if name == "figure5":
         cells = tuple({"red_first": 1.0, "gap": 20.0, "gap_low": 18.0, "gap_high": 22.0,
                        "gap_seeds": 100} for _ in settings)
-    return panels.PanelGrid(name, settings, tuple(curves for _ in settings), cells)
+    return panel_data.PanelGrid(name, settings, tuple(curves for _ in settings), cells)
 
 
 def _positions(binding):
@@ -326,15 +325,15 @@ def _positions(binding):
     return binding["min"] + binding["step"] * np.arange(count)
 
 
-@pytest.mark.parametrize("name", sorted(panels.PANELS))
+@pytest.mark.parametrize("name", sorted(panel_data.PANELS))
 def test_every_static_slider_position_is_a_value_of_the_precomputed_grid(name):
     grid = _grid_without_runs(name)
     spec = grid.spec
-    made = [interactive.curves_panel(grid)]
+    made = [static_panels.curves_panel(grid)]
     if name == "figure5":
-        made.append(interactive.sweep_panel(grid))
+        made.append(static_panels.sweep_panel(grid))
     for panel in made:
-        rows = panel.spec["datasets"][interactive.DATASET]
+        rows = panel.spec["datasets"][static_panels.DATASET]
         for param in panel.spec["params"]:
             control, binding = param["name"], param["bind"]
             if binding["input"] == "radio":
@@ -386,9 +385,9 @@ def test_the_live_panels_band_spans_from_its_low_to_its_high_bound(name, make, f
     assert spread > 0.05  # the bands are not lines
 
 
-@pytest.mark.parametrize("name", sorted(panels.PANELS))
+@pytest.mark.parametrize("name", sorted(panel_data.PANELS))
 def test_the_static_panels_band_spans_from_its_low_to_its_high_bound(name):
-    panel = interactive.curves_panel(_grid_without_runs(name))
+    panel = static_panels.curves_panel(_grid_without_runs(name))
     band, line = panel.spec["layer"]
     assert band["mark"]["type"] == "area"
     assert (band["encoding"]["y"]["field"], band["encoding"]["y2"]["field"]) == ("low", "high")

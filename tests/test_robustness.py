@@ -166,9 +166,9 @@ def _small_study():
     """The goal-oriented study on a 2 x 2 x 2 grid, short runs, plus a claim that
     always holds."""
     base = robustness.STUDIES["goal_oriented"]
-    settings = (robustness.Setting("action_weight", "weight", 10.0, (1.0, 10.0)),
-                robustness.Setting("presses_per_trial", "presses", 3, (1, 3)),
-                robustness.Setting("reading", "reading", "progress", ("progress", "literal")))
+    settings = (robustness.Sweep("action_weight", "weight", 10.0, (1.0, 10.0)),
+                robustness.Sweep("presses_per_trial", "presses", 3, (1, 3)),
+                robustness.Sweep("reading", "reading", "progress", ("progress", "literal")))
     claims = base.claims + (robustness.Claim("always", "always", 0.9),)
     return robustness.Study("small", "small", run_goal_oriented, {"n_trials": 20}, settings,
                             claims, _always_and_goal_claims)
@@ -356,3 +356,18 @@ def test_readme_lists_exactly_the_dependencies_checked_here():
 @pytest.mark.parametrize("name", list(NEEDED) + list(NOT_NEEDED))
 def test_readme_dependency_holds_on_our_seeds(name):
     {**NEEDED, **NOT_NEEDED}[name]()
+
+
+def test_the_studies_sweep_exactly_the_settings_declared_swept():
+    # A setting is one of "the unpublished choices swept in 'What the result depends
+    # on'" when its Setting has swept values; each study sweeps those of its learner
+    # (and the worlds' settings it names), with the Setting's values and label.
+    for study in robustness.STUDIES.values():
+        specs = {**robustness.WORLD_SETTINGS, **study.run_fn.settings_class.specs()}
+        for sweep in study.settings:
+            spec = specs[sweep.name]
+            assert sweep.values == spec.swept and sweep.label == spec.label
+            assert sweep.default == spec.default and not spec.published
+        learner = {n for n, spec in study.run_fn.settings_class.specs().items()
+                   if spec.swept is not None}
+        assert learner <= {s.name for s in study.settings}

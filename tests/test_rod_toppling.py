@@ -431,14 +431,6 @@ def test_physics_comparison_figure_has_a_row_per_run(default_run):
     assert len(fig.axes[0].patches) == default_run.n_episodes
 
 
-def test_figure7_for_runs_one_seed_and_draws_it():
-    fig = figures.figure7_for(episode=10, n_episodes=30, epsilon=0.2)
-    assert len([ax for ax in fig.axes if ax.get_label() != "<colorbar>"]) == 16
-    titles = [ax.get_title() for ax in fig.axes[:4]]
-    assert titles[-1] == "(d) episode 10"  # said once, not "(d) episode 10\nepisode 10"
-    assert all(title.count("episode 10") <= 1 for title in titles)
-
-
 def test_first_run_gives_run_k_of_a_larger_batch_alone():
     batch = run_rod_toppling(n_seeds=4, n_episodes=30, seed=6, progress=False)
     alone = run_rod_toppling(n_seeds=1, n_episodes=30, seed=6, first_run=3, progress=False)

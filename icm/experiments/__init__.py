@@ -1,5 +1,5 @@
 """Experiments: many seeded runs of a learner on a task, returned as arrays; grids and
-sweeps of settings times seeds; the interactive panels' numbers (`panels`)."""
+sweeps of settings times seeds; the numbers of the book's panels (`panel_data`)."""
 
 from icm.experiments.actor_critic import ActorCriticResult, run_actor_critic, run_actor_critic_grid
 from icm.experiments.actor_critic import comparison_table as actor_critic_table
@@ -12,12 +12,12 @@ from icm.experiments.goal_oriented import (GoalOrientedResult, comparison_table,
                                           run_goal_oriented, run_goal_oriented_grid)
 from icm.experiments.rod_toppling import RodTopplingResult, run_rod_toppling
 from icm.experiments.sweep import sweep
-from icm.experiments import panels  # noqa: E402 (after the experiments it runs)
+from icm.experiments import panel_data  # noqa: E402 (after the experiments it runs)
 
 __all__ = ["ActorCriticResult", "FormedActionsResult", "GoalBabblingResult",
            "GoalOrientedResult", "RewardComparison", "RodTopplingResult",
            "SignalComparison", "actor_critic_table", "comparison_table",
-           "goal_babbling_table", "panels", "run_actor_critic", "run_actor_critic_grid",
+           "goal_babbling_table", "panel_data", "run_actor_critic", "run_actor_critic_grid",
            "run_formed_actions", "run_goal_babbling", "run_goal_oriented",
            "run_goal_oriented_grid", "run_reward_comparison", "run_rod_toppling",
            "run_signal_comparison", "sweep"]

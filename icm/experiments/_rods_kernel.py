@@ -1,4 +1,5 @@
-"""The curious Q-learner on the tabular rods, many runs at once, compiled with Numba.
+"""The curious Q-learner on the tabular rods, many runs at once, compiled with Numba:
+the Q-learner's fast form (its teaching form is `icm.learners.q_learning.QLearner`).
 
 Why compiled: the runs' episodes have different lengths, so a batch moves one step at
 a time until its longest run is over (about 5,700 steps for 200 seeds of 300
@@ -7,28 +8,47 @@ microseconds each: 1.2 to 1.7 s for 200 seeds, against a target of 1 s. Here eac
 is played through in a loop compiled once (Numba caches it on disk), following the
 per-agent `QLearner` and `LinearPredictor` operation for operation, so it gives the
 same numbers (a test compares them seed by seed). The physics runs, whose cost is the
-physics itself, use the numpy `QLearnerBatch` instead.
+physics itself, use the per-agent classes.
 
-The reward is one of `icm.learners.q_learning.REWARDS` (`SIGNAL_CODES`), kept per
-(cell, action) pair as the per-agent classes keep it; with the wobbly rod, a move
-beside it draws one number from the row's environment stream and topples it below
-1/2, as `RodTable` does.
+The loop copies no rule's numbers: the numbers each choice draws
+(`icm.learners.action_selection.DRAWS_PER_CHOICE`), the wobbly rod's probability
+(`icm.envs.rods.WOBBLE_TOPPLE_PROBABILITY`) and the slope weights
+(`icm.learners.interest.slope_weights`) are read from their modules at every run and
+passed in (a test changes each in its home and sees the loop's results change). The
+reward is one of the interest signals the loop computes (`SIGNAL_CODES`), kept per
+(cell, action) pair as the per-agent classes keep it; `check_reward` refuses, by
+name, a signal it does not compute.
 """
 
 import numba
 import numpy as np
 
+from icm._validate import one_of
+from icm.envs.rods import rules as rod_rules
+from icm.learners import action_selection, interest
+
 SIGNAL_CODES = {"prediction_error": 0, "learning_progress": 1, "novelty": 2, "random": 3}
-"""The reward signals by name, as the compiled loop numbers them."""
+"""The reward signals the compiled loop computes, by name and as it numbers them. A
+signal of `icm.learners.interest.SIGNAL_CLASSES` that is not here runs on the physics
+path (per-agent classes) only; `check_reward` refuses it for the tabular loop."""
+
+
+def check_reward(reward):
+    """`reward` if the compiled loop computes it, else a ValueError that names it and
+    the ones it computes."""
+    if reward not in SIGNAL_CODES:
+        raise ValueError(f"reward {reward!r} is an interest signal the compiled rod loop "
+                         f"does not compute; it computes {', '.join(SIGNAL_CODES)} (add it "
+                         f"to icm.experiments._rods_kernel, or run it with physics=True)")
+    return one_of("reward", reward, tuple(SIGNAL_CODES))
 
 
 def slope_weights(window):
     """weights[m, :m], the least-squares slope weights of m equally spaced values (m = 2
-    .. window), as `icm.learners.interest` computes them."""
+    .. window), from `icm.learners.interest.slope_weights`."""
     weights = np.zeros((window + 1, max(window, 1)))
     for m in range(2, window + 1):
-        x = np.arange(m) - (m - 1) / 2.0
-        weights[m, :m] = x / (x @ x)
+        weights[m, :m] = interest.slope_weights(m)
     return weights
 
 
@@ -36,10 +56,12 @@ def slope_weights(window):
 def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_sum,
          epsilon, alpha, gamma, lr, next_cell, topples, start, max_moves, n_episodes,
          toppled_out, length_out, errors_out, found, record, signal, window, weights,
-         history, count, wobbly, wobbles, env_draws, env_cursor):
+         history, count, wobbly, wobbles, env_draws, env_cursor, n_draws,
+         wobble_probability):
     """Plays every row on, move by move, until it has played its episodes or used its
-    buffer of uniform numbers (three a move, and with the wobbly rod one from the
-    environment's buffer at a move beside it); returns True if every row is done.
+    buffer of uniform numbers (`n_draws` a move, of which it uses the first three, and
+    with the wobbly rod one from the environment's buffer at a move beside it, which
+    topples it below `wobble_probability`); returns True if every row is done.
 
     All arrays are updated in place: the learner (q [row, cell, action], predictions
     [row, cell, action, rod], last_error [row, cell, action], and for the reward
@@ -57,10 +79,10 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
     for r in range(n):
         while episode[r] < n_episodes:
             k = cursor[r]
-            if k + 3 > chunk or (wobbly and env_cursor[r] + 1 > env_chunk):
+            if k + n_draws > chunk or (wobbly and env_cursor[r] + 1 > env_chunk):
                 done = False  # the row needs new numbers
                 break
-            cursor[r] = k + 3
+            cursor[r] = k + n_draws
             c = cell[r]
             # Epsilon-greedy on Q(c, .), ties broken by the third number.
             if draws[r, k] < epsilon[r]:
@@ -84,10 +106,10 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
                         pick -= 1
             following = next_cell[c, a]
             rod = topples[c, a]
-            if wobbly and wobbles[c, a]:  # beside the wobbly rod: it falls half the time
+            if wobbly and wobbles[c, a]:  # beside the wobbly rod: it may fall
                 u = env_draws[r, env_cursor[r]]
                 env_cursor[r] += 1
-                if u < 0.5:
+                if u < wobble_probability:
                     rod = n_rods - 1
             # The predictor: p <- p + lr (o - p); its absolute error, summed over rods.
             total = 0.0
@@ -287,7 +309,8 @@ def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, nex
     per_row = lambda value: np.ascontiguousarray(np.broadcast_to(
         np.asarray(value, dtype=float), (n,)))
     epsilon, alpha, gamma, lr = per_row(epsilon), per_row(alpha), per_row(gamma), per_row(lr)
-    signal = SIGNAL_CODES[reward]
+    signal = SIGNAL_CODES[check_reward(reward)]
+    n_draws = int(action_selection.DRAWS_PER_CHOICE)
     window = int(window) if signal == 1 else 1
     weights = slope_weights(window)
     history = np.zeros((n, n_cells, n_actions, window) if signal else (0, 0, 0, window))
@@ -306,12 +329,13 @@ def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, nex
                         episode, moves, error_sum, epsilon, alpha, gamma, lr, next_cell,
                         topples, start, max_moves, n_episodes, out["toppled"],
                         out["length"], out["errors"], found, record, signal, window,
-                        weights, history, count, wobbly, wobbles, env_draws, env_cursor)
+                        weights, history, count, wobbly, wobbles, env_draws, env_cursor,
+                        n_draws, float(rod_rules.WOBBLE_TOPPLE_PROBABILITY))
         if bar is not None:
             bar.update(int(episode.sum()) - bar.n)
         if finished:
             return {**out, **dict(zip(RECORD_FIELDS, record[5:]))}
         unfinished = np.flatnonzero(episode < n_episodes)
-        streams.refill(unfinished, 3)
+        streams.refill(unfinished, n_draws)
         if wobbly:
             env_streams.refill(unfinished, 1)

@@ -10,13 +10,14 @@ import math
 import numpy as np
 
 from icm import _streams, _validate
+from icm._settings import with_settings
 from icm.envs import buttons
 from icm.experiments import _grid
 from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import run_seeds
-from icm.experiments.goal_oriented import check_results, measures_table
-from icm.learners import actor_critic, predictors
+from icm.experiments.results import check_results, measures_table
+from icm.learners import action_selection, actor_critic
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
                        first_from_which)
 
@@ -167,29 +168,20 @@ class ActorCriticResult:
         return out
 
 
-def _check_run_arguments(n_seeds, n_trials, temperature, lr_actor, lr_critic, gamma,
-                         reward, variant, rewarded_box, action_selection, epsilon,
-                         action_weight, presses_per_trial, red_button, seed, progress):
-    """The arguments of `run_actor_critic`, checked and normalised, as a dict."""
+def _check_run_arguments(n_seeds, n_trials, rewarded_box, presses_per_trial, red_button,
+                         seed, settings):
+    """The run's own arguments (its learner's `settings` are checked already), checked
+    and normalised, with the settings' values, as the result's `settings` dict; the
+    run's memory is checked too."""
     checked = dict(
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
         n_trials=_validate.integer_at_least("n_trials", n_trials, 1),
-        temperature=_validate.positive("temperature", temperature),
-        lr_actor=_validate.learning_rate("lr_actor", lr_actor),
-        lr_critic=_validate.learning_rate("lr_critic", lr_critic),
-        gamma=_validate.in_closed_interval("gamma", gamma, 0.0, 1.0),
-        reward=_validate.one_of("reward", reward, actor_critic.REWARDS),
-        variant=_validate.one_of("variant", variant, tuple(actor_critic.VARIANTS)),
         rewarded_box=_validate.one_of("rewarded_box", rewarded_box, buttons.BOX_NAMES),
-        action_selection=_validate.one_of("action_selection", action_selection,
-                                          actor_critic.ACTION_SELECTIONS),
-        epsilon=_validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0),
-        action_weight=_validate.positive("action_weight", action_weight),
-        presses_per_trial=_validate.integer_at_least("presses_per_trial",
-                                                     presses_per_trial, 1),
+        presses_per_trial=buttons.PRESSES_PER_TRIAL.check(presses_per_trial,
+                                                          "presses_per_trial"),
         red_button=buttons.check_red_button(red_button),
         seed=_validate.root_seed("seed", seed))
-    _validate.boolean("progress", progress)
+    checked = {**checked, **settings.as_dict()}
     check_memory("run_actor_critic", {"n_seeds": checked["n_seeds"],
                                       "n_trials": checked["n_trials"]},
                  memory_needed(checked["n_seeds"], checked["n_trials"],
@@ -226,26 +218,19 @@ def memory_needed(n_rows, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PE
                         + 8 * n_keys * (1 if one_action_weight else 4)  # a press's distances
                         + LOOP_ROW_BYTES)
     presses = n_trials * presses_per_trial
-    streams = (_streams.memory_bound(n_rows, presses * actor_critic.DRAWS_PER_CHOICE)
+    streams = (_streams.memory_bound(n_rows, presses * action_selection.DRAWS_PER_CHOICE)
                + _streams.memory_bound(n_rows, n_trials))  # the consoles': a layout a trial
     return FIXED_BYTES + kept + making + learner + streams, kept
 
 
+@with_settings(actor_critic.ActorCriticSettings)
 def run_actor_critic(n_seeds=100, n_trials=100,
-                     temperature=actor_critic.DEFAULT_TEMPERATURE,
-                     lr_actor=actor_critic.DEFAULT_LR_ACTOR,
-                     lr_critic=actor_critic.DEFAULT_LR_CRITIC,
-                     gamma=actor_critic.DEFAULT_GAMMA,
-                     reward="intrinsic",
-                     variant="standard",
                      rewarded_box="green",
-                     action_selection="softmax",
-                     epsilon=actor_critic.DEFAULT_EPSILON,
-                     action_weight=predictors.DEFAULT_ACTION_WEIGHT,
-                     presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
+                     presses_per_trial=buttons.PRESSES_PER_TRIAL.default,
                      red_button=buttons.DEFAULT_RED_BUTTON,
                      seed=0,
-                     progress=True):
+                     progress=True,
+                     settings=None):
     """Runs the actor-critic on the tabular button console, once per seed.
 
     Each run builds a `ButtonConsole` (paying 1.0 when `rewarded_box` opens if the
@@ -257,25 +242,17 @@ def run_actor_critic(n_seeds=100, n_trials=100,
     Args:
       n_seeds: number of independent runs (>= 1).
       n_trials: trials per run (>= 1).
-      temperature: softmax temperature (> 0).
-      lr_actor: actor learning rate, in (0, 1].
-      lr_critic: critic learning rate, in (0, 1].
-      gamma: discount, in [0, 1].
-      reward: "intrinsic" (from the predictor's errors) or "extrinsic" (from the
-        environment).
-      variant: a reading of the formulas, one of `icm.learners.actor_critic.VARIANTS`.
       rewarded_box: "red" or "green", the box that pays 1.0 when the reward is
         extrinsic (ignored for an intrinsic reward).
-      action_selection: "softmax" (default, at `temperature`) or "epsilon_greedy"
-        (section 3.2's rule for the extrinsic learner; at `epsilon`).
-      epsilon: probability of a random press with epsilon-greedy selection, [0, 1].
-      action_weight: the predictor's cost of a different button (> 0).
-      presses_per_trial: presses per trial (>= 1).
+      presses_per_trial: presses per trial (see `icm.envs.buttons.PRESSES_PER_TRIAL`).
       red_button: the button that is always red (0-4).
       seed: the root seed: an integer >= 0, a `numpy.random.Generator` (one integer
         is drawn from it) or None (fresh entropy); run i's seeds depend only on it
         and i. The integer used is kept in `settings["seed"]`.
       progress: show a progress bar when the run lasts over a second.
+      settings: the learner's settings, an
+        `icm.learners.actor_critic.ActorCriticSettings` (or give them one by one as
+        keyword arguments, listed below).
 
     Returns:
       An `ActorCriticResult`.
@@ -285,17 +262,15 @@ def run_actor_critic(n_seeds=100, n_trials=100,
         this machine's memory.
     """
     return run_actor_critic_grid(
-        [{}], n_seeds=n_seeds, n_trials=n_trials, temperature=temperature,
-        lr_actor=lr_actor, lr_critic=lr_critic, gamma=gamma, reward=reward, variant=variant,
-        rewarded_box=rewarded_box, action_selection=action_selection, epsilon=epsilon,
-        action_weight=action_weight, presses_per_trial=presses_per_trial,
-        red_button=red_button, seed=seed, progress=progress)[0]
+        [{}], n_seeds=n_seeds, n_trials=n_trials, rewarded_box=rewarded_box,
+        presses_per_trial=presses_per_trial, red_button=red_button, seed=seed,
+        progress=progress, settings=settings)[0]
 
 
-GRID_ARGUMENTS = ("temperature", "lr_actor", "lr_critic", "gamma", "variant", "epsilon",
-                  "action_weight")
-"""The arguments that may differ between the settings of one `run_actor_critic_grid`
-(the batched learner takes them per row)."""
+GRID_ARGUMENTS = _grid.grid_arguments(run_actor_critic)
+"""The settings that may differ between the settings of one `run_actor_critic_grid`
+(the batched learner takes them per row): those of
+`icm.learners.actor_critic.ActorCriticSettings` that are per row."""
 
 
 def run_actor_critic_grid(grid, **arguments):
@@ -309,7 +284,7 @@ def run_actor_critic_grid(grid, **arguments):
     Args:
       grid: a non-empty list of dicts, each a setting of some of `GRID_ARGUMENTS`.
       **arguments: any other arguments of `run_actor_critic`, the same for every
-        setting (n_seeds, n_trials, reward, seed, progress, ...).
+        setting (n_seeds, n_trials, reward, seed, progress, learner settings, ...).
 
     Returns:
       A list of `ActorCriticResult`, one per setting, in the grid's order.
@@ -318,12 +293,8 @@ def run_actor_critic_grid(grid, **arguments):
       ValueError: for a malformed grid, a setting of an argument not in
         `GRID_ARGUMENTS`, or any value `run_actor_critic` refuses.
     """
-    full, progress = _grid.check_grid(grid, GRID_ARGUMENTS, run_actor_critic, arguments)
-    settings = [_check_run_arguments(
-        a["n_seeds"], a["n_trials"], a["temperature"], a["lr_actor"], a["lr_critic"],
-        a["gamma"], a["reward"], a["variant"], a["rewarded_box"], a["action_selection"],
-        a["epsilon"], a["action_weight"], a["presses_per_trial"], a["red_button"],
-        a["seed"], progress) for a in full]
+    blocks, others, progress = _grid.check_settings_grid(grid, run_actor_critic, arguments)
+    settings = [_check_run_arguments(**others, settings=block) for block in blocks]
     first, n = settings[0], settings[0]["n_seeds"]
     if len(settings) > 1:  # the settings' rows side by side
         check_memory("run_actor_critic_grid", {"settings": len(settings), "n_seeds": n,
@@ -335,10 +306,9 @@ def run_actor_critic_grid(grid, **arguments):
     red_button = first["red_button"]
     states, start_states, probes = state_table(red_button)
     env = buttons.ButtonConsoleBatch([s[0] for s in seeds], red_button)
-    rows = {name: _grid.per_row(settings, name, n) for name in GRID_ARGUMENTS}
     agent = actor_critic.ActorCriticBatch(
         [s[1] for s in seeds], states, buttons.EFFECTS, buttons.N_BUTTONS,
-        reward=first["reward"], action_selection=first["action_selection"], **rows)
+        settings=actor_critic.ActorCriticSettings.stack(blocks, n))
     rewarded = -1 if first["reward"] != "extrinsic" else \
         buttons.RED_BOX if first["rewarded_box"] == "red" else buttons.GREEN_BOX
     result = _play(first, env, agent, first["n_trials"], first["presses_per_trial"],

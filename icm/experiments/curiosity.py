@@ -395,12 +395,13 @@ def outcome_rewards(rewards=("prediction_error", "learning_progress", "novelty")
     whose outcome is a fair coin (1 or 0, probability 1/2 each: the wobbly rod) and for
     one whose outcome is always 1 (a rod that always topples), as the rods' Q-learner
     computes it (`icm.learners.q_learning.QLearner.learn` on a one-pair table with a
-    `LinearPredictor`; all seeds at once in `QLearnerBatch`, which gives the same
-    numbers).
+    `LinearPredictor`: the pair's errors come from a `LinearPredictor` per seed, and
+    each reward is its signal of those errors, all seeds at once in
+    `icm.learners.interest.InterestTable`, which gives the same numbers).
 
-    It takes about 1 microsecond per seed and try of each reward and outcome, and its
-    memory grows as the seeds times the tries (`outcome_rewards_memory`): a call that
-    this machine could not hold is refused before it starts.
+    It takes about 10 microseconds per seed and try of each outcome, and its memory
+    grows as the seeds times the tries (`outcome_rewards_memory`): a call that this
+    machine could not hold is refused before it starts.
 
     Args:
       rewards: the rewards, names of `REWARDS`.
@@ -427,22 +428,26 @@ def outcome_rewards(rewards=("prediction_error", "learning_progress", "novelty")
                  outcome_rewards_memory(len(rewards), n_seeds, n_tries, window))
     coins = np.random.default_rng(seed).random((n_seeds, n_tries)) < 0.5
     sure = np.ones_like(coins)
-    rows, zeros = np.arange(n_seeds), np.zeros(n_seeds, dtype=np.int64)
+    rows, pair = np.arange(n_seeds), np.zeros(n_seeds, dtype=np.int64)
     out = {}
-    for reward in rewards:
-        for kind, outcomes in (("coin", coins), ("sure", sure)):
-            learner = q_learning.QLearnerBatch(zeros, 1, 1, 1, predictor_lr=predictor_lr,
-                                               reward=reward, window=window)
+    for kind, outcomes in (("coin", coins), ("sure", sure)):
+        errors = np.zeros((n_seeds, n_tries))  # the pair's surprise at each try
+        for k in range(n_seeds):
+            predictor = predictors.LinearPredictor(1, 1, predictor_lr)
+            for t, outcome in enumerate(outcomes[k].tolist()):
+                errors[k, t] = predictor.update(0, 0, [float(outcome)])
+        for reward in rewards:
+            signal = interest.InterestTable(
+                n_seeds, 1, reward, 1 if reward == "prediction_error" else window, 0.0)
             paid = np.zeros((n_seeds, n_tries))
             for t in range(n_tries):
-                errors = learner.learn(rows, zeros, zeros, outcomes[:, t, None].astype(float),
-                                       zeros, np.zeros(n_seeds))
+                signal.record(None, pair, errors[:, t])
                 # (+ 0.0: the batched progress can be -0.0 where QLearner's max(0, .)
                 # gives 0.0; it changes no other number.)
-                paid[:, t] = errors[:, 0] if reward == "prediction_error" else \
-                    learner.reward_signal.values(rows)[:, 0] + 0.0
+                paid[:, t] = signal.values(rows)[:, 0] + 0.0
             out[(reward, kind)] = paid
-    return out
+    return {(reward, kind): out[(reward, kind)] for reward in rewards
+            for kind in ("coin", "sure")}
 
 
 def outcome_rewards_memory(n_rewards, n_seeds, n_tries, window=interest.DEFAULT_WINDOW):

@@ -30,8 +30,9 @@ from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments._babbling_physics import (  # noqa: F401 (the times are re-exported)
     HOLD_TIME, REACH_TIME, RETRACT_TIME, MovementLab)
 from icm.experiments._progress import progress_bar
+from icm.experiments.results import check_results
 from icm.experiments._seeding import check_run_size, run_seeds
-from icm.learners import goal_oriented, interest, predictors
+from icm.learners import goal_oriented, interest
 from icm.stats import PANEL_RESAMPLES, bootstrap_band
 
 STRATEGIES = ("random_motor", "random_goal", "learning_progress")
@@ -512,11 +513,10 @@ def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True)
     _validate.instance("babbling", babbling, GoalBabblingResult,
                        "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
     n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
+    _validate.boolean("progress", progress)
     settings = _goal_oriented._check_run_arguments(
-        babbling.n_seeds, n_trials, goal_oriented.DEFAULT_EPSILON, interest.DEFAULT_WINDOW,
-        interest.DEFAULT_NEW_TASK_FACTOR, "progress", predictors.DEFAULT_ACTION_WEIGHT,
-        buttons.DEFAULT_PRESSES_PER_TRIAL, buttons.DEFAULT_RED_BUTTON, "learning_progress",
-        "task", False, True, seed, progress)
+        babbling.n_seeds, n_trials, buttons.DEFAULT_PRESSES_PER_TRIAL,
+        buttons.DEFAULT_RED_BUTTON, False, True, seed, goal_oriented.GoalOrientedSettings())
     settings["formed_by"] = babbling.strategy
     seeds = run_seeds(settings["seed"], babbling.n_seeds, 2)
     lab = MovementLab()
@@ -540,7 +540,7 @@ def comparison_table(results):
     Args:
       results: a dict {row label: GoalBabblingResult}.
     """
-    _goal_oriented.check_results("results", results, GoalBabblingResult)
+    check_results("results", results, GoalBabblingResult)
     lines = ["| strategy | seeds | rollouts | test error at the end, cm (95% band) "
              "| buttons pressed (of 5) | seeds pressing all 5 | rollouts that pressed a button |",
              "|---|---|---|---|---|---|---|"]

@@ -10,12 +10,14 @@ import dataclasses
 import numpy as np
 
 from icm import _streams, _validate
+from icm._settings import with_settings
 from icm.envs import buttons
 from icm.experiments import _grid
+from icm.experiments.results import check_results, measures_table
 from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES, check_memory
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import run_seeds
-from icm.learners import goal_oriented, interest, predictors
+from icm.learners import action_selection, goal_oriented, interest
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth, first_below,
                        first_from_which)
 
@@ -158,29 +160,21 @@ class GoalOrientedResult:
         return out
 
 
-def _check_run_arguments(n_seeds, n_trials, epsilon, window, new_task_factor, reading,
-                         action_weight, presses_per_trial, red_button, interest_signal,
-                         interest_per, noisy_button, physics, seed, progress):
-    """The arguments of `run_goal_oriented`, checked and normalised, as a dict."""
+def _check_run_arguments(n_seeds, n_trials, presses_per_trial, red_button, noisy_button,
+                         physics, seed, settings):
+    """The run's own arguments (its learner's `settings` are checked already), checked
+    and normalised, with the settings' values, as the result's `settings` dict; the
+    run's memory is checked too."""
     checked = dict(
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
         n_trials=_validate.integer_at_least("n_trials", n_trials, 1),
-        epsilon=_validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0),
-        window=_validate.integer_at_least("window", window, 2),
-        new_task_factor=_validate.in_closed_interval("new_task_factor", new_task_factor,
-                                                     0.0, 1.0),
-        reading=_validate.one_of("reading", reading, interest.READINGS),
-        action_weight=_validate.positive("action_weight", action_weight),
-        presses_per_trial=_validate.integer_at_least("presses_per_trial",
-                                                     presses_per_trial, 1),
+        presses_per_trial=buttons.PRESSES_PER_TRIAL.check(presses_per_trial,
+                                                          "presses_per_trial"),
         red_button=buttons.check_red_button(red_button),
-        interest=_validate.one_of("interest", interest_signal, interest.SIGNALS),
-        interest_per=_validate.one_of("interest_per", interest_per,
-                                      goal_oriented.INTEREST_PER),
         noisy_button=_validate.boolean("noisy_button", noisy_button),
         physics=_validate.boolean("physics", physics),
         seed=_validate.root_seed("seed", seed))
-    _validate.boolean("progress", progress)
+    checked = {**checked, **settings.as_dict()}
     check_memory("run_goal_oriented", {"n_seeds": checked["n_seeds"],
                                        "n_trials": checked["n_trials"]},
                  memory_needed(checked["n_seeds"], **_memory_arguments(checked))[0])
@@ -226,7 +220,7 @@ def memory_needed(n_rows, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PE
                         + LOOP_ROW_BYTES)
     slopes = 8 * (window + 1) ** 2 * window  # the interest's table of slope weights
     presses = n_trials * presses_per_trial
-    streams = _streams.memory_bound(n_rows, presses * goal_oriented.DRAWS_PER_CHOICE)
+    streams = _streams.memory_bound(n_rows, presses * action_selection.DRAWS_PER_CHOICE)
     if physics:  # a simulated console per row
         consoles = n_rows * PHYSICS_SCENE_BYTES
     else:  # the tabular consoles' numbers: a layout per trial, one per noisy press
@@ -234,20 +228,15 @@ def memory_needed(n_rows, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PE
     return FIXED_BYTES + kept + making + learner + slopes + streams + consoles, kept
 
 
+@with_settings(goal_oriented.GoalOrientedSettings)
 def run_goal_oriented(n_seeds=100, n_trials=100,
-                      epsilon=goal_oriented.DEFAULT_EPSILON,
-                      window=interest.DEFAULT_WINDOW,
-                      new_task_factor=interest.DEFAULT_NEW_TASK_FACTOR,
-                      reading="progress",
-                      action_weight=predictors.DEFAULT_ACTION_WEIGHT,
-                      presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
+                      presses_per_trial=buttons.PRESSES_PER_TRIAL.default,
                       red_button=buttons.DEFAULT_RED_BUTTON,
-                      interest="learning_progress",
-                      interest_per="task",
                       noisy_button=False,
                       physics=False,
                       seed=0,
-                      progress=True):
+                      progress=True,
+                      settings=None):
     """Runs the goal-oriented learner on the button console, all seeds at once.
 
     Each run has a console, a nearest-neighbour predictor, an interest module and an
@@ -258,18 +247,8 @@ def run_goal_oriented(n_seeds=100, n_trials=100,
     Args:
       n_seeds: number of independent runs (>= 1).
       n_trials: trials per run (>= 1).
-      epsilon: probability of a random press, in [0, 1].
-      window: errors in the progress slope (k), >= 2 (and in the mean of the
-        prediction-error signal).
-      new_task_factor: share of the mean interest given to a task seen once, [0, 1].
-      reading: "progress" (errors going down are interesting) or "literal".
-      action_weight: the predictor's cost of a different button (> 0).
-      presses_per_trial: presses per trial (>= 1).
+      presses_per_trial: presses per trial (see `icm.envs.buttons.PRESSES_PER_TRIAL`).
       red_button: the button that is always red (0-4).
-      interest: the interest signal: "learning_progress" (the paper's, default),
-        "prediction_error", "novelty" or "random" (see `icm.learners.interest`).
-      interest_per: "task" (the paper's, default) or "region" (each button's own
-        interest); see `icm.learners.goal_oriented.INTEREST_PER`.
       noisy_button: add the noisy button, action 5: never lit, each press opens the red
         box, the green box or neither, 1/3 each (on the tabular console and on the
         simulated one alike).
@@ -280,6 +259,9 @@ def run_goal_oriented(n_seeds=100, n_trials=100,
         is drawn from it) or None (fresh entropy); run i's seeds depend only on it
         and i. The integer used is kept in `settings["seed"]`.
       progress: show a progress bar over the trials when the run lasts over a second.
+      settings: the learner's settings, a
+        `icm.learners.goal_oriented.GoalOrientedSettings` (or give them one by one as
+        keyword arguments, listed below).
 
     Returns:
       A `GoalOrientedResult`.
@@ -289,16 +271,15 @@ def run_goal_oriented(n_seeds=100, n_trials=100,
         this machine's memory.
     """
     return run_goal_oriented_grid(
-        [{}], n_seeds=n_seeds, n_trials=n_trials, epsilon=epsilon, window=window,
-        new_task_factor=new_task_factor, reading=reading, action_weight=action_weight,
-        presses_per_trial=presses_per_trial, red_button=red_button, interest=interest,
-        interest_per=interest_per, noisy_button=noisy_button, physics=physics, seed=seed,
-        progress=progress)[0]
+        [{}], n_seeds=n_seeds, n_trials=n_trials, presses_per_trial=presses_per_trial,
+        red_button=red_button, noisy_button=noisy_button, physics=physics, seed=seed,
+        progress=progress, settings=settings)[0]
 
 
-GRID_ARGUMENTS = ("epsilon", "window", "new_task_factor", "reading", "action_weight")
-"""The arguments that may differ between the settings of one `run_goal_oriented_grid`
-(the batched learner takes them per row)."""
+GRID_ARGUMENTS = _grid.grid_arguments(run_goal_oriented)
+"""The settings that may differ between the settings of one `run_goal_oriented_grid`
+(the batched learner takes them per row): those of
+`icm.learners.goal_oriented.GoalOrientedSettings` that are per row."""
 
 
 def run_goal_oriented_grid(grid, **arguments):
@@ -314,7 +295,7 @@ def run_goal_oriented_grid(grid, **arguments):
       grid: a non-empty list of dicts, each a setting of some of `GRID_ARGUMENTS`
         (those left out take their value from `arguments`, or the default).
       **arguments: any other arguments of `run_goal_oriented`, the same for every
-        setting (n_seeds, n_trials, seed, progress, ...).
+        setting (n_seeds, n_trials, seed, progress, learner settings, ...).
 
     Returns:
       A list of `GoalOrientedResult`, one per setting, in the grid's order.
@@ -323,12 +304,8 @@ def run_goal_oriented_grid(grid, **arguments):
       ValueError: for a malformed grid, a setting of an argument not in
         `GRID_ARGUMENTS`, or any value `run_goal_oriented` refuses.
     """
-    full, progress = _grid.check_grid(grid, GRID_ARGUMENTS, run_goal_oriented, arguments)
-    settings = [_check_run_arguments(
-        a["n_seeds"], a["n_trials"], a["epsilon"], a["window"], a["new_task_factor"],
-        a["reading"], a["action_weight"], a["presses_per_trial"], a["red_button"],
-        a["interest"], a["interest_per"], a["noisy_button"], a["physics"], a["seed"],
-        progress) for a in full]
+    blocks, others, progress = _grid.check_settings_grid(grid, run_goal_oriented, arguments)
+    settings = [_check_run_arguments(**others, settings=block) for block in blocks]
     first, n = settings[0], settings[0]["n_seeds"]
     if len(settings) > 1:  # the settings' rows side by side, the longest window for all
         check_memory("run_goal_oriented_grid", {"settings": len(settings), "n_seeds": n,
@@ -346,10 +323,9 @@ def run_goal_oriented_grid(grid, **arguments):
                                                 first["noisy_button"])
     else:
         env = buttons.ButtonConsoleBatch(env_seeds, red_button, first["noisy_button"])
-    rows = {name: _grid.per_row(settings, name, n) for name in GRID_ARGUMENTS}
     agent = goal_oriented.GoalOrientedBatch(
         agent_seeds, np.array(buttons.layouts(red_button)), buttons.EFFECTS, env.n_actions,
-        interest=first["interest"], interest_per=first["interest_per"], **rows)
+        settings=goal_oriented.GoalOrientedSettings.stack(blocks, n))
     result = _play(first, env, agent, first["n_trials"], presses, red_button, progress)
     return _grid.split(result, settings, n)
 
@@ -403,37 +379,6 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progres
     share = presses / presses_per_trial
     return GoalOrientedResult(settings, interest_out, error_out, mastery, practice, share,
                               action_interest)
-
-
-def check_results(name, results, cls):
-    """Returns `results` if it is a non-empty dict {label: `cls` instance}, else raises
-    (an ArgumentTypeError naming the label of a wrong entry)."""
-    if not isinstance(results, dict) or not results:
-        raise _validate.ArgumentTypeError(
-            f"{name} must be a non-empty dict {{label: {cls.__name__}}}, got "
-            f"{_validate.show(results)}")
-    for label, result in results.items():
-        if not isinstance(label, str):
-            raise _validate.ArgumentTypeError(f"{name} must be labelled by strings (they "
-                                              f"become column or legend labels), got the "
-                                              f"label {label!r}")
-        _validate.instance(f"{name}[{label!r}]", result, cls)
-    return results
-
-
-def measures_table(results, measures):
-    """A Markdown table with one column per run and one row per measure: narrow enough
-    for a book page however many measures there are.
-
-    Args:
-      results: a dict {column label: result}.
-      measures: a list of (row label, function of a result giving the cell's text).
-    """
-    labels = list(results)
-    lines = ["| | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
-    for name, cell in measures:
-        lines.append(f"| {name} | " + " | ".join(cell(r) for r in results.values()) + " |")
-    return "\n".join(lines)
 
 
 def comparison_table(results):

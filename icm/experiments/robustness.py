@@ -16,12 +16,12 @@ sample of seeds, so both are decided from the share's 95% Wilson interval
 """
 
 import dataclasses
-import inspect
 import statistics
 
 import numpy as np
 
 from icm import _validate
+from icm.envs import buttons
 from icm.experiments.actor_critic import run_actor_critic
 from icm.experiments.goal_oriented import TASKS, run_goal_oriented
 from icm.experiments.rod_toppling import run_rod_toppling
@@ -44,12 +44,13 @@ VERDICTS = ("holds", "unclear", "fails")
 
 
 @dataclasses.dataclass(frozen=True)
-class Setting:
-    """An unpublished setting and the values a sweep tries.
+class Sweep:
+    """An unpublished setting and the values a sweep tries, from its
+    `icm._settings.Setting` (whose `swept` are the values).
 
     Attributes:
       name: the run function's argument.
-      label: what the figures and tables call it.
+      label: what the figures and tables call it (the setting's label).
       default: the library's value (the run function's default), one of `values`.
       values: the grid, in order.
     """
@@ -84,7 +85,7 @@ class Study:
       title: the learner and its task, in words.
       run_fn: the experiment (`run_goal_oriented`, ...).
       fixed: arguments held fixed in every run (the run length of its chapter).
-      settings: the swept settings (`Setting` objects).
+      settings: the swept settings (`Sweep` objects).
       claims: the measured claims (`Claim` objects).
       per_seed: the function that turns a run into one dict per seed with a boolean
         column per claim (the `per_seed` argument of `sweep`).
@@ -99,7 +100,7 @@ class Study:
     per_seed: object
 
     def setting(self, name):
-        """The `Setting` called `name`."""
+        """The `Sweep` of setting `name`."""
         names = [s.name for s in self.settings]
         return self.settings[names.index(_validate.one_of("setting", name, tuple(names)))]
 
@@ -175,35 +176,35 @@ def rod_claims(result):
     return rows
 
 
-def _default(run_fn, name):
-    return inspect.signature(run_fn).parameters[name].default
+WORLD_SETTINGS = {"presses_per_trial": buttons.PRESSES_PER_TRIAL}
+"""The settings of the worlds (not of a learner) that a study may sweep."""
+
+
+def _sweep(run_fn, name):
+    """The `Sweep` of setting `name` of `run_fn` (a learner setting, or one of
+    `WORLD_SETTINGS`), from its `icm._settings.Setting`."""
+    specs = {**WORLD_SETTINGS, **run_fn.settings_class.specs()}
+    spec = specs[name]
+    if spec.swept is None:
+        raise ValueError(f"{name} is not one of the settings the robustness study sweeps "
+                         f"(its Setting has no swept values)")
+    if spec.default not in spec.swept:
+        raise ValueError(f"the default {name} {spec.default!r} must be on its grid "
+                         f"{spec.swept}")
+    return Sweep(name, spec.label, spec.default, tuple(spec.swept))
 
 
 def _study(name, title, run_fn, fixed, settings, claims, per_seed):
-    settings = tuple(Setting(n, label, _default(run_fn, n), tuple(values))
-                     for n, label, values in settings)
-    for s in settings:
-        if s.default not in s.values:
-            raise ValueError(f"{name}: the default {s.name} {s.default!r} must be on its "
-                             f"grid {s.values}")
-    return Study(name, title, run_fn, dict(fixed), settings,
+    return Study(name, title, run_fn, dict(fixed),
+                 tuple(_sweep(run_fn, n) for n in settings),
                  tuple(Claim(*c) for c in claims), per_seed)
 
-
-ACTION_WEIGHTS = (1.0, 1.5, 2.0, 3.0, 10.0)
-"""The predictor's cost of a different button, on both button learners' grids. Two
-layouts differ in two lights, so what changes is whether the weight is below, at or
-above 2 (and, for the actor-critic, whose states also hold the boxes, 1 and 3)."""
-PRESSES = (1, 2, 3, 5)
-"""Presses per trial on both button learners' grids."""
 
 STUDIES = {
     "goal_oriented": _study(
         "goal_oriented", "goal-oriented learner, button console (Figure 5)",
         run_goal_oriented, {"n_trials": 60},
-        [("action_weight", "predictor's action weight", ACTION_WEIGHTS),
-         ("presses_per_trial", "presses per trial", PRESSES),
-         ("reading", "reading of the interest", ("progress", "literal"))],
+        ("action_weight", "presses_per_trial", "reading"),
         [("red_first", "red mastered first", CLAIM_SHARE),
          ("interest_later", "interest moves to green later", MAJORITY),
          ("green_mastered", "green mastered too", CLAIM_SHARE)],
@@ -211,17 +212,14 @@ STUDIES = {
     "actor_critic": _study(
         "actor_critic", "intrinsic actor-critic, button console (Figure 6)",
         run_actor_critic, {"n_trials": 100},
-        [("action_weight", "predictor's action weight", ACTION_WEIGHTS),
-         ("presses_per_trial", "presses per trial", PRESSES),
-         ("variant", "TD error", ("standard", "printed_td"))],
+        ("action_weight", "presses_per_trial", "variant"),
         [("red_first", "red predicted well first", CLAIM_SHARE),
          ("green_learned", "green predicted well too", CLAIM_SHARE)],
         actor_critic_claims),
     "rod_toppling": _study(
         "rod_toppling", "Q-learner on the rods (Figure 7)",
         run_rod_toppling, {"n_episodes": 300},
-        [("initial_q", "initial Q", (0.0, 0.01, 0.1, 0.2, 1.0)),
-         ("epsilon", "epsilon", (0.0, 0.05, 0.1, 0.3))],
+        ("initial_q", "epsilon"),
         [("red_toppled_first", "red toppled first", CLAIM_SHARE),
          ("red_first", "red predicted well first", CLAIM_SHARE),
          ("blue_found", "blue found", CLAIM_SHARE)],

@@ -7,11 +7,12 @@ import dataclasses
 import numpy as np
 
 from icm import _streams, _validate
+from icm._settings import with_settings
 from icm.envs import rods
 from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES, check_memory
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import run_seeds
-from icm.learners import interest, predictors, q_learning
+from icm.learners import action_selection, interest, predictors, q_learning
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
                        first_from_which)
 
@@ -284,10 +285,11 @@ def _median_of_found(episodes):
     return float(np.median(found)) if found.size else float("nan")
 
 
-def _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma, predictor_lr,
-                         initial_q, reward, window, wobbly_rod, physics, start_cell,
-                         max_moves, snapshot_episodes, seed, first_run, progress):
-    """The arguments of `run_rod_toppling`, checked and normalised, as a dict."""
+def _check_run_arguments(n_seeds, n_episodes, wobbly_rod, physics, start_cell, max_moves,
+                         snapshot_episodes, seed, first_run, progress, settings):
+    """The run's own arguments (its learner's `settings` are checked already), checked
+    and normalised, with the settings' values, as the result's `settings` dict; the
+    run's memory is checked too."""
     n_episodes = _validate.integer_at_least("n_episodes", n_episodes, 1)
     if isinstance(snapshot_episodes, (str, bytes)) or \
             not hasattr(snapshot_episodes, "__iter__"):
@@ -299,13 +301,6 @@ def _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma, predictor_l
     checked = dict(
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
         n_episodes=n_episodes,
-        epsilon=_validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0),
-        alpha=_validate.learning_rate("alpha", alpha),
-        gamma=_validate.in_closed_interval("gamma", gamma, 0.0, 1.0),
-        predictor_lr=_validate.learning_rate("predictor_lr", predictor_lr),
-        initial_q=_validate.non_negative("initial_q", initial_q),
-        reward=_validate.one_of("reward", reward, q_learning.REWARDS),
-        window=_validate.integer_at_least("window", window, 2),
         wobbly_rod=_validate.boolean("wobbly_rod", wobbly_rod),
         physics=_validate.boolean("physics", physics),
         start_cell=rods.check_start_cell(start_cell, rods.load_topple_map()["standable"]),
@@ -314,6 +309,7 @@ def _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma, predictor_l
         seed=_validate.root_seed("seed", seed),
         first_run=_validate.integer("first_run", first_run, 0, _validate.MAX_SEED))
     _validate.boolean("progress", progress)
+    checked = {**checked, **settings.as_dict()}
     check_memory("run_rod_toppling", {"n_seeds": checked["n_seeds"], "n_episodes": n_episodes},
                  memory_needed(checked["n_seeds"], n_episodes, checked["reward"],
                                checked["window"], checked["wobbly_rod"], checked["physics"],
@@ -358,7 +354,7 @@ def memory_needed(n_rows, n_episodes, reward="prediction_error", window=interest
     elif reward != "prediction_error":
         learner += n_rows * 8 * pairs * ((window if reward == "learning_progress" else 1) + 1)
     moves = n_episodes * max_moves  # at most
-    streams = _streams.memory_bound(n_rows, moves * q_learning.DRAWS_PER_CHOICE)
+    streams = _streams.memory_bound(n_rows, moves * action_selection.DRAWS_PER_CHOICE)
     if physics:  # a simulated table per row
         tables = n_rows * PHYSICS_SCENE_BYTES
     else:  # the tabular tables' numbers: one a move beside the wobbly rod
@@ -366,14 +362,8 @@ def memory_needed(n_rows, n_episodes, reward="prediction_error", window=interest
     return FIXED_BYTES + kept + making + learner + streams + tables, kept
 
 
+@with_settings(q_learning.QLearnerSettings)
 def run_rod_toppling(n_seeds=100, n_episodes=300,
-                     epsilon=q_learning.DEFAULT_EPSILON,
-                     alpha=q_learning.DEFAULT_ALPHA,
-                     gamma=q_learning.DEFAULT_GAMMA,
-                     predictor_lr=predictors.DEFAULT_LINEAR_LR,
-                     initial_q=q_learning.DEFAULT_INITIAL_Q,
-                     reward="prediction_error",
-                     window=interest.DEFAULT_WINDOW,
                      wobbly_rod=False,
                      physics=False,
                      start_cell=rods.DEFAULT_START_CELL,
@@ -381,7 +371,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
                      snapshot_episodes=(),
                      seed=0,
                      first_run=0,
-                     progress=True):
+                     progress=True,
+                     settings=None):
     """Runs the curious Q-learner on the rods, once per seed.
 
     Each run builds the rod environment (`icm.envs.load("rods", physics=...)`), a
@@ -393,15 +384,6 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
     Args:
       n_seeds: number of independent runs (>= 1).
       n_episodes: episodes per run (>= 1).
-      epsilon: probability of a random move, in [0, 1].
-      alpha: Q-learning step size, in (0, 1].
-      gamma: discount, in [0, 1].
-      predictor_lr: the linear predictor's learning rate, in (0, 1] (paper: 0.2).
-      initial_q: Q of every pair before it is tried (>= 0).
-      reward: the intrinsic reward: "prediction_error" (the paper's, default),
-        "learning_progress", "novelty" or "random" (see
-        `icm.learners.q_learning.REWARDS`).
-      window: errors in the learning-progress slope (>= 2).
       wobbly_rod: add the wobbly rod, which a move beside it topples half of the time
         (see `icm.envs.rods.rules`); the predictor then predicts three rods.
       physics: False for the tabular twin, True for the simulated iCub (each move
@@ -418,6 +400,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
         first_run..first_run+n_seeds-1 of the root seed, so that one run of a large
         batch can be rerun alone (`n_seeds=1, first_run=i`).
       progress: show a progress bar when the run lasts over a second.
+      settings: the learner's settings, a `icm.learners.q_learning.QLearnerSettings`
+        (or give them one by one as keyword arguments, listed below).
 
     Returns:
       A `RodTopplingResult`.
@@ -426,36 +410,41 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
       ValueError: for any argument outside its allowed range, or a run too large for
         this machine's memory.
     """
-    settings = _check_run_arguments(n_seeds, n_episodes, epsilon, alpha, gamma,
-                                    predictor_lr, initial_q, reward, window, wobbly_rod,
-                                    physics, start_cell, max_moves, snapshot_episodes, seed,
-                                    first_run, progress)
+    learner = settings
+    settings = _check_run_arguments(n_seeds, n_episodes, wobbly_rod, physics, start_cell,
+                                    max_moves, snapshot_episodes, seed, first_run, progress,
+                                    learner)
+    n_seeds, n_episodes, max_moves = (settings["n_seeds"], settings["n_episodes"],
+                                      settings["max_moves"])
     extra, seed, start_cell = (settings["snapshot_episodes"], settings["seed"],
                                settings["start_cell"])
     names = MOMENTS + tuple(f"episode {e}" for e in extra)
     truth = true_outcomes()
 
     seeds = run_seeds(seed, n_seeds, 2, first=first_run)
-    env_seeds = [s[0] for s in seeds]
+    env_seeds, agent_seeds = [s[0] for s in seeds], [s[1] for s in seeds]
     n_rods = len(rods.rod_names(wobbly_rod))
-    agent = q_learning.QLearnerBatch([s[1] for s in seeds], N_STATES, N_ACTIONS, n_rods,
-                                     alpha=alpha, gamma=gamma, epsilon=epsilon,
-                                     initial_q=initial_q, predictor_lr=predictor_lr,
-                                     reward=reward, window=window)
-    if physics:
+    if physics:  # the physics is the cost: the per-agent learners play it
         env = rods.PhysicsRodTableBatch(n_seeds, start_cell, wobbly_rod, env_seeds)
-        played = play_episodes(env, agent, n_episodes, max_moves, extra, progress)
+        agents = [q_learning.QLearner.from_settings(N_STATES, N_ACTIONS, n_rods, learner, s)
+                  for s in agent_seeds]
+        played = play_episodes(env, agents, n_episodes, max_moves, extra, progress)
     else:
         from icm.experiments import _rods_kernel  # here: it loads Numba
 
+        _rods_kernel.check_reward(learner.reward)
         env = rods.RodTableBatch(n_seeds, start_cell, wobbly_rod, env_seeds)
         bar = progress_bar(None, n_seeds * n_episodes, "Q-learner on the rods", progress,
                            unit="episode")
+        q = np.full((n_seeds, N_STATES, N_ACTIONS), float(learner.initial_q))
+        predictions = np.zeros((n_seeds, N_STATES, N_ACTIONS, n_rods))
+        last_error = np.full((n_seeds, N_STATES, N_ACTIONS), np.nan)  # nan: untried
         raw = _rods_kernel.play_all(
-            agent.streams, agent.q, agent.predictor.predictions, agent.predictor.last_error,
-            epsilon, alpha, gamma, predictor_lr, env.next_cell, env.topples,
-            rods.cell_number(start_cell), max_moves, n_episodes, toppling_pairs(), extra,
-            WELL_PREDICTED_ERROR, bar=bar, reward=reward, window=window,
+            _streams.Streams(agent_seeds), q, predictions, last_error,
+            learner.epsilon, learner.alpha, learner.gamma, learner.predictor_lr,
+            env.next_cell, env.topples, rods.cell_number(start_cell), max_moves, n_episodes,
+            toppling_pairs(), extra, WELL_PREDICTED_ERROR, bar=bar, reward=learner.reward,
+            window=learner.window,
             wobbles=env.wobbles if wobbly_rod else None, env_streams=env.streams)
         if bar is not None:
             bar.close()
@@ -488,9 +477,10 @@ def toppling_pairs():
     return np.array(cells), np.array(actions), np.array(which)
 
 
-def play_episodes(env, agent, n_episodes, max_moves, snapshot_episodes=(), progress=False):
-    """Plays `n_episodes` episodes in every row of a batched rod table and Q-learner
-    (`icm.learners.q_learning.QLearnerBatch`), and summarises them (`summarize`).
+def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), progress=False):
+    """Plays `n_episodes` episodes of each per-agent learner of `agents` (`QLearner`s,
+    one per row of `env`, a batched rod table such as the physics one), and summarises
+    them (`summarize`).
 
     The rows move independently: each acts at every iteration until it has played its
     episodes, starting a new episode (hand over the start cell) as soon as its last one
@@ -500,30 +490,39 @@ def play_episodes(env, agent, n_episodes, max_moves, snapshot_episodes=(), progr
     """
     from icm.experiments import _rods_kernel  # here: it loads Numba
 
-    n = agent.q.shape[0]
-    n_states, n_actions = agent.q.shape[1:]
-    n_rods = agent.predictor.predictions.shape[-1]
+    n = len(agents)
+    n_states, n_actions = agents[0].n_states, agents[0].n_actions
+    n_rods = agents[0].predictor.n_outputs
     raw = {"toppled": np.full((n, n_episodes), -1, dtype=np.int64),
            "length": np.zeros((n, n_episodes), dtype=np.int64),
            "errors": np.zeros((n, n_episodes, n_rods))}
     found = np.full((n, n_states, n_actions, n_rods), n_episodes, dtype=np.int64)
     record = _rods_kernel.recorder(n, n_episodes, n_states, n_actions, n_rods,
                                    toppling_pairs(), snapshot_episodes, WELL_PREDICTED_ERROR)
+    # The learners as tables, filled in for a row when its episode ends (what
+    # record_episode reads).
+    q = np.zeros((n, n_states, n_actions))
+    predictions = np.zeros((n, n_states, n_actions, n_rods))
+    last_error = np.full((n, n_states, n_actions), np.nan)
+    states = list(range(n_states))
     state = np.full(n, env.start)
     episode = np.zeros(n, dtype=np.int64)
     moves = np.zeros(n, dtype=np.int64)
     error_sum = np.zeros((n, n_rods))
     active = np.arange(n)
     env.new_episodes(active)
-    rods_range = np.arange(n_rods)
     bar = progress_bar(None, n * n_episodes, "Q-learner on the rods", progress, unit="episode")
     while active.size:
         cells = state[active]
-        actions = agent.select_actions(active, cells)
+        actions = np.array([agents[r].select_action(int(c)) for r, c in zip(active, cells)],
+                           dtype=np.int64)
         next_cells, toppled = env.move(active, cells, actions)
-        observed = (toppled[:, None] == rods_range).astype(float)
-        discount = (toppled < 0).astype(float)  # 0 when a rod fell: nothing follows
-        error_sum[active] += agent.learn(active, cells, actions, observed, next_cells, discount)
+        for r, c, a, after, rod in zip(active.tolist(), cells.tolist(), actions.tolist(),
+                                       next_cells.tolist(), toppled.tolist()):
+            observed = [1.0 if rod == i else 0.0 for i in range(n_rods)]
+            agents[r].learn(c, a, observed, after, 0.0 if rod >= 0 else 1.0)
+            for i, error in enumerate(agents[r].last_errors):  # in order, as the loop adds
+                error_sum[r, i] += error
         moves[active] += 1
         state[active] = next_cells
         ended = (toppled >= 0) | (moves[active] >= max_moves)
@@ -537,9 +536,14 @@ def play_episodes(env, agent, n_episodes, max_moves, snapshot_episodes=(), progr
         pairs = (done[hit], cells[ended][hit], actions[ended][hit], top[hit])
         found[pairs] = np.minimum(found[pairs], ep[hit])
         for row, row_episode, rod in zip(done.tolist(), ep.tolist(), top.tolist()):
-            _rods_kernel.record_episode(row, row_episode, rod, agent.q,
-                                        agent.predictor.predictions,
-                                        agent.predictor.last_error, found, record)
+            learner = agents[row]
+            q[row] = learner.q
+            predictions[row] = learner.predictor.table(states)
+            last_error[row] = [[np.nan if e is None else e
+                                for e in (learner.predictor.last_error(s, a)
+                                          for a in range(n_actions))] for s in states]
+            _rods_kernel.record_episode(row, row_episode, rod, q, predictions, last_error,
+                                        found, record)
         state[done], moves[done], error_sum[done] = env.start, 0, 0.0
         episode[done] += 1
         env.new_episodes(done)

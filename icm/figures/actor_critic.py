@@ -10,7 +10,7 @@ import numpy as np
 from icm import _validate
 from icm.experiments import actor_critic as _actor_critic
 from icm.experiments.actor_critic import ActorCriticResult
-from icm.experiments.goal_oriented import check_results
+from icm.experiments.results import check_results
 from icm.figures._common import (TASK_COLOURS, check_axes, check_result, check_title,
                                  new_figure, plot_mean_band)
 from icm.learners.actor_critic import ActorCritic
@@ -208,11 +208,6 @@ def figure6(result, ax=None, title=None):
     ax.set_title(title, fontsize=10)
     ax.legend(frameon=False)
     return fig
-
-
-def figure6_for(**settings):
-    """Runs `run_actor_critic(**settings)` and draws Figure 6 (used by the widget)."""
-    return figure6(_actor_critic.run_actor_critic(**settings))
 
 
 def figure6_grid(results, ncols=2):

@@ -10,7 +10,7 @@ from icm import _validate
 from icm.envs import buttons
 from icm.experiments import goal_babbling as _babbling
 from icm.experiments.goal_babbling import GoalBabblingResult
-from icm.experiments.goal_oriented import check_results
+from icm.experiments.results import check_results
 from icm.figures._common import check_result, new_figure, plot_mean_band
 
 _MADE_BY = "icm.experiments.run_goal_babbling"

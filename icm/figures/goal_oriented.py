@@ -3,7 +3,8 @@
 import numpy as np
 
 from icm.experiments import goal_oriented as _goal_oriented
-from icm.experiments.goal_oriented import GoalOrientedResult, check_results
+from icm.experiments.goal_oriented import GoalOrientedResult
+from icm.experiments.results import check_results
 from icm.figures._common import (TASK_COLOURS, check_axes, check_result, check_title,
                                  new_figure, plot_mean_band)
 
@@ -41,11 +42,6 @@ def figure5(result, ax=None, title=None):
     ax.set_title(title, fontsize=10)
     ax.legend(frameon=False)
     return fig
-
-
-def figure5_for(**settings):
-    """Runs `run_goal_oriented(**settings)` and draws Figure 5 (used by the widget)."""
-    return figure5(_goal_oriented.run_goal_oriented(**settings))
 
 
 def mastery_figure(result):

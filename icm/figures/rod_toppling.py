@@ -13,7 +13,7 @@ import numpy as np
 from icm import _validate
 from icm.envs import rods
 from icm.experiments import rod_toppling as _rod_toppling
-from icm.experiments.goal_oriented import check_results
+from icm.experiments.results import check_results
 from icm.experiments.rod_toppling import RodTopplingResult
 from icm.figures._common import check_result, new_figure, plot_mean_band
 
@@ -281,23 +281,6 @@ def figure7(result, seed=0, reading="all", episode=None):
         bar.ax.tick_params(labelsize=7)
     fig.suptitle(f"Run {seed}, red predicted well read as \"{reading}\"", fontsize=10)
     return fig
-
-
-def figure7_for(episode=None, seed=0, reading="all", **settings):
-    """Runs `run_rod_toppling(n_seeds=1, ...)` and draws its Figure 7, with `episode`
-    as a fourth column (used by the widget).
-
-    Args:
-      episode: an extra episode to show (1..n_episodes), or None.
-      seed: the root seed of the run.
-      reading: "all" or "toppled", as in `figure7`.
-      **settings: other arguments of `run_rod_toppling` (epsilon, alpha, gamma,
-        predictor_lr, initial_q, n_episodes, ...).
-    """
-    extra = () if episode is None else (episode,)
-    result = _rod_toppling.run_rod_toppling(n_seeds=1, seed=seed, snapshot_episodes=extra,
-                                            progress=False, **settings)
-    return figure7(result, seed=0, reading=reading, episode=episode)
 
 
 def _shares(result, value):

@@ -7,32 +7,18 @@ import numpy as np
 
 from icm import _streams, _validate
 from icm.learners._common import check_keys, check_state, check_values, read_observation
-from icm.learners.goal_oriented import DRAWS_PER_CHOICE, epsilon_greedy, epsilon_greedy_rows
-from icm.learners.predictors import (DEFAULT_ACTION_WEIGHT, NearestNeighbourPredictor,
-                                     NearestNeighbourTable)
-
-DEFAULT_TEMPERATURE = 0.2
-"""Softmax temperature. With rewards of 0 or 1 and the default learning rates, one
-surprise raises a preference by 0.5, which makes that button e^(0.5/0.2) = 12 times
-likelier than an untried one: the learner repeats what surprised it, as the paper
-describes, yet still tries the other buttons."""
-DEFAULT_LR_ACTOR = 0.5
-"""Actor learning rate (the paper's lrA; its value is not given)."""
-DEFAULT_LR_CRITIC = 0.5
-"""Critic learning rate (the paper's lrC; its value is not given)."""
-DEFAULT_GAMMA = 0.5
-"""Discount (the paper's gamma; its value is not given). No press changes what the
-next one does (the console shuts the boxes before every press), so a short horizon."""
+from icm.learners import action_selection
+from icm.learners.action_selection import (_softmax, epsilon_greedy, epsilon_greedy_rows,
+                                           softmax)  # noqa: F401 (softmax: its API)
+from icm._settings import Settings, Slider, setting, setting_from, settings_class
+from icm.learners import predictors as _predictors
+from icm.learners.predictors import NearestNeighbourPredictor, NearestNeighbourTable
 
 ACTION_SELECTIONS = ("softmax", "epsilon_greedy")
 """How the actor picks a press from its preferences. The paper's Figure 4 (the
 intrinsic learner) uses a softmax; its section 3.2 gives the extrinsic learner "an
 epsilon-greedy algorithm so that the agent explores". The default is the softmax for
 both; the chapter compares the two on the extrinsic learner."""
-DEFAULT_EPSILON = 0.1
-"""Probability of a uniformly random press with `action_selection="epsilon_greedy"`
-(the paper gives no value)."""
-
 REWARDS = ("intrinsic", "extrinsic")
 """Where the reward comes from: the predictor's errors (Figure 3b) or the environment
 (Figure 3a)."""
@@ -53,47 +39,66 @@ reward on "correct": 1 when the prediction is right (the formula as printed).
 "standard" (the default) is the standard reading of both; "printed" takes both
 formulas as printed; the other two change one at a time. With an extrinsic reward
 only the TD form matters."""
+_RATE = dict(kind="real", low=0.0, high=1.0, low_open=True,
+             slider=Slider(live=(0.05, 1.0, 0.05), grid=(0.1, 0.3, 0.5, 0.7, 0.9)))
 
 
-def softmax(preferences, temperature):
-    """Softmax probabilities exp(p / T) / sum(exp(p / T)), computed without overflow.
+@settings_class
+class ActorCriticSettings(Settings):
+    """The actor-critic's settings (section 3.2, Figures 3 and 4). Each is a
+    `icm._settings.Setting`: see `ActorCriticSettings.specs()` for its range, the
+    paper's value and where it comes from. Values may be one per batch row (arrays) in
+    `ActorCriticBatch`."""
 
-    The largest preference is subtracted before exponentiating, so every exponent is
-    <= 0 and the largest is exactly 0: preferences of 1e6 (or 1e300) give
-    probabilities, not inf / inf.
+    temperature: float = setting(
+        default=0.2, label="softmax temperature", kind="real", low=0.0, low_open=True,
+        source="Figure 4's actor picks by softmax and the paper gives no temperature. With "
+               "rewards of 0 or 1 and the default learning rates, one surprise raises a "
+               "preference by 0.5, which makes that button e^(0.5/0.2) = 12 times likelier "
+               "than an untried one: the learner repeats what surprised it, as the paper "
+               "describes, yet still tries the others",
+        slider=Slider(live=(0.05, 2.0, 0.05), grid=(0.1, 0.2, 0.3, 0.4, 0.5)))
+    lr_actor: float = setting(
+        default=0.5, label="the actor's learning rate (lrA)",
+        source="Figure 4 names lrA and gives no value: the book takes 0.5", **_RATE)
+    lr_critic: float = setting(
+        default=0.5, label="the critic's learning rate (lrC)",
+        source="Figure 4 names lrC and gives no value: the book takes 0.5", **_RATE)
+    gamma: float = setting(
+        default=0.5, label="discount (gamma)", kind="real", low=0.0, high=1.0,
+        source="equation 2's gamma has no value in the paper: the book takes 0.5, a short "
+               "horizon, since no press changes what the next one does (the console shuts "
+               "the boxes before every press)")
+    reward: str = setting(
+        default="intrinsic", label="where the reward comes from", kind="choice",
+        choices=REWARDS, paper="intrinsic", per_row=False,
+        source="Figure 3b and Figure 4: the reward is internal, from the predictor; 3a is "
+               "the extrinsic learner")
+    variant: str = setting(
+        default="standard", label="reading of the TD error and reward formulas",
+        kind="choice", choices=tuple(VARIANTS),
+        source="equation 2 and Figure 4's reward, as printed, contradict the text; the "
+               "book takes the standard readings and shows all four (`VARIANTS`)",
+        swept=("standard", "printed_td"))
+    action_selection: str = setting(
+        default="softmax", label="how the actor picks a press", kind="choice",
+        choices=ACTION_SELECTIONS, paper="softmax", per_row=False,
+        source='Figure 4 (the intrinsic learner) uses a softmax; section 3.2 gives the '
+               'extrinsic learner "an epsilon-Greedy algorithm"')
+    epsilon: float = setting(
+        default=0.1, label="probability of a random press with epsilon-greedy selection",
+        kind="real", low=0.0, high=1.0,
+        source="section 3.2 names an epsilon-greedy rule and gives no epsilon: the book "
+               "takes 0.1")
+    action_weight: float = setting_from(_predictors.ACTION_WEIGHT)
+    tie: str = setting_from(_predictors.TIE)
 
-    Args:
-      preferences: a non-empty sequence of finite numbers.
-      temperature: T, a finite number > 0; the smaller, the greedier.
 
-    Returns:
-      A float numpy array of probabilities, same length as `preferences`, summing to 1.
-
-    Raises:
-      ValueError: for an empty or non-finite `preferences` or a bad temperature.
-    """
-    temperature = _validate.positive("temperature", temperature)
-    p = [float(x) for x in np.asarray(preferences, dtype=float).ravel()]
-    if not p or not all(map(math.isfinite, p)) or np.ndim(preferences) != 1:
-        raise ValueError(f"preferences must be a non-empty sequence of finite numbers, "
-                         f"got {preferences!r}")
-    return np.array(_softmax(p, temperature))
-
-
-def _softmax(preferences, temperature):
-    """`softmax` on a list of floats, unchecked (the learner's inner loop). numpy's
-    exp, and a sum in order, exactly as `ActorCriticBatch` computes it."""
-    p = np.asarray(preferences, dtype=float)
-    # (p - top) <= 0, so exp never overflows; a difference that overflows to -inf
-    # (preferences 1e308 apart) gives exp 0.0, as it should.
-    with np.errstate(over="ignore"):
-        weights = np.exp((p - p.max()) / temperature)
-    total = 0.0
-    for w in weights.tolist():  # >= 1: the top preference contributes exp(0) = 1
-        total += w
-    if not math.isfinite(total):  # an infinite or NaN preference: a diverged actor
-        raise FloatingPointError(f"preferences must be finite, got {preferences!r}")
-    return weights / total
+DEFAULT_TEMPERATURE = ActorCriticSettings.spec("temperature").default
+DEFAULT_LR_ACTOR = ActorCriticSettings.spec("lr_actor").default
+DEFAULT_LR_CRITIC = ActorCriticSettings.spec("lr_critic").default
+DEFAULT_GAMMA = ActorCriticSettings.spec("gamma").default
+DEFAULT_EPSILON = ActorCriticSettings.spec("epsilon").default
 
 
 def _check_finite(td_error):
@@ -157,16 +162,16 @@ class ActorCritic:
                  effect_key="boxes", effect_at_rest=None, action_selection="softmax",
                  epsilon=DEFAULT_EPSILON, seed=None):
         self.n_actions = _validate.integer_at_least("n_actions", n_actions, 1)
-        self.temperature = _validate.positive("temperature", temperature)
-        self.action_selection = _validate.one_of("action_selection", action_selection,
-                                                 ACTION_SELECTIONS)
-        self.epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
-        self.lr_actor = _validate.learning_rate("lr_actor", lr_actor)
-        self.lr_critic = _validate.learning_rate("lr_critic", lr_critic)
-        self.gamma = _validate.in_closed_interval("gamma", gamma, 0.0, 1.0)
-        self.reward = _validate.one_of("reward", reward, REWARDS)
-        self.variant = _validate.one_of("variant", variant, tuple(VARIANTS))
-        self.td_form, self.reward_on = VARIANTS[variant]
+        spec = ActorCriticSettings.spec
+        self.temperature = spec("temperature").check(temperature)
+        self.action_selection = spec("action_selection").check(action_selection)
+        self.epsilon = spec("epsilon").check(epsilon)
+        self.lr_actor = spec("lr_actor").check(lr_actor)
+        self.lr_critic = spec("lr_critic").check(lr_critic)
+        self.gamma = spec("gamma").check(gamma)
+        self.reward = spec("reward").check(reward)
+        self.variant = spec("variant").check(variant)
+        self.td_form, self.reward_on = VARIANTS[self.variant]
         self.predictor = NearestNeighbourPredictor() if predictor is None else predictor
         if not all(callable(getattr(self.predictor, m, None)) for m in ("predict", "update")):
             raise _validate.ArgumentTypeError(f"predictor must have the methods predict and "
@@ -178,6 +183,17 @@ class ActorCritic:
         self._random = _validate.generator("seed", seed)
         self.critic = {}  # state -> V(state)
         self.actor = {}  # state -> list of preferences, one per action
+
+    @classmethod
+    def from_settings(cls, n_actions, settings=None, seed=None, **arguments):
+        """The actor-critic of `settings` (an `ActorCriticSettings` of one value each;
+        default the library's), with its nearest-neighbour predictor built from them.
+        `arguments` are the constructor's others (state_keys, effect_key, ...)."""
+        settings = ActorCriticSettings() if settings is None else _validate.instance(
+            "settings", settings, ActorCriticSettings)
+        values = settings.as_dict()
+        predictor = NearestNeighbourPredictor(values.pop("action_weight"), values.pop("tie"))
+        return cls(n_actions, predictor=predictor, seed=seed, **values, **arguments)
 
     def state(self, observation):
         """The state of an observation: its `state_keys` entries as one flat tuple."""
@@ -212,7 +228,7 @@ class ActorCritic:
         or, with `action_selection="epsilon_greedy"`, uniformly at random with
         probability epsilon and otherwise one of the most preferred (ties at random).
         Either way it draws `DRAWS_PER_CHOICE` numbers (the softmax uses the first)."""
-        draws = self._random.random(DRAWS_PER_CHOICE)
+        draws = self._random.random(action_selection.DRAWS_PER_CHOICE)
         if self.action_selection == "epsilon_greedy":
             return epsilon_greedy(self.preferences(self.state(observation)), self.epsilon,
                                   draws)
@@ -339,32 +355,42 @@ class ActorCriticBatch:
       effects: the effects (goal states) an action can lead to, [n_effects, entries];
         effect 0 is the one predicted before anything is stored.
       n_actions: actions per state.
-      temperature, lr_actor, lr_critic, gamma, epsilon, action_weight: per row or one
-        for all.
-      reward: "intrinsic" or "extrinsic", per row or one for all.
-      variant: one of `VARIANTS`, per row or one for all.
-      action_selection: "softmax" or "epsilon_greedy", one for all.
+      settings: an `ActorCriticSettings` (default the library's); its per-row
+        settings may hold one value per row (arrays).
+      **values: settings given one by one instead, checked like a new
+        `ActorCriticSettings`.
+
+    Raises:
+      ValueError: for a setting its `icm._settings.Setting` refuses, or settings given
+        both ways.
     """
 
-    def __init__(self, seeds, states, effects, n_actions, temperature=DEFAULT_TEMPERATURE,
-                 lr_actor=DEFAULT_LR_ACTOR, lr_critic=DEFAULT_LR_CRITIC, gamma=DEFAULT_GAMMA,
-                 reward="intrinsic", variant="standard", action_selection="softmax",
-                 epsilon=DEFAULT_EPSILON, action_weight=DEFAULT_ACTION_WEIGHT):
+    def __init__(self, seeds, states, effects, n_actions, settings=None, **values):
         self.streams = _streams.Streams(seeds)
         n = len(self.streams)
-        per_row = lambda value, dtype=float: np.broadcast_to(np.asarray(value, dtype=dtype), (n,))
-        self.temperature, self.lr_actor = per_row(temperature), per_row(lr_actor)
-        self.lr_critic, self.gamma, self.epsilon = per_row(lr_critic), per_row(gamma), per_row(epsilon)
-        self.intrinsic = per_row(reward, object) == "intrinsic"
-        variants = per_row(variant, object)
+        if settings is None:
+            settings = ActorCriticSettings.from_arguments(values, "ActorCriticBatch")
+        elif values:
+            raise ValueError(f"give the settings either as settings or one by one, got "
+                             f"both (settings and {', '.join(values)})")
+        self.settings = _validate.instance("settings", settings, ActorCriticSettings)
+        self.temperature = settings.per_row("temperature", n)
+        self.lr_actor = settings.per_row("lr_actor", n)
+        self.lr_critic = settings.per_row("lr_critic", n)
+        self.gamma = settings.per_row("gamma", n)
+        self.epsilon = settings.per_row("epsilon", n)
+        self.intrinsic = settings.per_row("reward", n) == "intrinsic"
+        variants = settings.per_row("variant", n)
         self.printed_td = np.array([VARIANTS[v][0] == "printed" for v in variants])
         self.reward_if_right = np.array([VARIANTS[v][1] == "correct" for v in variants])
-        self.action_selection = action_selection
+        self.action_selection = settings.action_selection
         self.n_actions = n_actions
         self.rows = np.arange(n)
         self.critic = np.zeros((n, len(states)))
         self.actor = np.zeros((n, len(states), n_actions))
-        self.predictor = NearestNeighbourTable(n, states, n_actions, action_weight)
+        self.predictor = NearestNeighbourTable(n, states, n_actions,
+                                               settings.per_row("action_weight", n),
+                                               tie=settings.per_row("tie", n))
         # Shortcuts of `learn` that give the same numbers: each row's offset in the
         # flattened tables, and whether every row has the same reward and TD error.
         self._state_offset = self.rows * len(states)
@@ -398,7 +424,7 @@ class ActorCriticBatch:
 
     def select_actions(self, states):
         """One action per row, in its state (`states`, [rows])."""
-        draws = self.streams.draw(k=DRAWS_PER_CHOICE)
+        draws = self.streams.draw(k=action_selection.DRAWS_PER_CHOICE)
         preferences = self.actor.reshape(-1, self.n_actions).take(
             self.rows * self.actor.shape[1] + states, axis=0)
         if self.action_selection == "epsilon_greedy":

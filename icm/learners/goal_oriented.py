@@ -10,74 +10,62 @@ the same learner for many agents at once on a finite world (the experiments use 
 and a test shows that the two give identical numbers, seed by seed.
 """
 
-import functools
 import math
 
 import numpy as np
 
 from icm import _streams, _validate
+from icm._settings import Setting, Settings, Slider, setting, setting_from, settings_class
+from icm.learners import interest as _interest
+from icm.learners import predictors as _predictors
 from icm.learners._common import check_keys, check_values, read_observation
-from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW, InterestTable,
-                                   LearningProgressInterest)
-from icm.learners.predictors import (DEFAULT_ACTION_WEIGHT, NearestNeighbourPredictor,
-                                     NearestNeighbourTable)
+from icm.learners import action_selection
+from icm.learners.action_selection import epsilon_greedy, epsilon_greedy_rows
+from icm.learners.interest import InterestTable, make_interest
+from icm.learners.predictors import NearestNeighbourPredictor, NearestNeighbourTable
 
-DEFAULT_EPSILON = 0.1
 INTEREST_PER = ("task", "region")
 """Where interest lives. "task" (the paper's): an action is worth the interest of the
 task it is predicted to achieve (a change of the goal state). "region": an action is
 worth the interest of its own region of the motor space, here the action itself (for
 the buttons: the button), as in curiosity-driven learners that split the
 sensorimotor space into regions (Oudeyer, Kaplan and Hafner 2007)."""
-DRAWS_PER_CHOICE = 3
-"""Uniform numbers an agent draws for each choice, whether it uses them or not: one for
-epsilon, one for the random action, one to break ties. A fixed count keeps one
-agent's stream in step with the same agent in a batch."""
+
+EPSILON = Setting(
+    default=0.1, label="probability of a random press (epsilon)", kind="real", low=0.0,
+    high=1.0,
+    source='section 3.1: the actor uses "a epsilon-greedy selection method", with no '
+           'epsilon given; the book takes 0.1',
+    slider=Slider(live=(0.0, 1.0, 0.05), grid=(0.0, 0.1, 0.2, 0.3, 0.4)))
+"""The goal-oriented actor's epsilon."""
 
 
-def epsilon_greedy(values, epsilon, draws):
-    """The epsilon-greedy choice of one agent: with probability epsilon an action drawn
-    uniformly (`draws[1]`), otherwise one of the best (`draws[2]` breaks ties).
+@settings_class
+class GoalOrientedSettings(Settings):
+    """The goal-oriented learner's settings (section 3.1, Figure 2): the actor's
+    epsilon, the interest module's window, new-task factor and readings, the
+    predictor's action weight and ties. Each is a `icm._settings.Setting`: see
+    `GoalOrientedSettings.specs()` for its range, the paper's value and where it
+    comes from. Values may be one per batch row (arrays) in `GoalOrientedBatch`."""
 
-    Args:
-      values: one number per action.
-      epsilon: probability of a random action.
-      draws: three uniform numbers in [0, 1).
-    """
-    if draws[0] < epsilon:
-        return int(draws[1] * len(values))
-    best = max(values)
-    candidates = [a for a, v in enumerate(values) if v == best]
-    return candidates[int(draws[2] * len(candidates))]
-
-
-@functools.lru_cache(maxsize=None)
-def _best_sets(n_actions):
-    """For every set of best actions, as a bit mask: how many they are, and which is
-    the i-th of them (tables indexed [mask] and [mask, i])."""
-    masks = np.arange(1 << n_actions)
-    members = (masks[:, None] >> np.arange(n_actions)) & 1
-    nth = np.zeros((1 << n_actions, n_actions), dtype=np.int64)
-    for mask in range(1 << n_actions):
-        chosen = np.flatnonzero(members[mask])
-        nth[mask, :len(chosen)] = chosen
-    return (1 << np.arange(n_actions)).astype(float), members.sum(axis=1), nth
+    epsilon: float = setting_from(EPSILON)
+    window: int = setting_from(_interest.WINDOW)
+    new_task_factor: float = setting_from(_interest.NEW_TASK_FACTOR)
+    reading: str = setting_from(_interest.READING)
+    action_weight: float = setting_from(_predictors.ACTION_WEIGHT)
+    interest: str = setting_from(_interest.SIGNAL)
+    interest_per: str = setting(
+        default="task", label="where interest lives", kind="choice", choices=INTEREST_PER,
+        paper="task", per_row=False,
+        source='section 3.1: the interest module "estimate[s] the interest of each goal", a '
+               'task of the goal space; "region" is the chapter "Which curiosity?"\'s '
+               'alternative')
+    new_task_mean: str = setting_from(_interest.NEW_TASK_MEAN)
+    short_history: str = setting_from(_interest.SHORT_HISTORY)
+    tie: str = setting_from(_predictors.TIE)
 
 
-def epsilon_greedy_rows(values, epsilon, draws):
-    """`epsilon_greedy` for many agents: values [rows, actions], epsilon [rows], draws
-    [rows, 3]; returns the actions [rows]. The best actions of a row are a set (a bit
-    mask); tables give how many they are and which is the one picked."""
-    n_actions = values.shape[1]
-    top = values[:, 0]
-    for a in range(1, n_actions):  # column by column: quicker than a row-wise max
-        top = np.maximum(top, values[:, a])
-    powers, count, nth = _best_sets(n_actions)
-    best = ((values == top[:, None]) @ powers).astype(np.int64)  # the set, as a bit mask
-    pick = (draws[:, 2] * count.take(best)).astype(np.int64)  # which of the best
-    greedy = nth.take(best * n_actions + pick)
-    explore = draws[:, 0] < epsilon
-    return greedy + explore * ((draws[:, 1] * n_actions).astype(np.int64) - greedy)
+DEFAULT_EPSILON = EPSILON.default
 
 
 class GoalOrientedAgent:
@@ -108,14 +96,15 @@ class GoalOrientedAgent:
         seed.
     """
 
-    def __init__(self, n_actions, predictor=None, interest=None, epsilon=DEFAULT_EPSILON,
+    def __init__(self, n_actions, predictor=None, interest=None, epsilon=EPSILON.default,
                  interest_per="task", context_keys=("lights",), goal_key="boxes",
                  goal_at_rest=None, seed=None):
         self.n_actions = _validate.integer_at_least("n_actions", n_actions, 1)
-        self.epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
-        self.interest_per = _validate.one_of("interest_per", interest_per, INTEREST_PER)
+        self.epsilon = EPSILON.check(epsilon, "epsilon")
+        self.interest_per = GoalOrientedSettings.spec("interest_per").check(
+            interest_per, "interest_per")
         self.predictor = NearestNeighbourPredictor() if predictor is None else predictor
-        self.interest = LearningProgressInterest() if interest is None else interest
+        self.interest = make_interest() if interest is None else interest
         for name, part, methods in (("predictor", self.predictor, ("predict", "update")),
                                     ("interest", self.interest, ("record", "interest"))):
             if not all(callable(getattr(part, m, None)) for m in methods):
@@ -127,6 +116,20 @@ class GoalOrientedAgent:
         self.goal_at_rest = None if goal_at_rest is None else check_values(
             "goal_at_rest", goal_at_rest)
         self._random = _validate.generator("seed", seed)
+
+    @classmethod
+    def from_settings(cls, n_actions, settings=None, seed=None, **arguments):
+        """The agent of `settings` (a `GoalOrientedSettings` of one value each; default
+        the library's): its predictor, interest module and actor built from them.
+        `arguments` are the constructor's others (context_keys, goal_key, ...)."""
+        settings = GoalOrientedSettings() if settings is None else _validate.instance(
+            "settings", settings, GoalOrientedSettings)
+        predictor = NearestNeighbourPredictor(settings.action_weight, settings.tie)
+        interest = make_interest(settings.interest, settings.window,
+                                 settings.new_task_factor, settings.reading,
+                                 settings.new_task_mean, settings.short_history)
+        return cls(n_actions, predictor, interest, settings.epsilon, settings.interest_per,
+                   seed=seed, **arguments)
 
     def context(self, observation):
         """The predictor's context for an observation: its context entries as a tuple."""
@@ -159,7 +162,7 @@ class GoalOrientedAgent:
 
     def select_action(self, observation):
         """Epsilon-greedy on interest; ties between the most interesting are random."""
-        draws = self._random.random(DRAWS_PER_CHOICE)
+        draws = self._random.random(action_selection.DRAWS_PER_CHOICE)
         return epsilon_greedy(self.action_interests(observation), self.epsilon, draws)
 
     def learn(self, observation, action, next_observation):
@@ -207,26 +210,37 @@ class GoalOrientedBatch:
       effects: the goal states an action can lead to, [n_effects, entries]; effect 0
         is the goal state at rest, which an empty predictor predicts.
       n_actions: actions per context.
-      epsilon, action_weight, window, new_task_factor, reading: per row or one for
-        all (see `GoalOrientedAgent`, `NearestNeighbourPredictor` and the interest
-        signals).
-      interest: the signal, one of `icm.learners.interest.SIGNALS`.
-      interest_per: "task" or "region" (`INTEREST_PER`).
+      settings: a `GoalOrientedSettings` (default the library's); its per-row settings
+        may hold one value per row (arrays).
+      **values: settings given one by one instead (e.g. epsilon=0.2), checked like a
+        new `GoalOrientedSettings`.
+
+    Raises:
+      ValueError: for a setting its `icm._settings.Setting` refuses (or with as many
+        values as there are rows), or settings given both ways.
     """
 
-    def __init__(self, seeds, contexts, effects, n_actions, epsilon=DEFAULT_EPSILON,
-                 action_weight=DEFAULT_ACTION_WEIGHT, interest="learning_progress",
-                 window=DEFAULT_WINDOW, new_task_factor=DEFAULT_NEW_TASK_FACTOR,
-                 reading="progress", interest_per="task"):
+    def __init__(self, seeds, contexts, effects, n_actions, settings=None, **values):
         self.streams = _streams.Streams(seeds)
         n = len(self.streams)
+        if settings is None:
+            settings = GoalOrientedSettings.from_arguments(values, "GoalOrientedBatch")
+        elif values:
+            raise ValueError(f"give the settings either as settings or one by one, got "
+                             f"both (settings and {', '.join(values)})")
+        self.settings = _validate.instance("settings", settings, GoalOrientedSettings)
         self.n_actions = n_actions
         self.effects = np.asarray(effects, dtype=float)
-        self.epsilon = np.broadcast_to(np.asarray(epsilon, dtype=float), (n,))
-        self.interest_per = interest_per
-        self.predictor = NearestNeighbourTable(n, contexts, n_actions, action_weight)
-        n_keys = len(self.effects) if interest_per == "task" else n_actions
-        self.interest = InterestTable(n, n_keys, interest, window, new_task_factor, reading)
+        self.epsilon = settings.per_row("epsilon", n)
+        self.interest_per = settings.interest_per
+        self.predictor = NearestNeighbourTable(n, contexts, n_actions,
+                                               settings.per_row("action_weight", n),
+                                               tie=settings.per_row("tie", n))
+        n_keys = len(self.effects) if self.interest_per == "task" else n_actions
+        self.interest = InterestTable(
+            n, n_keys, settings.interest, settings.per_row("window", n),
+            settings.per_row("new_task_factor", n), settings.per_row("reading", n),
+            settings.per_row("new_task_mean", n), settings.per_row("short_history", n))
         # errors[p, o]: the Euclidean distance between effects p and o.
         self.errors = np.array([[math.dist(p, o) for o in self.effects] for p in self.effects])
         self.rows = np.arange(n)
@@ -258,7 +272,7 @@ class GoalOrientedBatch:
 
     def select_actions(self, contexts):
         """Epsilon-greedy on interest, one action per row."""
-        draws = self.streams.draw(k=DRAWS_PER_CHOICE)
+        draws = self.streams.draw(k=action_selection.DRAWS_PER_CHOICE)
         return epsilon_greedy_rows(self.action_interests(contexts), self.epsilon, draws)
 
     def learn(self, contexts, actions, observed):

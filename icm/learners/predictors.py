@@ -6,11 +6,36 @@ import operator
 import numpy as np
 
 from icm import _validate
+from icm._settings import Setting, Slider
 from icm.learners._common import check_state, check_values
 
-DEFAULT_ACTION_WEIGHT = 10.0
-"""Larger than any distance between two button-console contexts (7 entries), so the
-nearest experience is always one with the same action when there is one."""
+TIES = ("latest", "earliest")
+"""Which of equally near experiences a nearest-neighbour prediction takes (`TIE`)."""
+ACTION_WEIGHT = Setting(
+    default=10.0, label="the predictor's cost of a different button", kind="real",
+    low=0.0, low_open=True,
+    source='the paper\'s predictor is "a simple nearest neighbour research on past '
+           'experiences" (section 3.1) and does not say how it compares them. The book '
+           'counts the lights that differ, plus this weight if the button differs: 10, '
+           'larger than any difference in lights, so the same button counts first',
+    swept=(1.0, 1.5, 2.0, 3.0, 10.0))
+"""The cost of a different action, in units of one differing context entry. Two
+button layouts differ in two lights, so what changes a learner is whether the weight
+is below, at or above 2 (the sweep's grid)."""
+TIE = Setting(
+    default="latest", label="the experience a tie between nearest neighbours predicts",
+    kind="choice", choices=TIES,
+    source="the paper does not say which of equally near experiences its nearest "
+           'neighbour takes: the book takes the most recent ("latest"); "earliest" '
+           "keeps the first")
+"""Which of equally near experiences a prediction takes (`TIES`)."""
+LINEAR_LR = Setting(
+    default=0.2, label="the linear predictor's learning rate", kind="real", low=0.0,
+    high=1.0, low_open=True, paper=0.2,
+    source='section 4.2: "A linear predictor with a learning rate = 0.2 is used"',
+    slider=Slider(live=(0.05, 1.0, 0.05), grid=(0.1, 0.2, 0.3, 0.4, 0.5)))
+"""The learning rate of `LinearPredictor` (the paper's value)."""
+DEFAULT_ACTION_WEIGHT = ACTION_WEIGHT.default
 
 
 class NearestNeighbourPredictor:
@@ -36,7 +61,8 @@ class NearestNeighbourPredictor:
     than the red button pressed under another layout, and red too must be learned
     layout by layout. The book's chapter "Goal-oriented interest" shows both.
 
-    Ties: among equally near experiences the most recently stored one wins.
+    Ties: among equally near experiences the most recently stored one wins (`tie`
+    "latest", the book's choice) or the first stored ("earliest").
     Empty memory: `predict` returns the `default` it is given (the agent passes the
     boxes as they are, i.e. "no change").
 
@@ -45,14 +71,17 @@ class NearestNeighbourPredictor:
 
     Args:
       action_weight: cost of a different action, in units of one differing context
-        entry; a number > 0.
+        entry (`ACTION_WEIGHT`).
+      tie: "latest" (default) or "earliest" (`TIE`).
 
     Raises:
-      ValueError: if action_weight is not a finite number > 0.
+      ValueError: if action_weight is not a finite number > 0, or tie is unknown.
     """
 
-    def __init__(self, action_weight=DEFAULT_ACTION_WEIGHT):
-        self.action_weight = _validate.positive("action_weight", action_weight)
+    def __init__(self, action_weight=ACTION_WEIGHT.default, tie=TIE.default):
+        self.action_weight = ACTION_WEIGHT.check(action_weight, "action_weight")
+        self.tie = TIE.check(tie, "tie")
+        self._nearer = operator.le if self.tie == "latest" else operator.lt
         self._experiences = []
         self._cache = {}
 
@@ -75,7 +104,7 @@ class NearestNeighbourPredictor:
         best_distance, best_effect = float("inf"), None
         for other_context, other_action, effect in self._experiences:
             d = self.distance(context, action, other_context, other_action)
-            if d <= best_distance:  # later experiences win ties
+            if self._nearer(d, best_distance):  # "latest": later experiences win ties
                 best_distance, best_effect = d, effect
         return best_distance, best_effect
 
@@ -117,16 +146,15 @@ class NearestNeighbourPredictor:
             raise ValueError(f"context must have {len(self._experiences[0][0])} entries "
                              f"like the stored ones, got {len(context)}")
         self._experiences.append((context, action, effect))
-        weight, ne = self.action_weight, operator.ne
+        weight, ne, nearer = self.action_weight, operator.ne, self._nearer
         for (query_context, query_action), entry in self._cache.items():
             # self.distance(...), inlined: this loop is the learner's inner loop.
             d = sum(map(ne, query_context, context)) + (weight if query_action != action else 0.0)
-            if d <= entry[0]:
+            if nearer(d, entry[0]):
                 entry[0], entry[1] = d, effect
 
 
-DEFAULT_LINEAR_LR = 0.2
-"""Learning rate of the linear predictor: the paper's value (section 4.2)."""
+DEFAULT_LINEAR_LR = LINEAR_LR.default
 UNTRIED_ERROR = 1.0
 """The error `LinearPredictor.confidence` counts for an action never tried from a
 state: nothing is known about it, as if the last prediction had been wholly wrong."""
@@ -171,7 +199,7 @@ class LinearPredictor:
     def __init__(self, n_actions, n_outputs, lr=DEFAULT_LINEAR_LR, initial_prediction=0.0):
         self.n_actions = _validate.integer_at_least("n_actions", n_actions, 1)
         self.n_outputs = _validate.integer_at_least("n_outputs", n_outputs, 1)
-        self.lr = _validate.learning_rate("lr", lr)
+        self.lr = LINEAR_LR.check(lr, "lr")
         self.initial_prediction = _validate.in_closed_interval(
             "initial_prediction", initial_prediction, 0.0, 1.0)
         self._predictions = {}  # state -> [action][output], lists of floats
@@ -308,19 +336,22 @@ class NearestNeighbourTable:
       action_weight: the cost of a different action, one for all agents or one per
         agent (an array [n_rows]).
       default_effect: the effect predicted before anything is stored.
+      tie: "latest" or "earliest" (`TIE`), one for all agents or one per agent.
     """
 
-    def __init__(self, n_rows, contexts, n_actions, action_weight=DEFAULT_ACTION_WEIGHT,
-                 default_effect=0):
+    def __init__(self, n_rows, contexts, n_actions, action_weight=ACTION_WEIGHT.default,
+                 default_effect=0, tie=TIE.default):
         self.n_actions = n_actions
+        ties = np.broadcast_to(np.asarray(TIE.check_rows(tie, "tie"), dtype=object), (n_rows,))
+        self._earliest = None if np.all(ties == "latest") else ties == "earliest"
         lights = hamming_distances(contexts)
         n_contexts = len(lights)
         context_of = np.repeat(np.arange(n_contexts), n_actions)
         action_of = np.tile(np.arange(n_actions), n_contexts)
         self.context_distance = lights[context_of[:, None], context_of[None, :]]
         self.different_action = (action_of[:, None] != action_of[None, :]).astype(float)
-        self.action_weight = np.broadcast_to(np.asarray(action_weight, dtype=float),
-                                             (n_rows,))
+        self.action_weight = np.broadcast_to(np.asarray(
+            ACTION_WEIGHT.check_rows(action_weight, "action_weight"), dtype=float), (n_rows,))
         # One weight for every agent: the distances between keys, computed once.
         self.key_distance = None
         if np.all(self.action_weight == self.action_weight[0]):
@@ -348,64 +379,14 @@ class NearestNeighbourTable:
             distance = (self.context_distance[keys]
                         + weight[:, None] * self.different_action[keys])
         effects = np.asarray(effects)[:, None]
+        stored = self.distance if rows is None else self.distance[rows]
+        nearer = distance <= stored  # tie "latest": later experiences win ties
+        if self._earliest is not None:  # tie "earliest": only strictly nearer ones
+            earliest = (self._earliest if rows is None else self._earliest[rows])[:, None]
+            nearer &= ~earliest | (distance < stored)
         if rows is None:  # every agent, in place
-            nearer = distance <= self.distance  # later experiences win ties
             np.minimum(self.distance, distance, out=self.distance)
             np.copyto(self.effect, effects, where=nearer)  # the new effect where nearer
             return
-        nearer = distance <= self.distance[rows]
         self.distance[rows] = np.where(nearer, distance, self.distance[rows])
         self.effect[rows] = np.where(nearer, effects, self.effect[rows])
-
-
-class LinearPredictorTable:
-    """`LinearPredictor` for many agents at once: predictions [row, state, action,
-    output], each moved towards what is observed, p <- p + lr * (o - p), with the
-    latest error of every (state, action) for the state confidence.
-
-    Args:
-      n_rows, n_states, n_actions, n_outputs: the table's size.
-      lr: learning rate, one for all agents or one per agent.
-      initial_prediction: the prediction before any observation.
-    """
-
-    def __init__(self, n_rows, n_states, n_actions, n_outputs, lr=DEFAULT_LINEAR_LR,
-                 initial_prediction=0.0):
-        self.lr = np.broadcast_to(np.asarray(lr, dtype=float), (n_rows,))
-        self.predictions = np.full((n_rows, n_states, n_actions, n_outputs),
-                                   float(initial_prediction))
-        self.last_error = np.full((n_rows, n_states, n_actions), np.nan)  # nan: untried
-        self._pairs = n_states * n_actions
-        self._flat_predictions = self.predictions.reshape(-1, n_outputs)  # views
-        self._flat_errors = self.last_error.reshape(-1)
-
-    def pair_index(self, rows, states, actions):
-        """The flat index of (row, state, action) triples in the tables."""
-        return rows * self._pairs + states * self.predictions.shape[2] + actions
-
-    def update(self, rows, states, actions, observed, pairs=None):
-        """Moves the predictions of (states[i], actions[i]) of agent rows[i] towards
-        observed[i] ([len(rows), n_outputs]); returns the absolute error of each
-        output before the update, [len(rows), n_outputs]. `pairs`, if given, is
-        `pair_index(rows, states, actions)`."""
-        pairs = self.pair_index(rows, states, actions) if pairs is None else pairs
-        predicted = self._flat_predictions.take(pairs, axis=0)
-        difference = observed - predicted
-        self._flat_predictions[pairs] = predicted + self.lr[rows, None] * difference
-        errors = np.abs(difference)
-        total = errors[:, 0]
-        for i in range(1, errors.shape[1]):  # summed in order, as the one-agent sum
-            total = total + errors[:, i]
-        self._flat_errors[pairs] = total
-        return errors
-
-    def confidence(self, rows=None):
-        """The state confidence [rows, n_states]: 1 minus the mean over the actions of
-        the latest error, capped at 1, an action never tried counting `UNTRIED_ERROR`."""
-        rows = slice(None) if rows is None else rows
-        errors = np.where(np.isnan(self.last_error[rows]), UNTRIED_ERROR,
-                          np.minimum(self.last_error[rows], 1.0))
-        total = np.zeros(errors.shape[:2])
-        for a in range(errors.shape[2]):
-            total = total + errors[..., a]
-        return 1.0 - total / errors.shape[2]

@@ -8,29 +8,17 @@ the same errors (`REWARDS`)."""
 
 import numpy as np
 
-from icm import _streams, _validate
-from icm.learners.goal_oriented import DRAWS_PER_CHOICE, epsilon_greedy, epsilon_greedy_rows
-from icm.learners.interest import DEFAULT_WINDOW, SIGNALS, InterestTable, make_interest
-from icm.learners.predictors import DEFAULT_LINEAR_LR, LinearPredictor, LinearPredictorTable
+from icm import _validate
+from icm._settings import Names, Settings, Slider, setting, setting_from, settings_class
+from icm.learners import interest as _interest
+from icm.learners import predictors as _predictors
+from icm.learners import action_selection
+from icm.learners.action_selection import epsilon_greedy
+from icm.learners.interest import DEFAULT_WINDOW, SIGNALS, make_interest
+from icm.learners.predictors import LinearPredictor
 
-DEFAULT_ALPHA = 0.5
-"""Q-learning step size (the paper's alpha; its value is not given). The reward of a
-pair fades as the predictor learns it (0.8 of what it was, each time), so the values
-must follow a moving target: a large step."""
-DEFAULT_GAMMA = 0.9
-"""Discount (the paper's gamma; its value is not given). A rod is 3 to 6 moves from
-the start cell; 0.9^5 = 0.59, so a surprise several moves away still pulls the hand."""
-DEFAULT_EPSILON = 0.1
-"""Probability of a uniformly random move (the paper's epsilon-greedy rule; its value
-is not given)."""
-DEFAULT_INITIAL_Q = 0.1
-"""Value of every (state, action) before it is tried: mildly optimistic. A move never
-tried is worth as much as a topple still predicted with an error of 0.1, the level
-the book calls "predicted well". So the robot gets *bored* of a rod once its
-errors there have fallen to about that level, and goes looking elsewhere; with 0 the
-smallest leftover error would keep it at the first rod it found (the errors shrink by
-a factor 0.8 per topple and never reach 0)."""
-REWARDS = ("prediction_error",) + tuple(s for s in SIGNALS if s != "prediction_error")
+REWARDS = Names(lambda: ("prediction_error",) + tuple(s for s in SIGNALS
+                                                      if s != "prediction_error"))
 """The intrinsic rewards, by name: the interest signals of `icm.learners.interest`,
 each kept per (state, action) pair and fed the predictor's error on every move:
 
@@ -40,7 +28,57 @@ each kept per (state, action) pair and fed the predictor's error on every move:
 - "novelty": 1 / sqrt(1 + n), n the times the pair was tried, this move included;
 - "random": no reward and no learning of Q: every move is a tie, so the hand walks at
   random (the baseline); the predictor still learns."""
+_RATE_SLIDER = Slider(live=(0.05, 1.0, 0.05), grid=(0.1, 0.3, 0.5, 0.7, 0.9))
 
+
+@settings_class
+class QLearnerSettings(Settings):
+    """The curious Q-learner's settings (section 3.3, equation 3; section 4.2). Each is
+    a `icm._settings.Setting`: see `QLearnerSettings.specs()` for its range, the
+    paper's value and where it comes from. Values may be one per batch row (arrays),
+    as the compiled loop of `icm.experiments.run_rod_toppling` takes them."""
+
+    epsilon: float = setting(
+        default=0.1, label="probability of a random move (epsilon)", kind="real", low=0.0,
+        high=1.0,
+        source="section 3.3's Q-learner is epsilon-greedy, with no epsilon given: the "
+               "book takes 0.1",
+        slider=Slider(live=(0.0, 1.0, 0.05), grid=(0.0, 0.1, 0.2, 0.3, 0.4)),
+        swept=(0.0, 0.05, 0.1, 0.3))
+    alpha: float = setting(
+        default=0.5, label="Q-learning step size (alpha)", kind="real", low=0.0, high=1.0,
+        low_open=True, slider=_RATE_SLIDER,
+        source="equation 3's alpha has no value in the paper: the book takes 0.5, a large "
+               "step, since a pair's reward fades as the predictor learns it (0.8 of what "
+               "it was, each time) and the values must follow a moving target")
+    gamma: float = setting(
+        default=0.9, label="discount (gamma)", kind="real", low=0.0, high=1.0,
+        slider=Slider(live=(0.0, 1.0, 0.05), grid=(0.1, 0.3, 0.5, 0.7, 0.9)),
+        source="equation 3's gamma has no value in the paper: the book takes 0.9; a rod "
+               "is 3 to 6 moves from the start cell, and 0.9^5 = 0.59, so a surprise "
+               "several moves away still pulls the hand")
+    initial_q: float = setting(
+        default=0.1, label="value of a move never tried (initial Q)", kind="real",
+        low=0.0, high=1e6,
+        source="the paper does not say how Q starts. The book takes 0.1, mildly "
+               "optimistic: a move never tried is worth as much as a topple still "
+               "predicted with an error of 0.1, so the robot gets bored of a rod once its "
+               "errors there have fallen to about that level; with 0 the smallest leftover "
+               "error would keep it at the first rod it found",
+        swept=(0.0, 0.01, 0.1, 0.2, 1.0))
+    predictor_lr: float = setting_from(_predictors.LINEAR_LR)
+    reward: str = setting(
+        default="prediction_error", label="intrinsic reward", kind="choice",
+        choices=REWARDS, paper="prediction_error", per_row=False,
+        source="section 4.2: the Q-learner's reward is the predictor's error; the chapter "
+               '"Which curiosity?" compares the others')
+    window: int = setting_from(_interest.WINDOW, slider=None)
+
+
+DEFAULT_ALPHA = QLearnerSettings.spec("alpha").default
+DEFAULT_GAMMA = QLearnerSettings.spec("gamma").default
+DEFAULT_EPSILON = QLearnerSettings.spec("epsilon").default
+DEFAULT_INITIAL_Q = QLearnerSettings.spec("initial_q").default
 
 
 class QLearner:
@@ -90,12 +128,13 @@ class QLearner:
                  reward="prediction_error", window=DEFAULT_WINDOW, seed=None):
         self.n_states = _validate.integer_at_least("n_states", n_states, 1)
         self.n_actions = _validate.integer_at_least("n_actions", n_actions, 1)
-        self.alpha = _validate.learning_rate("alpha", alpha)
-        self.gamma = _validate.in_closed_interval("gamma", gamma, 0.0, 1.0)
-        self.epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
-        self.initial_q = _validate.non_negative("initial_q", initial_q)
-        self.reward = _validate.one_of("reward", reward, REWARDS)
-        self.window = _validate.integer_at_least("window", window, 2)
+        spec = QLearnerSettings.spec
+        self.alpha = spec("alpha").check(alpha)
+        self.gamma = spec("gamma").check(gamma)
+        self.epsilon = spec("epsilon").check(epsilon)
+        self.initial_q = spec("initial_q").check(initial_q)
+        self.reward = spec("reward").check(reward)
+        self.window = spec("window").check(window)
         # The reward signal, kept per (state, action) pair: the paper's error is the
         # mean of the last one error.
         self.reward_signal = make_interest(
@@ -108,6 +147,16 @@ class QLearner:
         self._random = _validate.generator("seed", seed)
         # Lists of floats: the learner's inner loop reads and writes single entries.
         self._q = [[self.initial_q] * self.n_actions for _ in range(self.n_states)]
+
+    @classmethod
+    def from_settings(cls, n_states, n_actions, n_outputs=1, settings=None, seed=None):
+        """The Q-learner of `settings` (a `QLearnerSettings` of one value each; default
+        the library's), with a `LinearPredictor` of `n_outputs` at its learning rate."""
+        settings = QLearnerSettings() if settings is None else _validate.instance(
+            "settings", settings, QLearnerSettings)
+        values = settings.as_dict()
+        predictor = LinearPredictor(n_actions, n_outputs, values.pop("predictor_lr"))
+        return cls(n_states, n_actions, predictor, seed=seed, **values)
 
     @property
     def q(self):
@@ -130,7 +179,7 @@ class QLearner:
         """Epsilon-greedy: a random action with probability epsilon, else a greedy one
         (ties broken uniformly at random)."""
         state = self._check(state)
-        draws = self._random.random(DRAWS_PER_CHOICE)
+        draws = self._random.random(action_selection.DRAWS_PER_CHOICE)
         return epsilon_greedy(self._q[state], self.epsilon, draws)
 
     def update(self, state, action, reward, next_state, discount=1.0):
@@ -169,94 +218,19 @@ class QLearner:
         Returns:
           The intrinsic reward: by default the absolute error of the prediction for
           (state, action) before this observation; with another `reward`, that
-          signal of the pair after recording this error (see `REWARDS`).
+          signal of the pair after recording this error (see `REWARDS`). The error on
+          each of the outcome's entries is kept in `last_errors`.
         """
         state, action = self._check(state, action)
-        error = self.predictor.update(state, action, observed)
+        per_output = getattr(self.predictor, "update_per_output", None)
+        if per_output is not None:  # kept: what each output of the move surprised
+            self.last_errors = per_output(state, action, observed)
+            error = sum(self.last_errors)
+        else:
+            error = self.predictor.update(state, action, observed)
+            self.last_errors = [error]
         self.reward_signal.record((state, action), error)
         reward = self.reward_signal.interest((state, action))
         if self.reward != "random":
             self.update(state, action, reward, next_state, discount)
         return reward
-
-
-class QLearnerBatch:
-    """`QLearner` with a `LinearPredictor`, for many agents (rows) at once: Q
-    [row, state, action], the predictor's table beside it.
-
-    Rows act independently: `select_actions` and `learn` take the rows that act, so that
-    agents can be at different moves of different episodes. Row k makes exactly the
-    choices and updates of a `QLearner` (and its `LinearPredictor`) seeded like it,
-    drawing `DRAWS_PER_CHOICE` numbers per choice. Settings may differ per row.
-
-    Args:
-      seeds: one seed per row.
-      n_states, n_actions, n_outputs: the tables' size.
-      alpha, gamma, epsilon, initial_q, predictor_lr: per row or one for all.
-      reward: the intrinsic reward, one of `REWARDS`, one for all.
-      window: errors in the learning-progress slope, per row or one for all.
-    """
-
-    def __init__(self, seeds, n_states, n_actions, n_outputs, alpha=DEFAULT_ALPHA,
-                 gamma=DEFAULT_GAMMA, epsilon=DEFAULT_EPSILON, initial_q=DEFAULT_INITIAL_Q,
-                 predictor_lr=DEFAULT_LINEAR_LR, reward="prediction_error",
-                 window=DEFAULT_WINDOW):
-        self.streams = _streams.Streams(seeds)
-        n = len(self.streams)
-        per_row = lambda value: np.broadcast_to(np.asarray(value, dtype=float), (n,))
-        self.alpha, self.gamma, self.epsilon = per_row(alpha), per_row(gamma), per_row(epsilon)
-        self.q = np.empty((n, n_states, n_actions))
-        self.q[:] = per_row(initial_q)[:, None, None]
-        self.predictor = LinearPredictorTable(n, n_states, n_actions, n_outputs, predictor_lr)
-        self.reward = _validate.one_of("reward", reward, REWARDS)
-        self.window = np.broadcast_to(np.asarray(window, dtype=np.int64), (n,))
-        self.reward_signal = InterestTable(
-            n, n_states * n_actions, self.reward,
-            1 if self.reward == "prediction_error" else self.window, 0.0)
-        self._rows = np.arange(n)
-        self._q_by_state = self.q.reshape(n * n_states, n_actions)  # views of q
-        self._q_flat = self.q.reshape(-1)
-
-    def _values(self, rows, states):
-        """Q(s, .) of each of `rows` in its state, [len(rows), n_actions]."""
-        return self._q_by_state.take(rows * self.q.shape[1] + states, axis=0)
-
-    def select_actions(self, rows, states):
-        """Epsilon-greedy on Q, one action for each of `rows` in its state."""
-        every = len(rows) == len(self._rows)
-        draws = self.streams.draw(None if every else rows, k=DRAWS_PER_CHOICE)
-        return epsilon_greedy_rows(self._values(rows, states),
-                                   self.epsilon if every else self.epsilon[rows], draws)
-
-    def update(self, rows, states, actions, rewards, next_states, discounts, pairs=None):
-        """Equation 3 for each of `rows`; returns the TD errors."""
-        following = self._values(rows, next_states)
-        best_next = following[:, 0]
-        for a in range(1, following.shape[1]):
-            best_next = np.maximum(best_next, following[:, a])
-        target = rewards + np.where(discounts > 0,
-                                    self.gamma[rows] * discounts * best_next, 0.0)
-        pairs = self.predictor.pair_index(rows, states, actions) if pairs is None else pairs
-        q = self._q_flat.take(pairs)
-        td_error = target - q
-        self._q_flat[pairs] = q + self.alpha[rows] * td_error
-        return td_error
-
-    def learn(self, rows, states, actions, observed, next_states, discounts):
-        """Each of `rows` teaches its predictor, pays itself its intrinsic reward (by
-        default the predictor's absolute error on the move, summed over the outputs in
-        order) and updates Q; returns the errors per output [len(rows), n_outputs]."""
-        pairs = self.predictor.pair_index(rows, states, actions)
-        errors = self.predictor.update(rows, states, actions, observed, pairs)
-        error = errors[:, 0]
-        for i in range(1, errors.shape[1]):
-            error = error + errors[:, i]
-        if self.reward == "prediction_error":
-            reward = error
-        else:
-            keys = states * self.q.shape[2] + actions
-            self.reward_signal.record(rows, keys, error)
-            reward = self.reward_signal.values(rows)[np.arange(len(rows)), keys]
-        if self.reward != "random":
-            self.update(rows, states, actions, reward, next_states, discounts, pairs)
-        return errors

@@ -3,7 +3,7 @@
 Each panel is live in a running notebook (ipywidgets: every slider move reruns the
 experiment, 100 seeds) and static in the HTML book (a Vega-Lite figure over a grid of
 settings precomputed when the book is built, which moves in the browser with no
-kernel). Both draw `icm.experiments.panels.panel_curves_for`, so they show the same
+kernel). Both draw `icm.experiments.panel_data.panel_curves_for`, so they show the same
 numbers at every setting of the grid.
 """
 

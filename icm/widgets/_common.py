@@ -1,4 +1,4 @@
-"""Shared pieces of the interactive panels."""
+"""Shared pieces of the interactive panel_data."""
 
 import os
 
@@ -42,23 +42,30 @@ def run_arguments(run_fn, controls):
                  if p not in controls and p != "progress")
 
 
-def slider(name, spec):
+def slider(name, spec, label=None):
     """An int or float slider named `name` from a dict of min, max, step and value; it
-    redraws only when released (continuous_update off), since a redraw reruns seeds."""
+    redraws only when released (continuous_update off), since a redraw reruns seeds.
+    `label` (words) is its tooltip and accessible name; `name` its description."""
     _validate.text("name", name)
+    if label is not None:
+        _validate.text("label", label)
     if not isinstance(spec, dict) or not {"min", "max", "step", "value"} <= set(spec):
         raise _validate.ArgumentTypeError(f"spec must be a dict of min, max, step and value, "
                                           f"got {_validate.show(spec)}")
     cls = ipywidgets.IntSlider if isinstance(spec["value"], int) else ipywidgets.FloatSlider
-    return cls(description=name, continuous_update=False,
-               style={"description_width": "initial"}, **spec)
+    return cls(description=name, description_allow_html=False, tooltip=label or name,
+               continuous_update=False, style={"description_width": "initial"}, **spec)
 
 
-def choice(name, options):
-    """A toggle of `options` named `name`, first option selected."""
+def choice(name, options, label=None):
+    """A toggle of `options` named `name`, first option selected; `label` (words) is
+    its tooltip."""
     _validate.text("name", name)
+    if label is not None:
+        _validate.text("label", label)
     return ipywidgets.ToggleButtons(description=name, options=list(options),
-                                    value=options[0], style={"description_width": "initial"})
+                                    tooltip=label or name, value=options[0],
+                                    style={"description_width": "initial"})
 
 
 def panel(sliders, draw, per_row=2):
@@ -113,27 +120,43 @@ def _png(figure):
     return png()
 
 
-def curves_panel(name, sliders, static, fixed, per_row=2):
-    """Panel `name` of `icm.experiments.panels.PANELS`: live (ipywidgets `sliders`, and
-    the panel's choices, that rerun `panel_curves_for`) or static (its precomputed
-    grid as a Vega-Lite figure), as `wants_static(static)` says."""
-    from icm import figures
-    from icm.experiments import panels
+def live_sliders(name):
+    """The live sliders of panel `name` (one of `icm.experiments.panel_data.PANELS`): for
+    each, {min, max, step, value} from its setting's `Slider.live` and default. Every
+    value of the static panel's grid is on them (a test checks it)."""
+    from icm.experiments import panel_data
 
-    spec = panels.spec(name)
+    spec = panel_data.spec(name)
+    out = {}
+    for slider_name in spec.slider_names:
+        setting = spec.setting(slider_name)
+        low, high, step = setting.slider.live
+        out[slider_name] = dict(min=low, max=high, step=step, value=setting.default)
+    return out
+
+
+def curves_panel(name, static, fixed, per_row=2):
+    """Panel `name` of `icm.experiments.panel_data.PANELS`: live (ipywidgets sliders and the
+    panel's choices, from its settings, that rerun `panel_curves_for`) or static (its
+    precomputed grid as a Vega-Lite figure), as `wants_static(static)` says."""
+    from icm import figures
+    from icm.experiments import panel_data
+
+    spec = panel_data.spec(name)
+    sliders = live_sliders(name)
     check_fixed(fixed, spec.controls, run_arguments(spec.run, spec.controls))
     if wants_static(static):
         if fixed:
             raise ValueError(f"the static panel shows its precomputed grid and cannot hold "
                              f"{', '.join(fixed)} fixed; use static=False")
-        from icm.figures import interactive
+        from icm.figures import static_panels
 
-        return interactive.curves_panel(panels.precompute(name))
-    controls = {n: slider(n, s) for n, s in sliders.items()}
+        return static_panels.curves_panel(panel_data.precompute(name))
+    controls = {n: slider(n, s, spec.setting(n).label) for n, s in sliders.items()}
     for n, options in spec.choices.items():
-        controls[n] = choice(n, options)
+        controls[n] = choice(n, options, spec.setting(n).label)
 
     def draw(**values):
-        return figures.panel_figure(name, panels.panel_curves_for(name, fixed, **values))
+        return figures.panel_figure(name, panel_data.panel_curves_for(name, fixed, **values))
 
     return panel(controls, draw, per_row=per_row)

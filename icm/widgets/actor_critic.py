@@ -1,18 +1,13 @@
 """The Figure 6 panel: sliders and choices that rerun the actor-critic."""
 
-from icm.learners import actor_critic
-from icm.widgets._common import curves_panel
+from icm.experiments import panel_data
+from icm.widgets._common import curves_panel, live_sliders
 
-FIGURE6_SLIDERS = {
-    "lr_actor": dict(min=0.05, max=1.0, step=0.05, value=actor_critic.DEFAULT_LR_ACTOR),
-    "lr_critic": dict(min=0.05, max=1.0, step=0.05, value=actor_critic.DEFAULT_LR_CRITIC),
-    "temperature": dict(min=0.05, max=2.0, step=0.05, value=actor_critic.DEFAULT_TEMPERATURE),
-}
-"""Slider ranges of the live `figure6_panel`: the learner's allowed ranges (learning
-rates from 0.05 since 0 is not allowed; temperature capped at 2, where the softmax is
-close to uniform). Every value of the static panel's grid is on these sliders."""
+FIGURE6_SLIDERS = live_sliders("figure6")
+"""Slider ranges of the live `figure6_panel`, from its settings' `Slider.live` (see
+`icm.widgets._common.live_sliders`)."""
 
-FIGURE6_CHOICES = {"variant": tuple(actor_critic.VARIANTS)}
+FIGURE6_CHOICES = panel_data.spec("figure6").choices
 """Choices of `figure6_panel`, first option the default: which reading of the paper's
 formulas (see `icm.learners.actor_critic.VARIANTS`)."""
 
@@ -29,9 +24,9 @@ def figure6_panel(static=None, **fixed):
         reward="extrinsic", gamma=0.9); live panel only.
 
     Returns:
-      An `ipywidgets.VBox` or an `icm.figures.interactive.StaticPanel`.
+      An `ipywidgets.VBox` or an `icm.figures.static_panels.StaticPanel`.
 
     Raises:
       ValueError: for a fixed argument the panel cannot hold.
     """
-    return curves_panel("figure6", FIGURE6_SLIDERS, static, fixed)
+    return curves_panel("figure6", static, fixed)

@@ -1,18 +1,11 @@
 """The Figure 5 panel and the epsilon x window sweep: sliders that rerun the
 goal-oriented learner."""
 
-from icm.learners import goal_oriented, interest
-from icm.widgets._common import curves_panel, panel, slider, wants_static
+from icm.widgets._common import curves_panel, live_sliders, panel, slider, wants_static
 
-FIGURE5_SLIDERS = {
-    "epsilon": dict(min=0.0, max=1.0, step=0.05, value=goal_oriented.DEFAULT_EPSILON),
-    "window": dict(min=2, max=20, step=1, value=interest.DEFAULT_WINDOW),
-    "new_task_factor": dict(min=0.0, max=1.0, step=0.05,
-                            value=interest.DEFAULT_NEW_TASK_FACTOR),
-}
-"""Slider ranges of the live `figure5_panel`: the allowed ranges of the learner's
-arguments (window capped at 20 to stay readable). Every value of the static panel's
-grid (`icm.experiments.panels.PANELS["figure5"]`) is on these sliders."""
+FIGURE5_SLIDERS = live_sliders("figure5")
+"""Slider ranges of the live `figure5_panel`, from its settings' `Slider.live` (see
+`icm.widgets._common.live_sliders`)."""
 
 
 def figure5_panel(static=None, **fixed):
@@ -21,7 +14,7 @@ def figure5_panel(static=None, **fixed):
 
     Args:
       static: True for the static version (a Vega-Lite figure over the precomputed
-        grid of `icm.experiments.panels`, which moves in the HTML book without a
+        grid of `icm.experiments.panel_data`, which moves in the HTML book without a
         kernel), False for the live ipywidgets panel that reruns the learner on every
         change; None (default): static while the book is built, live otherwise.
       **fixed: other arguments of `run_goal_oriented`, held fixed (e.g.
@@ -29,12 +22,12 @@ def figure5_panel(static=None, **fixed):
 
     Returns:
       An `ipywidgets.VBox` (sliders above the figure) or an
-      `icm.figures.interactive.StaticPanel`.
+      `icm.figures.static_panels.StaticPanel`.
 
     Raises:
       ValueError: for a fixed argument the panel cannot hold.
     """
-    return curves_panel("figure5", FIGURE5_SLIDERS, static, fixed)
+    return curves_panel("figure5", static, fixed)
 
 
 def sweep_panel(static=None):
@@ -46,26 +39,27 @@ def sweep_panel(static=None):
       static: as in `figure5_panel`.
 
     Returns:
-      An `ipywidgets.VBox` or an `icm.figures.interactive.StaticPanel`.
+      An `ipywidgets.VBox` or an `icm.figures.static_panels.StaticPanel`.
     """
     from icm import figures
-    from icm.experiments import panels
+    from icm.experiments import panel_data
 
     if wants_static(static):
-        from icm.figures import interactive
+        from icm.figures import static_panels
 
-        return interactive.sweep_panel(panels.precompute("figure5"))
-    spec = panels.spec("figure5")
+        return static_panels.sweep_panel(panel_data.precompute("figure5"))
+    spec = panel_data.spec("figure5")
     factors = spec.sliders["new_task_factor"]
     factor = slider("new_task_factor", dict(min=factors[0], max=factors[-1],
                                             step=factors[1] - factors[0],
-                                            value=spec.defaults["new_task_factor"]))
+                                            value=spec.defaults["new_task_factor"]),
+                    spec.setting("new_task_factor").label)
 
     def draw(new_task_factor):
         settings = [s for s in spec.settings()
                     if abs(s["new_task_factor"] - factors[0]) < 1e-9]
         settings = [dict(s, new_task_factor=new_task_factor) for s in settings]
-        cells = [panels.sweep_cell(panels.panel_run("figure5", **s)) for s in settings]
+        cells = [panel_data.sweep_cell(panel_data.panel_run("figure5", **s)) for s in settings]
         return figures.sweep_figure(settings, cells)
 
     return panel({"new_task_factor": factor}, draw)

@@ -1,17 +1,10 @@
 """The Figure 7 panel: sliders that rerun the curious Q-learner on the rods."""
 
-from icm.learners import predictors, q_learning
-from icm.widgets._common import curves_panel
+from icm.widgets._common import curves_panel, live_sliders
 
-FIGURE7_SLIDERS = {
-    "epsilon": dict(min=0.0, max=1.0, step=0.05, value=q_learning.DEFAULT_EPSILON),
-    "alpha": dict(min=0.05, max=1.0, step=0.05, value=q_learning.DEFAULT_ALPHA),
-    "gamma": dict(min=0.0, max=1.0, step=0.05, value=q_learning.DEFAULT_GAMMA),
-    "predictor_lr": dict(min=0.05, max=1.0, step=0.05, value=predictors.DEFAULT_LINEAR_LR),
-}
-"""Slider ranges of the live `figure7_panel`: the learner's allowed ranges (learning
-rates from 0.05 since 0 is not allowed). Every value of the static panel's grid is on
-these sliders."""
+FIGURE7_SLIDERS = live_sliders("figure7")
+"""Slider ranges of the live `figure7_panel`, from its settings' `Slider.live` (see
+`icm.widgets._common.live_sliders`)."""
 
 
 def figure7_panel(static=None, **fixed):
@@ -27,9 +20,9 @@ def figure7_panel(static=None, **fixed):
         n_episodes=300); live panel only.
 
     Returns:
-      An `ipywidgets.VBox` or an `icm.figures.interactive.StaticPanel`.
+      An `ipywidgets.VBox` or an `icm.figures.static_panels.StaticPanel`.
 
     Raises:
       ValueError: for a fixed argument the panel cannot hold.
     """
-    return curves_panel("figure7", FIGURE7_SLIDERS, static, fixed)
+    return curves_panel("figure7", static, fixed)

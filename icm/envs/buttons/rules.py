@@ -20,6 +20,7 @@ import numpy as np
 from dm_env import specs
 
 from icm import _validate
+from icm._settings import Setting
 
 N_BUTTONS = 5
 """Lit buttons on the console."""
@@ -38,11 +39,17 @@ NOTHING, GREEN_BOX, RED_BOX = 0, 1, 2
 
 DEFAULT_RED_BUTTON = 2
 """The red button sits in the middle of the console, straight in front of the robot."""
-DEFAULT_PRESSES_PER_TRIAL = 3
-"""Three presses a trial (the paper does not say how many): fewer presses than buttons,
-so the robot must choose what to try. Within one trial the green button does not move,
-so with many presses per trial green is as easy as red until the next trial; the
-chapter "Goal-oriented interest" shows what changes with 5."""
+PRESSES_PER_TRIAL = Setting(
+    default=3, label="presses per trial", kind="integer", low=1, high=1000,
+    source="the paper divides the experiment into trials and does not say how many "
+           "presses a trial holds. The book takes 3: fewer presses than buttons, so the "
+           "robot must choose what to try. Within one trial the green button does not "
+           "move, so with many presses per trial green is as easy as red until the next "
+           "trial",
+    swept=(1, 2, 3, 5))
+"""Presses in one trial of the button experiment (a world setting the robustness
+study sweeps)."""
+DEFAULT_PRESSES_PER_TRIAL = PRESSES_PER_TRIAL.default
 
 
 def n_actions(noisy_button):
@@ -176,7 +183,7 @@ def action_spec(noisy_button=False):
 
 __all__ = ["N_BUTTONS", "NOISY_BUTTON", "OFF", "RED", "GREEN", "BOX_NAMES", "EFFECTS",
            "NOTHING", "RED_BOX", "GREEN_BOX", "DEFAULT_RED_BUTTON",
-           "DEFAULT_PRESSES_PER_TRIAL", "n_actions", "check_red_button", "green_candidates",
+           "DEFAULT_PRESSES_PER_TRIAL", "PRESSES_PER_TRIAL", "n_actions", "check_red_button", "green_candidates",
            "layout_index", "draw_green", "lights_for", "layouts", "check_lights",
            "press_outcome", "noisy_effect", "noisy_outcome", "effect_index",
            "check_rewarded_box", "extrinsic_reward", "observation_spec", "action_spec"]

@@ -8,7 +8,7 @@ import numpy as np
 
 from icm import _streams, _validate
 from icm.envs._common import check_discrete_action, check_seed
-from icm.envs.buttons.rules import (DEFAULT_PRESSES_PER_TRIAL,
+from icm.envs.buttons.rules import (DEFAULT_PRESSES_PER_TRIAL, PRESSES_PER_TRIAL,
                                         DEFAULT_RED_BUTTON, EFFECTS, GREEN, N_BUTTONS,
                                         NOISY_BUTTON, action_spec, check_red_button,
                                         check_rewarded_box, draw_green, extrinsic_reward,
@@ -35,8 +35,8 @@ class ButtonTrials(dm_env.Environment):
     """
 
     def __init__(self, presses_per_trial, rewarded_box, noisy_button=False):
-        self.presses_per_trial = _validate.integer_at_least(
-            "presses_per_trial", presses_per_trial, 1)
+        self.presses_per_trial = PRESSES_PER_TRIAL.check(presses_per_trial,
+                                                         "presses_per_trial")
         self.rewarded_box = check_rewarded_box(rewarded_box)
         self.noisy_button = _validate.boolean("noisy_button", noisy_button)
         self.n_actions = n_actions(self.noisy_button)

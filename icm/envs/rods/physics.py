@@ -17,9 +17,10 @@ from dm_env import specs
 from icm import _validate
 from icm.envs import icub
 from icm.envs._common import check_discrete_action, check_seed, dm_control_random
+from icm.envs.rods import rules
 from icm.envs.rods.rules import (ACTIONS, DEFAULT_MAX_MOVES, DEFAULT_START_CELL,
                                      HAND_HEIGHT, N_COLUMNS, N_ROWS, ROD_NAMES, TOPPLE_TILT,
-                                     WOBBLE_TOPPLE_PROBABILITY, WOBBLY, cell_number,
+                                     WOBBLY, cell_number,
                                      check_cell, check_start_cell, next_cell, rod_names,
                                      standable_cells)
 from icm.envs.rods.twin import RodEpisodes
@@ -207,7 +208,7 @@ class RodsTask(icub.ArmTask):
         self._side = side
         if crossed and not (self._once and self._drawn):
             self._drawn = True
-            falls = self.generator.random() < WOBBLE_TOPPLE_PROBABILITY
+            falls = self.generator.random() < rules.WOBBLE_TOPPLE_PROBABILITY
             self.wobble_log.append(bool(falls))
             if falls:
                 physics.push_wobbly_rod()

@@ -7,8 +7,9 @@ import numpy as np
 
 from icm import _streams, _validate
 from icm.envs._common import check_discrete_action, check_seed
+from icm.envs.rods import rules
 from icm.envs.rods.rules import (ACTIONS, DEFAULT_MAX_MOVES, DEFAULT_START_CELL,
-                                     ROD_NAMES, WOBBLE_TOPPLE_PROBABILITY, action_spec,
+                                     ROD_NAMES, action_spec,
                                      cell_number, check_start_cell, load_topple_map,
                                      load_wobble_map, next_cell, observation_spec,
                                      rod_names, standable_cells, transition_tables,
@@ -141,7 +142,7 @@ class RodTable(RodEpisodes):
     def _move(self, action):
         toppled = self._map["topples"][(self._cell, action)]
         if (self._cell, action) in self._wobbles and \
-                self._random.random() < WOBBLE_TOPPLE_PROBABILITY:
+                self._random.random() < rules.WOBBLE_TOPPLE_PROBABILITY:
             toppled = self.rod_names[-1]
         self._cell = next_cell(self._cell, action)
         rods = [int(toppled == name) for name in self.rod_names]
@@ -188,6 +189,6 @@ class RodTableBatch:
             if beside.size:
                 toppled = toppled.copy()
                 falls = self.streams.draw(np.asarray(rows)[beside], k=1)[:, 0] \
-                    < WOBBLE_TOPPLE_PROBABILITY
+                    < rules.WOBBLE_TOPPLE_PROBABILITY
                 toppled[beside[falls]] = len(ROD_NAMES)
         return self.next_cell[cells, actions], toppled

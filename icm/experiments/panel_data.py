@@ -27,7 +27,6 @@ from icm.experiments import actor_critic as _actor_critic
 from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments import rod_toppling as _rod_toppling
 from icm.experiments._progress import progress_bar
-from icm.learners import actor_critic, goal_oriented, interest, predictors, q_learning
 from icm.stats import bootstrap_band, every_nth
 
 
@@ -35,36 +34,66 @@ from icm.stats import bootstrap_band, every_nth
 class PanelSpec:
     """What a panel runs and which settings its sliders offer.
 
+    The sliders and choices are settings of the run function's learner
+    (`icm._settings.Setting`): their grids, live ranges, labels and defaults come
+    from there.
+
     Attributes:
       title: what the panel shows, for headings.
-      run: the experiment (`run_goal_oriented`, ...).
+      run: the experiment (`run_goal_oriented`, ...), made with
+        `icm._settings.with_settings`.
       grid_run: its many-settings form (`run_goal_oriented_grid`, ...), or None if it
         has none (then the settings run one by one).
       curves: the experiment's `panel_curves` (result -> curves dict).
-      sliders: {argument: grid values}, each an evenly spaced tuple of at least 5
-        numbers that includes the library's default.
-      choices: {argument: options}, first option the library's default.
-      defaults: the library's default of every slider and choice.
+      slider_names: the learner's settings offered as sliders (each with a `Slider`).
+      choice_names: the learner's settings offered as choices.
       fixed: the run's other arguments (seeds, trials, root seed).
       every: the static panel keeps every `every`-th point of each curve (and the
         last): enough for the eye, a smaller page, and fewer bands to compute (a kept
         point's numbers are those of the live panel).
+      grids: values that replace some controls' grids (the book's panels have none; a
+        smaller grid for a test or a quick sketch), {name: values}.
     """
 
     title: str
     run: object
     grid_run: object
     curves: object
-    sliders: dict
-    choices: dict
-    defaults: dict
+    slider_names: tuple
+    choice_names: tuple
     fixed: dict
     every: int = 1
+    grids: dict = dataclasses.field(default_factory=dict)
+
+    def setting(self, name):
+        """The `icm._settings.Setting` of control `name`."""
+        return self.run.settings_class.spec(name)
+
+    @property
+    def sliders(self):
+        """{setting: the static panel's grid of values} of the sliders."""
+        return {name: tuple(self.grids.get(name, self.setting(name).slider.grid))
+                for name in self.slider_names}
+
+    @property
+    def choices(self):
+        """{setting: options} of the choices, the default first."""
+        out = {}
+        for name in self.choice_names:
+            spec = self.setting(name)
+            options = (spec.default,) + tuple(c for c in spec.choices if c != spec.default)
+            out[name] = tuple(self.grids.get(name, options))
+        return out
+
+    @property
+    def defaults(self):
+        """The library's default of every slider and choice."""
+        return {name: self.setting(name).default for name in self.controls}
 
     @property
     def controls(self):
         """Names of the sliders and choices, in order."""
-        return tuple(self.sliders) + tuple(self.choices)
+        return tuple(self.slider_names) + tuple(self.choice_names)
 
     def settings(self):
         """Every setting of the grid, as dicts, in a fixed order."""
@@ -74,47 +103,28 @@ class PanelSpec:
         return [dict(zip(names, combo)) for combo in itertools.product(*values)]
 
 
-def _evenly(first, step, n=5):
-    return tuple(round(first + i * step, 10) for i in range(n))
-
-
 PANELS = {
     "figure5": PanelSpec(
         title="Figure 5: interest in each task",
         run=_goal_oriented.run_goal_oriented,
         grid_run=_goal_oriented.run_goal_oriented_grid, curves=_goal_oriented.panel_curves,
-        sliders={"epsilon": _evenly(0.0, 0.1), "window": (3, 5, 7, 9, 11),
-                 "new_task_factor": _evenly(0.0, 0.25)},
-        choices={},
-        defaults={"epsilon": goal_oriented.DEFAULT_EPSILON,
-                  "window": interest.DEFAULT_WINDOW,
-                  "new_task_factor": interest.DEFAULT_NEW_TASK_FACTOR},
+        slider_names=("epsilon", "window", "new_task_factor"), choice_names=(),
         fixed={"n_seeds": 100, "n_trials": 60, "seed": 0}),
     "figure6": PanelSpec(
         title="Figure 6: the actor-critic's prediction error",
         run=_actor_critic.run_actor_critic,
         grid_run=_actor_critic.run_actor_critic_grid, curves=_actor_critic.panel_curves,
-        sliders={"lr_actor": _evenly(0.1, 0.2), "lr_critic": _evenly(0.1, 0.2),
-                 "temperature": _evenly(0.1, 0.1)},
-        choices={"variant": tuple(actor_critic.VARIANTS)},
-        defaults={"lr_actor": actor_critic.DEFAULT_LR_ACTOR,
-                  "lr_critic": actor_critic.DEFAULT_LR_CRITIC,
-                  "temperature": actor_critic.DEFAULT_TEMPERATURE, "variant": "standard"},
+        slider_names=("lr_actor", "lr_critic", "temperature"), choice_names=("variant",),
         fixed={"n_seeds": 100, "n_trials": 60, "seed": 0}),
     "figure7": PanelSpec(
         title="Figure 7: what is left to learn about each rod",
         run=_rod_toppling.run_rod_toppling, grid_run=None,
         curves=_rod_toppling.panel_curves,
-        sliders={"epsilon": _evenly(0.0, 0.1), "alpha": _evenly(0.1, 0.2),
-                 "gamma": _evenly(0.1, 0.2), "predictor_lr": _evenly(0.1, 0.1)},
-        choices={},
-        defaults={"epsilon": q_learning.DEFAULT_EPSILON, "alpha": q_learning.DEFAULT_ALPHA,
-                  "gamma": q_learning.DEFAULT_GAMMA,
-                  "predictor_lr": predictors.DEFAULT_LINEAR_LR},
+        slider_names=("epsilon", "alpha", "gamma", "predictor_lr"), choice_names=(),
         fixed={"n_seeds": 100, "n_episodes": 150, "seed": 0}, every=3),
 }
-"""The panels, by name. Each slider's grid has 5 evenly spaced values around the
-library's default; every run has 100 seeds."""
+"""The panels, by name. Each slider's grid is its setting's `Slider.grid` (5 evenly
+spaced values around the library's default); every run has 100 seeds."""
 
 
 def spec(name):
@@ -348,7 +358,7 @@ def sweep_summary(grid):
       the shortest) out of "pairs".
     """
     _validate.instance("grid", grid, PanelGrid,
-                       "a PanelGrid (from icm.experiments.panels.precompute)")
+                       "a PanelGrid (from icm.experiments.panel_data.precompute)")
     if grid.cells is None:
         raise ValueError(f"grid must be the figure5 grid, got the {grid.name} grid")
     spec_ = grid.spec

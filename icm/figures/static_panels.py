@@ -1,6 +1,6 @@
 """Static interactive panels: Vega-Lite figures whose sliders redraw them in the browser,
 with no Python kernel, from a grid of settings computed beforehand
-(`icm.experiments.panels.precompute`).
+(`icm.experiments.panel_data.precompute`).
 
 Each figure is a Vega-Lite specification, a declarative description written here as
 a plain dict: each slider is a parameter bound to a range input, and the marks draw
@@ -19,17 +19,8 @@ import math
 import numpy as np
 
 from icm import _validate
-from icm.experiments import panels as _panels
-from icm.figures.panels import SERIES_COLOURS
-
-LABELS = {
-    "epsilon": "epsilon (random actions)", "window": "window k",
-    "new_task_factor": "new-task factor", "lr_actor": "actor learning rate",
-    "lr_critic": "critic learning rate", "temperature": "temperature",
-    "variant": "variant", "alpha": "alpha (Q learning rate)", "gamma": "gamma (discount)",
-    "predictor_lr": "predictor learning rate",
-}
-"""Readable names of the panels' controls, shown next to the sliders."""
+from icm.experiments import panel_data as _panel_data
+from icm.figures.panel_plots import SERIES_COLOURS
 
 DIGITS = 4
 """Decimals kept in the page's data: far finer than a pixel of the figure."""
@@ -122,22 +113,23 @@ def _controls(spec):
     keeps the rows of the setting they show."""
     params, tests = [], []
     for name, values in spec.sliders.items():
-        params.append(_slider(name, values, spec.defaults[name]))
+        params.append(_slider(name, values, spec.defaults[name], spec.setting(name).label))
         tests.append(f"abs(datum.{name} - {name}) < 1e-6")
     for name, options in spec.choices.items():
         params.append({"name": name, "value": spec.defaults[name],
                        "bind": {"input": "radio", "options": list(options),
-                                "name": LABELS.get(name, name) + " "}})
+                                "name": spec.setting(name).label + " "}})
         tests.append(f"datum.{name} == {name}")
     return params, " && ".join(tests)
 
 
-def _slider(name, values, default):
-    """A parameter bound to a range input over the evenly spaced `values`."""
+def _slider(name, values, default, label):
+    """A parameter bound to a range input over the evenly spaced `values`, labelled in
+    words (`label`, the setting's)."""
     step = round(values[1] - values[0], 10) if len(values) > 1 else 1
     return {"name": name, "value": _plain(default),
             "bind": {"input": "range", "min": _plain(values[0]), "max": _plain(values[-1]),
-                     "step": _plain(step), "name": LABELS.get(name, name) + " "}}
+                     "step": _plain(step), "name": label + " "}}
 
 
 def _specification(rows, params, transform, body):
@@ -149,8 +141,8 @@ def _specification(rows, params, transform, body):
 def curves_rows(grid):
     """The page's data of a curves panel: one row per setting and series, the series'
     points as arrays (x, mean, low, high)."""
-    _validate.instance("grid", grid, _panels.PanelGrid,
-                       "a PanelGrid (from icm.experiments.panels.precompute)")
+    _validate.instance("grid", grid, _panel_data.PanelGrid,
+                       "a PanelGrid (from icm.experiments.panel_data.precompute)")
     rows = []
     for setting, curves in zip(grid.settings, grid.curves):
         x = [int(v) for v in curves["x"]]
@@ -173,8 +165,8 @@ def curves_panel(grid, width=560, height=280):
     Returns:
       A `StaticPanel`.
     """
-    _validate.instance("grid", grid, _panels.PanelGrid,
-                       "a PanelGrid (from icm.experiments.panels.precompute)")
+    _validate.instance("grid", grid, _panel_data.PanelGrid,
+                       "a PanelGrid (from icm.experiments.panel_data.precompute)")
     width = _validate.integer("width", width, 200, 2000)
     height = _validate.integer("height", height, 100, 2000)
     spec = grid.spec
@@ -215,8 +207,8 @@ def curves_panel(grid, width=560, height=280):
 def sweep_rows(grid):
     """The page's data of the sweep panel: one row per setting of the Figure 5 grid with
     its `sweep_cell` numbers."""
-    _validate.instance("grid", grid, _panels.PanelGrid,
-                       "a PanelGrid (from icm.experiments.panels.precompute)")
+    _validate.instance("grid", grid, _panel_data.PanelGrid,
+                       "a PanelGrid (from icm.experiments.panel_data.precompute)")
     if grid.cells is None:
         raise ValueError(f"grid must be the figure5 grid (its runs give the sweep), got "
                          f"the {grid.name} grid")
@@ -245,7 +237,7 @@ def sweep_panel(grid, cell=44):
     cell = _validate.integer("cell", cell, 20, 200)
     spec = grid.spec
     params = [_slider("new_task_factor", spec.sliders["new_task_factor"],
-                      spec.defaults["new_task_factor"])]
+                      spec.defaults["new_task_factor"], spec.setting("new_task_factor").label)]
     axes = {"x": {"field": "epsilon", "type": "ordinal", "title": "epsilon",
                   "axis": {"labelAngle": 0}},
             "y": {"field": "window", "type": "ordinal", "title": "window k",

@@ -76,7 +76,7 @@ PANEL_LAYOUT = {
 
 
 def panel_figure(name, curves):
-    """Draws the `curves` of panel `name` (a key of `icm.experiments.panels.PANELS`) on
+    """Draws the `curves` of panel `name` (a key of `icm.experiments.panel_data.PANELS`) on
     that panel's fixed layout: what the live panels show."""
     layout = PANEL_LAYOUT[_validate.one_of("name", name, tuple(PANEL_LAYOUT))]
     fig = draw_curves(curves, width_per_group=layout["width_per_group"])
@@ -108,7 +108,7 @@ def sweep_figure(settings, cells):
     Args:
       settings: the grid's settings (dicts with at least epsilon and window), one per
         cell.
-      cells: for each setting, its `icm.experiments.panels.sweep_cell` numbers.
+      cells: for each setting, its `icm.experiments.panel_data.sweep_cell` numbers.
     """
     if not isinstance(settings, (list, tuple)) or not isinstance(cells, (list, tuple)) \
             or len(settings) != len(cells) or not settings:
