@@ -537,9 +537,13 @@ def test_without_webgl_the_still_stays_with_a_note(browser, live_page):
 
 @browser_only
 def test_in_print_the_still_and_a_note_show(browser, live_page):
-    visit = Visit(browser, live_page.as_uri(), media="print")
+    visit = Visit(browser, live_page.as_uri())
     view = visit.view(SCENE)
+    visit.start(SCENE)  # printed while it runs
+    assert not view.locator(".icm-live-poster").is_visible()
+    visit.page.emulate_media(media="print")
     assert view.locator(".icm-live-poster").is_visible()
     assert view.locator(".icm-live-print").is_visible()
-    assert not view.locator(".icm-live-start").is_visible()
+    assert not view.locator("canvas").is_visible()
+    assert not view.get_by_role("button", name="Press button 2").is_visible()
     visit.close()
