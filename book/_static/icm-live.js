@@ -70,14 +70,18 @@
     return engine;
   }
 
-  function missingFeature() {
-    if (typeof WebAssembly !== "object") return "no WebAssembly";
-    if (typeof DecompressionStream !== "function") return "no DecompressionStream";
+  // What the browser lacks for the live view ({missing}), or whether it draws WebGL in
+  // software ({software}: then without antialiasing and shadows, twice the frames).
+  function probe() {
+    if (typeof WebAssembly !== "object") return {missing: "no WebAssembly"};
+    if (typeof DecompressionStream !== "function") return {missing: "no DecompressionStream"};
     const gl = document.createElement("canvas").getContext("webgl2");
-    if (!gl) return "no WebGL 2";
+    if (!gl) return {missing: "no WebGL 2"};
+    const info = gl.getExtension("WEBGL_debug_renderer_info");
+    const renderer = info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : "";
     const lose = gl.getExtension("WEBGL_lose_context");
     if (lose) lose.loseContext();
-    return null;
+    return {missing: null, software: /swiftshader|llvmpipe|software/i.test(renderer)};
   }
 
   /* ------------------------------------------------------------------ physics */
@@ -370,13 +374,13 @@
   // The scene's geoms as three.js meshes, posed from MjData at every frame; a camera
   // that orbits (drag, or keys A/D/W/S) and zooms (wheel once focused, or +/-).
   class View {
-    constructor(canvas, sim) {
+    constructor(canvas, sim, software) {
       const T = window.THREE, model = sim.model, data = sim.data;
       this.sim = sim;
       this.canvas = canvas;
-      this.renderer = new T.WebGLRenderer({canvas, antialias: true});
+      this.renderer = new T.WebGLRenderer({canvas, antialias: !software});
       this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
-      this.renderer.shadowMap.enabled = true;
+      this.renderer.shadowMap.enabled = !software;
       this.scene = new T.Scene();
       this.scene.background = new T.Color().setRGB(0.78, 0.84, 0.9, T.SRGBColorSpace);
       this.scene.add(new T.HemisphereLight(0xffffff, 0x8a8070, 1.6));
@@ -552,7 +556,7 @@
 
   // One live view: the stage (canvas and the replay's panel), its controls, its loop.
   class Live {
-    constructor(box, engine, spec) {
+    constructor(box, engine, spec, software) {
       this.box = box;
       this.spec = spec;
       this.speed = 1;
@@ -571,7 +575,7 @@
         this.stage = box.querySelector(".icm-live-stage");
         this.stage.append(this.canvas, this.panel);
         box.querySelector(".icm-live-start").after(this.ui);
-        this.view = new View(this.canvas, this.sim);
+        this.view = new View(this.canvas, this.sim, software);
       } catch (error) {
         this.sim.dispose();
         throw error;
@@ -595,10 +599,13 @@
       if (this.sim.busy) {
         const before = this.sim.data.time;
         this.sim.advance(wall * this.speed);
-        this.stats.simulated += this.sim.data.time - before;
-        this.stats.wall += wall;
         this.view.dirty = true;
-        if (!this.sim.busy) this.mode.done();
+        if (this.sim.busy) {  // the pace of the physics, over frames it ran throughout
+          this.stats.simulated += this.sim.data.time - before;
+          this.stats.wall += wall;
+        } else {
+          this.mode.done();
+        }
       }
       if (this.view.dirty) {
         this.view.draw();
@@ -902,12 +909,12 @@
   }
 
   async function start(box, base) {
-    const missing = missingFeature();
+    const {missing, software} = probe();
     if (missing) return fallback(box, missing);
     const button = box.querySelector(".icm-live-start");
     try {
       const spec = JSON.parse(box.querySelector(".icm-live-data").textContent);
-      const live = new Live(box, await loadEngine(base), spec);
+      const live = new Live(box, await loadEngine(base), spec, software);
       views.push(live);
       button.hidden = true;
       box.querySelector(".icm-live-note").textContent =
