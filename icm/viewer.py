@@ -54,8 +54,9 @@ the hand the way they point."""
 
 DEFAULT_REPLAY_TRIALS = 10
 """Trials of the goal-oriented learner's run that `live_learner` replays."""
-DEFAULT_REPLAY_EPISODES = 8
-"""Episodes of the Q-learner's run that `live_rod_learner` replays."""
+DEFAULT_REPLAY_EPISODES = 30
+"""Episodes of the Q-learner's run that `live_rod_learner` replays: for the root seed 0,
+they reach the first blue topple (episode 29)."""
 
 
 def scene_xml(scene):

@@ -779,7 +779,7 @@
       const trial = trials[Math.min(t, trials.length - 1)];
       const interest = t > 0 ? trials[t - 1].interest : [0, 0];
       live.panel.replaceChildren(
-        element("strong", {}, `Run of seed ${seed}: trial ${Math.min(t + 1, trials.length)} ` +
+        element("strong", {}, `Run 0 of seed ${seed}: trial ${Math.min(t + 1, trials.length)} ` +
                               `of ${trials.length}`),
         element("div", {}, "Lights: " + trial.lights.map((light, b) => (
           light ? `${LIGHT_WORDS[light]} on ${b}` : null)).filter(Boolean).join(", ")),
@@ -829,7 +829,7 @@
     const show = (line) => {
       const episode = episodes[Math.min(e, episodes.length - 1)];
       live.panel.replaceChildren(
-        element("strong", {}, `Run of seed ${replay.seed}: episode ` +
+        element("strong", {}, `Run 0 of seed ${replay.seed}: episode ` +
                               `${Math.min(e + 1, episodes.length)} of ${episodes.length}`),
         element("div", {}, line),
         element("div", {}, "Prediction error in this episode (the robot's reward):"),
