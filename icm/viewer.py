@@ -473,13 +473,14 @@ class LiveView:
                     "MuJoCo in the reader's browser; it needs the book's scripts, which "
                     "a notebook server does not serve.</figcaption></figure>")
         data = payload.replace("</", "<\\/")
+        title = html.escape(self.title)
         return (
-            f'<div class="icm-live" id="{view_id}" data-static="{html.escape(self.static_path)}"'
-            f' data-title="{html.escape(self.title)}">'
+            f'<div class="icm-live" id="{view_id}" data-title="{title}" '
+            f'data-static="{html.escape(self.static_path)}">'
             f'<div class="icm-live-stage">{still}</div>'
-            '<p class="icm-live-note">A still of ' + html.escape(self.title) + '. The live '
-            "3D view runs MuJoCo (WebAssembly) in your browser; its scripts, about 4 MB, "
-            "load when you start it.</p>"
+            f'<p class="icm-live-note" id="{view_id}-note">A still of {title}. The live 3D '
+            "view runs MuJoCo (WebAssembly) in your browser; its scripts, about 4 MB, load "
+            "when you start it.</p>"
             '<p class="icm-live-print">In the HTML version of this book, this is a live 3D '
             "view.</p>"
             '<button type="button" class="icm-live-start" hidden>Start the live view</button>'

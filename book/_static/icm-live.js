@@ -147,10 +147,15 @@
       return q.map((v, j) => Math.min(Math.max(v, lower[j]), upper[j]));
     }
 
-    restart() {
+    // Drops the rest of the program (the state stays as it is).
+    stop() {
       this.program = [];
       this.segment = null;
       this.carry = 0;
+    }
+
+    restart() {
+      this.stop();
       this.last = null;
       this.mj.mj_resetData(this.model, this.data);
     }
@@ -565,8 +570,7 @@
         const title = box.getAttribute("data-title") || "the simulated iCub";
         this.canvas = element("canvas", {
           tabindex: "0", role: "application",
-          "aria-label": `Live 3D view of ${title}. Drag, or press A, D, W and S, to turn it; ` +
-                        "the mouse wheel or + and - to zoom."});
+          "aria-label": `Live 3D view of ${title}`, "aria-describedby": box.id + "-note"});
         this.panel = element("div", {class: "icm-live-panel"});
         this.status = element("p", {class: "icm-live-status", "aria-live": "polite"});
         this.controls = element("div", {class: "icm-live-controls"});
@@ -581,12 +585,17 @@
         throw error;
       }
       box.classList.add("icm-live-running");
+      this.note = box.querySelector(".icm-live-note");
+      this.stillNote = this.note.textContent;
       this.canvas.addEventListener("keydown", (event) => this.key(event));
       this.resizer = new ResizeObserver(() => this.view.resize(this.stage.clientWidth));
       this.resizer.observe(this.stage);
       this.view.resize(this.stage.clientWidth);
       this.stats = {frames: 0, firstFrame: null, wall: 0, simulated: 0};
       this.mode = MODES[spec.mode](this);
+      this.note.textContent = "Live: MuJoCo is running in your browser. Drag the view to " +
+        "turn it; click it, then use the wheel or + and - to zoom, A, D, W and S to turn" +
+        (this.mode.keys ? `, ${this.mode.keys}.` : ".");
       this.waitUntil = 0;
       this.previous = performance.now();
       this.frame = requestAnimationFrame((now) => this.tick(now));
@@ -650,6 +659,7 @@
       this.sim.dispose();
       for (const node of [this.canvas, this.panel, this.ui]) node.remove();
       this.box.classList.remove("icm-live-running");
+      this.note.textContent = this.stillNote;
       const start = this.box.querySelector(".icm-live-start");
       start.disabled = false;
       start.hidden = false;
@@ -696,6 +706,7 @@
     closeControl(live);
     reset();
     return {
+      keys: "the keys 0 to 4 to press a button",
       key: (key) => (/^[0-4]$/.test(key) ? (press(+key), true) : false),
       done: () => {
         const last = sim.last;
@@ -735,6 +746,7 @@
     reset();
     const keys = {ArrowUp: 0, ArrowDown: 1, ArrowLeft: 2, ArrowRight: 3};
     return {
+      keys: "the arrow keys to move the hand",
       key: (key) => (key in keys ? (move(keys[key]), true) : false),
       done: () => {
         moves.forEach((node) => { node.disabled = false; });
@@ -771,6 +783,7 @@
     let t = 0, p = -1, agreed = 0, pressed = 0;
     const log = live.log;
     const restart = () => {
+      sim.stop();
       t = 0; p = -1; agreed = 0; pressed = 0;
       log.replaceChildren();
       show("The run starts.");
@@ -822,6 +835,7 @@
     let e = 0, m = -1, agreed = 0;
     const log = live.log;
     const restart = () => {
+      sim.stop();
       e = 0; m = -1; agreed = 0;
       log.replaceChildren();
       show("The run starts.");
@@ -917,9 +931,6 @@
       const live = new Live(box, await loadEngine(base), spec, software);
       views.push(live);
       button.hidden = true;
-      box.querySelector(".icm-live-note").textContent =
-        "Live: MuJoCo is running in your browser. Drag the view to turn it, " +
-        "click it and use the wheel to zoom.";
       return live;
     } catch (error) {
       console.error(error);
