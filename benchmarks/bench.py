@@ -276,6 +276,11 @@ def main(argv=None):
         env.physics.render(480, 640, camera_id="over_shoulder")
     print(f"\nrender 640x480, button scene: {20 / (time.perf_counter() - start):.1f} frames/s")
 
+    import live_viewer  # benchmarks/live_viewer.py
+
+    print("\nThe live iCub in headless Chromium (benchmarks/live_viewer.py):")
+    print("\n".join(live_viewer.report(live_viewer.measure(3 if args.quick else 5))))
+
 
 if __name__ == "__main__":
     main()

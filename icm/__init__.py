@@ -3,7 +3,8 @@ for Forming Actions and Producing Goal Directed Behaviour".
 
 Subpackages: `envs` (the button and rod tasks), `learners` (predictors, interest
 measures, agents), `experiments` (seeded multi-run experiments), `figures` (the paper's
-figures), `widgets` (interactive panels for the book), `stats` (bands over seeds).
+figures), `widgets` (interactive panels for the book), `stats` (bands over seeds),
+`viewer` (the live 3D views of the HTML book, run in the reader's browser).
 
 Each is imported on first use (`icm.figures` loads matplotlib, a physics environment
 loads MuJoCo), so `import icm` is quick.
@@ -12,7 +13,7 @@ loads MuJoCo), so `import icm` is quick.
 import importlib
 
 __version__ = "0.1.0"
-__all__ = ["envs", "experiments", "figures", "learners", "stats", "widgets"]
+__all__ = ["envs", "experiments", "figures", "learners", "stats", "viewer", "widgets"]
 
 
 def __getattr__(name):

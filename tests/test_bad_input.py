@@ -681,3 +681,46 @@ def test_a_static_panel_keeps_markup_in_its_data_out_of_the_page():
     assert "<" not in script and ">" not in script and "&" not in script
     import json
     assert json.loads(script)["title"] == "a <!--<script> b </script> & c"
+
+
+# --- icm.viewer --------------------------------------------------------------------------
+
+def test_live_views_refuse_unknown_scenes_sizes_and_flags(tmp_path):
+    from icm import viewer
+
+    refused(lambda: viewer.scene_xml("kitchen"), "scene", "'kitchen'", "value")
+    refused(lambda: viewer.scene_export(2), "scene", "2", "type")
+    refused(lambda: viewer.learner_replay(n_trials=0), "n_trials", "0", "value")
+    refused(lambda: viewer.learner_replay(seed=-1), "seed", "-1", "value")
+    refused(lambda: viewer.rod_replay(n_episodes=1.5), "n_episodes", "1.5", "type")
+    refused(lambda: viewer.formed_presses("babbling"), "babbling", "'babbling'", "type")
+    refused(lambda: viewer.live_scene("kitchen"), "scene", "'kitchen'", "value")
+    refused(lambda: viewer.live_scene("rods", live="yes"), "live", "'yes'", "type")
+    refused(lambda: viewer.live_scene("rods", static_path=3), "static_path", "3", "type")
+    refused(lambda: viewer.live_learner(n_trials=-2), "n_trials", "-2", "value")
+    refused(lambda: viewer.live_rod_learner(n_episodes=0), "n_episodes", "0", "value")
+    refused(lambda: viewer.live_formed_presses(None), "babbling", "None", "type")
+    data = {"scene": "rods", "mode": "scene"}
+    refused(lambda: viewer.LiveView([], b"", "a still"), "data", "[]", "type")
+    refused(lambda: viewer.LiveView({"scene": "sea"}, b"", "a still"), "data", "'sea'", "value")
+    refused(lambda: viewer.LiveView(data, "jpeg", "a still"), "poster", "'jpeg'", "type")
+    refused(lambda: viewer.LiveView(data, b"", None), "alt", "None", "type")
+    still = viewer.LiveView(data, b"", "a still", live=False)
+    refused(lambda: viewer.write_page(3, [still], tmp_path), "folder", "3", "type")
+    refused(lambda: viewer.write_page(tmp_path, [], tmp_path), "views", "[]", "type")
+    refused(lambda: viewer.write_page(tmp_path, ["view"], tmp_path), "views[0]", "'view'",
+            "type")
+    refused(lambda: viewer.write_page(tmp_path, [still], tmp_path), "views[0]", "still",
+            "value")
+    live = viewer.LiveView(data, b"", "a still", live=True)
+    refused(lambda: viewer.write_page(tmp_path, [live], tmp_path), "static_dir",
+            str(tmp_path), "value")
+
+
+def test_formed_presses_refuse_a_run_the_result_does_not_have():
+    from icm import viewer
+    from icm.experiments import run_goal_babbling
+
+    babbling = run_goal_babbling(n_seeds=2, n_rollouts=3, seed=0, progress=False)
+    refused(lambda: viewer.formed_presses(babbling, run=2), "run", "2", "value")
+    refused(lambda: viewer.formed_presses(babbling, run="0"), "run", "'0'", "type")

@@ -280,3 +280,32 @@ def test_static_panels_need_no_network_and_log_no_errors(static_panels):
     assert static_panels["requests"] == []
     assert static_panels["errors"] and all(e == [] for e in static_panels["errors"].values()), \
         static_panels["errors"]
+
+
+def test_a_live_view_starts_in_the_book_and_presses_a_button(built_book):
+    # The live iCub (icm.viewer) in a built page: its scripts found through the page's
+    # content root, loaded only on the click, the press opening the red box. The viewer
+    # itself is checked in depth on a page of its own by tests/test_live_viewer.py.
+    with playwright_api.sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=[
+            "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+            "--disable-background-networking", "--disable-component-update", "--disable-sync"])
+        context = browser.new_context(offline=True, viewport={"width": 1366, "height": 800})
+        requests, errors = [], []
+        context.route("**/*", lambda route: route.continue_() if route.request.url.startswith(
+            "file:") else (requests.append(route.request.url), route.abort()))
+        page = context.new_page()
+        page.on("console", lambda message: errors.append(message.text)
+                if message.type == "error" else None)
+        page.on("pageerror", lambda error: errors.append(str(error)))
+        page.goto((built_book / "book" / "simulated_icub.html").as_uri(), wait_until="load")
+        assert page.evaluate("typeof window.icmLive") == "undefined"
+        view = page.locator(".icm-live").first
+        view.get_by_role("button", name="Start the live view").click()
+        page.wait_for_function("window.icmLive && window.icmLive.views.length === 1 && "
+                               "window.icmLive.views[0].stats.frames > 0", timeout=60000)
+        view.get_by_role("button", name="Press button 2").click()
+        page.wait_for_function("!window.icmLive.views[0].sim.busy", timeout=60000)
+        assert "opened the red box" in view.locator(".icm-live-status").inner_text()
+        browser.close()
+    assert errors == [] and requests == []

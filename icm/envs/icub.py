@@ -179,13 +179,11 @@ class Arm:
           True if `monitor` stopped the motion, else False.
         """
         goal = np.clip(self.check_joints("q_target", q_target), self.lower, self.upper)
-        duration = _validate.positive("duration", duration)
+        n_updates = self.n_updates(duration)
         _validate.function("monitor", monitor)
         data = self.physics.data
         ctrl, index = data.ctrl, self.actuator_index
         start = ctrl[index].copy()
-        dt = self.physics.model.opt.timestep * SUBSTEPS
-        n_updates = max(1, int(round(duration / dt)))
         profile = minimum_jerk(np.arange(1, n_updates + 1) / n_updates)
         targets = start + np.outer(profile, goal - start)  # one row per update
         model_ptr, data_ptr = self.model_ptr, self.data_ptr
@@ -195,6 +193,12 @@ class Arm:
             if monitor is not None and monitor():
                 return True
         return False
+
+    def n_updates(self, duration):
+        """How many updates of the actuators' targets a motion of `duration` seconds
+        (> 0) makes: one every `SUBSTEPS` physics steps, at least one."""
+        duration = _validate.positive("duration", duration)
+        return max(1, int(round(duration / (self.physics.model.opt.timestep * SUBSTEPS))))
 
     def hold(self, duration, monitor=None):
         """Keeps the current targets for `duration` seconds (see `move`)."""

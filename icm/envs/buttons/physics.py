@@ -356,6 +356,8 @@ class PhysicsButtonConsole(ButtonTrials):
     """Durations (seconds) of the primitive's phases."""
     LID_WAIT = 1.5
     """Longest wait (seconds) for a lid to open or shut."""
+    LID_SHUT_ANGLE = np.deg2rad(3.0)
+    """A lid counts as shut, before a press, below this angle (radians)."""
 
     def __init__(self, red_button=DEFAULT_RED_BUTTON,
                  presses_per_trial=DEFAULT_PRESSES_PER_TRIAL, rewarded_box=None,
@@ -401,7 +403,7 @@ class PhysicsButtonConsole(ButtonTrials):
         physics, task, motions, arm = self.physics, self.task, self.motions, self.arm
         lids = physics._indices()._lid_qpos
         qpos = physics.data.qpos
-        shut = np.deg2rad(3.0)
+        shut = self.LID_SHUT_ANGLE
         task.shut_lids(physics)
         if qpos[lids[0]] >= shut or qpos[lids[1]] >= shut:
             arm.hold(self.LID_WAIT, monitor=lambda: task.update(physics)

@@ -282,6 +282,12 @@ class PhysicsRodTable(RodEpisodes):
     """Seconds the physics runs on after a move, at least."""
     FALL_TIME = 1.0
     """Longest wait (seconds) for a tipping rod to come to rest."""
+    TIPPING_TILT = np.deg2rad(5.0)
+    """A rod that leans more than this (radians) after the settling time is tipping:
+    the physics runs on until the rods are still (or `FALL_TIME`)."""
+    REST_SPEED = 0.05
+    """The rods are still when no component of their velocities (m/s, rad/s) is
+    larger than this."""
 
     def __init__(self, start_cell=DEFAULT_START_CELL, max_moves=DEFAULT_MAX_MOVES,
                  wobbly_rod=False, seed=None):
@@ -342,12 +348,12 @@ class PhysicsRodTable(RodEpisodes):
             self.arm.move(self.motions.cells[target], self.SEGMENT_TIME, watch)
             self._cell = target
         self.arm.hold(self.SETTLE_TIME, watch)
-        if np.any(physics.rod_tilts() > np.deg2rad(5.0)):
+        if np.any(physics.rod_tilts() > self.TIPPING_TILT):
             # A rod is tipping: let it fall and come to rest before looking.
             bodies = physics.rod_bodies()
             speed = lambda: np.abs(physics.named.data.qvel[bodies]).max()
-            self.arm.hold(self.FALL_TIME,
-                          monitor=lambda: (watch is not None and watch()) or speed() < 0.05)
+            self.arm.hold(self.FALL_TIME, monitor=lambda: (watch is not None and watch())
+                          or speed() < self.REST_SPEED)
         return physics.rods_toppled()
 
 
