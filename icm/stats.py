@@ -7,7 +7,11 @@ import numpy as np
 from icm import _validate
 
 
-def mean_band(values, level=0.95):
+BAND_LEVEL = 0.95
+"""The confidence level of every band the book draws around a mean over seeds."""
+
+
+def mean_band(values, level=BAND_LEVEL):
     """Mean over the first axis (seeds) and a confidence band for that mean.
 
     The band is mean +/- t * standard error, with Student's t for n - 1 degrees of
@@ -15,7 +19,7 @@ def mean_band(values, level=0.95):
 
     Args:
       values: array [seed, ...].
-      level: confidence level in (0, 1).
+      level: confidence level in (0, 1); default `BAND_LEVEL`.
 
     Returns:
       (mean, low, high), arrays of shape values.shape[1:]. With one seed the band is
@@ -31,7 +35,8 @@ def mean_band(values, level=0.95):
     if values.ndim < 1 or values.shape[0] < 1:
         raise ValueError(f"values must have a seed axis with at least one seed, got shape "
                          f"{values.shape}")
-    level = _validate.real("level", level, 0.0, 1.0, low_open=True, high_open=True)
+    level = BAND_LEVEL if level is None else _validate.real("level", level, 0.0, 1.0,
+                                                             low_open=True, high_open=True)
     n = values.shape[0]
     mean = values.mean(axis=0)
     if n < 2:
@@ -92,7 +97,7 @@ def _resample_counts(n, resamples, seed):
     return counts
 
 
-def bootstrap_band(values, level=0.95, resamples=1000, seed=0):
+def bootstrap_band(values, level=None, resamples=1000, seed=0):
     """Mean over the first axis (seeds) and a percentile-bootstrap band for it.
 
     The band is the (1 - level) / 2 and (1 + level) / 2 quantiles of the means of

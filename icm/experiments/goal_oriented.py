@@ -27,6 +27,15 @@ _REST = (0, 0)
 TASK_KEYS = {"red": (_REST, (1, 0)), "green": (_REST, (0, 1)), "nothing": (_REST, (0, 0))}
 """The agent's task keys (boxes at rest -> boxes after the press) by name."""
 _TASK_EFFECTS = (buttons.RED_BOX, buttons.GREEN_BOX)  # red, green, as TASKS
+FADE_FRACTION = 0.1
+"""The share of its peak below which a task's mean interest has faded (`fade_trial`)."""
+CLAIMS = {
+    "red_first_mostly": "red is mastered first in most seeds",
+    "red_sooner": "red is mastered sooner than green on average",
+    "red_fades_first": "the mean interest in red fades before the interest in green",
+    "green_stays_longer": "the interest in green is spent later than the interest in red",
+}
+"""The claims of the paper about Figure 5 that the book states (`claims`)."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -88,6 +97,19 @@ class GoalOrientedResult:
         task = _validate.one_of("task", task, TASKS)
         return int(np.argmax(self.mean_interest()[:, TASKS.index(task)])) + 1
 
+    def claims(self):
+        """{claim name: whether it holds in this run}, for each of `CLAIMS`: what the
+        chapter states in words, checked on the book's run when it is built (and by
+        the tests on their own seeds)."""
+        s = self.summary()
+        return {
+            "red_first_mostly": s["red_first"] > 0.5,
+            "red_sooner": s["red_mastery_mean"] < s["green_mastery_mean"],
+            "red_fades_first": 0 < s["red_fade_trial"] < s["green_fade_trial"]
+            or (s["red_fade_trial"] > 0 > s["green_fade_trial"]),
+            "green_stays_longer": s["green_interest_centre"] > s["red_interest_centre"],
+        }
+
     def describe_peaks(self):
         """In words, whether the mean interest in green peaks after the mean interest
         in red, as the paper's "interest rise slower" would have it: a clause that
@@ -101,11 +123,12 @@ class GoalOrientedResult:
         return (f"the mean curves show the opposite, green's peaking at trial {green}, "
                 f"before red's at trial {red}")
 
-    def fade_trial(self, task, fraction=0.1):
+    def fade_trial(self, task, fraction=None):
         """The first trial after its peak at which the mean interest in `task` falls
         below `fraction` (in (0, 1]) of that peak; -1 if it never does."""
         task = _validate.one_of("task", task, TASKS)
-        fraction = _validate.real("fraction", fraction, 0.0, 1.0, low_open=True)
+        fraction = FADE_FRACTION if fraction is None else _validate.real(
+            "fraction", fraction, 0.0, 1.0, low_open=True)
         index = first_below(self.mean_interest()[:, TASKS.index(task)], fraction)
         return index + 1 if index >= 0 else -1
 

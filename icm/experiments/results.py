@@ -34,3 +34,30 @@ def measures_table(results, measures):
     for name, cell in measures:
         lines.append(f"| {name} | " + " | ".join(cell(r) for r in results.values()) + " |")
     return "\n".join(lines)
+
+
+class ClaimFailed(AssertionError):
+    """A claim the book states in words did not hold in the run it is stated about."""
+
+
+def require(claims, texts):
+    """Raises `ClaimFailed`, naming them in words, if any of `claims` ({name: bool},
+    from a result's `claims()`) is false: the chapters call it on their own runs, so
+    that the book is not built with a sentence its numbers contradict.
+
+    Args:
+      claims: {claim name: whether it holds}.
+      texts: {claim name: the claim in words}.
+
+    Returns:
+      The names of the claims checked.
+    """
+    if not isinstance(claims, dict) or not claims:
+        raise _validate.ArgumentTypeError(f"claims must be a non-empty dict of claim name "
+                                          f"to bool, got {_validate.show(claims)}")
+    failed = [texts.get(name, name) for name, held in claims.items() if not held]
+    if failed:
+        raise ClaimFailed("the chapter states what its run contradicts: "
+                          + "; ".join(failed))
+    return list(claims)
+

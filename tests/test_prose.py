@@ -1,0 +1,103 @@
+"""The book says only what its code computes: no result, and no setting, is typed in its
+prose. A number in a chapter's text or captions must be glued from the notebook's own
+run (`{glue:text}`), or be one of the few typed numbers listed here, each with the
+reason it may be typed: a value of the model that is not a result (an encoding, a cell
+of the grid), the paper's own words, or arithmetic the sentence shows.
+
+What is left out before looking for numbers: glue and other roles, citations, math,
+inline code, links, quotations (the paper's words), and references to the paper's
+figures, sections and equations.
+"""
+
+import re
+
+import nbformat
+import pytest
+
+from conftest import ROOT
+
+NOTEBOOKS = sorted((ROOT / "book").glob("*.ipynb"))
+
+_ROLE = re.compile(r"\{[\w:-]+\}`[^`]*`")
+_MATH = re.compile(r"\$\$.*?\$\$|\$[^$\n]+\$", re.S)
+_CODE = re.compile(r"```.*?```|`[^`\n]*`", re.S)
+_LINK = re.compile(r"\]\([^)]*\)")
+_BLOCK_QUOTE = re.compile(r"^>.*$", re.M)  # the paper's words, quoted
+_QUOTE = re.compile(r"\"[^\"\n]*\"|“[^”\n]*”")
+_REFERENCE = re.compile(
+    r"\b(?:[Ff]igures?|[Ss]ections?|[Ee]quations?|[Cc]hapters?|[Tt]ables?)\s+"
+    r"\d+(?:\.\d+)*[a-z]?(?:\s*(?:,|and|or|to)\s*\d+(?:\.\d+)*[a-z]?)*"
+    r"|\(([a-c])\)|\b[Ff]igure\s+\d+\([a-c]\)")
+_LIST_MARKER = re.compile(r"^\s*\d+\.\s", re.M)
+_NUMBER = re.compile(r"(?<![\w.])\d+(?:[.,]\d+)*%?(?![\w])")
+
+ALLOWED = {
+    # Everywhere: the model's encodings and the grid's geometry, which are not results.
+    "*": [
+        "5 x 3",            # the paper's grid of hand positions
+        "0 off, 1 red, 2 green",  # the lights' encoding in an observation
+        "1 open",           # the boxes' encoding
+        "0 standing, 1 toppled",  # the rods' encoding
+    ],
+    "button_experiment": [
+        # The labels of the arrows of the paper's Figure 2, which the caption reads out.
+        "(1) observe, (2) ask the predictor for the effect of an action, (3) pass the "
+        "predicted effect, a task, to the interest module, (4) get back its interest. "
+        "Steps 2 to 4",
+    ],
+    "goal_oriented_interest": [
+        "2 to k-1",  # which histories the paper's definition leaves out (a definition)
+    ],
+    "rod_toppling": [
+        "cell (0, 0)", "cell (2, 2)", "(2, 2)",  # cells of the grid, named in the text
+        "Columns 0-4", "rows 0-2",  # the grid's numbering
+    ],
+}
+
+
+def typed_numbers(text, allowed):
+    """The numbers typed in `text` (a chapter's markdown), with the line each is on,
+    once roles, math, code, links, quotes and references are left out, and the
+    `allowed` phrases."""
+    for pattern in (_CODE, _ROLE, _MATH, _LINK, _BLOCK_QUOTE, _REFERENCE, _LIST_MARKER):
+        text = pattern.sub(" ", text)
+    # One line per paragraph (or list item), so that a phrase may span lines.
+    text = re.sub(r"\n(?!\n|\s*[-*|#])", " ", text)
+    text = re.sub(r"[ \t]+", " ", text)
+    text = _QUOTE.sub(" ", text)
+    for phrase in allowed:
+        text = text.replace(phrase, " ")
+    found = []
+    for line in text.splitlines():
+        for match in _NUMBER.finditer(line):
+            found.append((match.group(), line.strip()))
+    return found
+
+
+def chapter_text(path):
+    """The markdown of a notebook and the captions of its figures, one string."""
+    nb = nbformat.read(path, as_version=4)
+    parts = [c.source for c in nb.cells if c.cell_type == "markdown"]
+    for cell in nb.cells:
+        figure = cell.metadata.get("mystnb", {}).get("figure", {})
+        if "caption" in figure:
+            parts.append(figure["caption"])
+    return "\n\n".join(parts)
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_no_result_or_setting_is_typed_in_a_chapter(path):
+    allowed = ALLOWED["*"] + ALLOWED.get(path.stem, [])
+    found = typed_numbers(chapter_text(path), allowed)
+    assert found == [], (
+        f"{path.name} types numbers in its prose: glue them from the notebook's code "
+        f"({{glue:text}}), or, for a value of the model that is not a result, add the "
+        f"phrase to ALLOWED with its reason:\n" + "\n".join(
+            f"  {number!r} in: {line[:110]}" for number, line in found))
+
+
+def test_the_scanner_finds_typed_results_and_leaves_glued_ones():
+    text = ("Red is mastered first in 97% of the 200 seeds, at trial {glue:text}`red:.1f`; "
+            "see Figure 5 and section 4.1, and $k = 5$.\n> the paper's 50%\n")
+    assert [n for n, _ in typed_numbers(text, [])] == ["97%", "200"]
+    assert typed_numbers("the grid is 5 x 3", ["5 x 3"]) == []
