@@ -4,6 +4,7 @@ seen once), and a curiosity signal of the student's own design, each then run in
 goal-oriented learner beside the library's ("your interest, your Figure 5")."""
 
 import math
+import operator
 
 import numpy as np
 
@@ -11,7 +12,7 @@ from icm import _validate
 from icm.exercises import _core
 from icm.exercises._core import Case
 from icm.exercises._runs import EXERCISE_SEEDS, EXERCISE_TRIALS, run_goal_oriented_with
-from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW,
+from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW, _slope_weights,
                                    least_squares_slope)
 
 SLOPE_PARAMETERS = ("values",)
@@ -23,8 +24,9 @@ def _slope_cases():
     rng = np.random.default_rng(20)
     cases = [
         Case("two values", ([1.0, 0.0],),
-             "through two points the line passes through both: its slope is their "
-             "difference."),
+             "through two points the line passes through both: its slope is the second "
+             "minus the first, negative when the values go down (x = 0, 1, ...: the "
+             "oldest value first)."),
         Case("a line going up: y = 0.5 + 0.1 x, 5 values", ([0.5, 0.6, 0.7, 0.8, 0.9],),
              "the values are (0, y0), (1, y1), ...: x is the position, y the value, and "
              "the slope is positive when the values go up."),
@@ -80,7 +82,10 @@ def reference_task_interest(history, others, window=DEFAULT_WINDOW,
         return 0.0
     if len(history) == 1:
         return new_task_factor * (sum(others) / len(others)) if others else 0.0
-    return max(0.0, -least_squares_slope(history[-window:]))
+    recent = history[-window:]
+    # The slope summed as the library sums it, so that the learner built on this
+    # function makes exactly the library's choices (ties between interests included).
+    return max(0.0, -sum(map(operator.mul, _slope_weights(len(recent)), recent)))
 
 
 def _interest_cases():
@@ -227,16 +232,21 @@ def _signal_cases():
         Case("empty history: a task never witnessed", ([],),
              "a task never witnessed must still get a number (often 0, or a bonus for "
              "novelty): do not index history[-1] before checking it is not empty."),
-        Case("one element", ([1.0],), "a single error: no slope yet; return a number."),
-        Case("two elements, the error went down", ([1.0, 0.0],), "return a number."),
-        Case("ties: flat errors", ([0.5] * 6,), "return a number."),
+        Case("one element", ([1.0],), "a single error: no slope yet; return a finite number >= 0."),
+        Case("two elements, the error went down", ([1.0, 0.0],),
+             "return a finite number >= 0."),
         Case("errors going up", ([0.0, 0.2, 0.4, 0.6, 0.8, 1.0],),
              "interest must not be negative: the actor picks the largest, and a "
              "negative value would make a task worse than one never seen. Clip at 0."),
-        Case("errors going down", ([1.0, 0.8, 0.6, 0.4, 0.2, 0.0],), "return a number."),
+        Case("ties: flat errors", ([0.5] * 6,),
+             "return a finite number >= 0 (a slope of flat errors can come out as -1e-17: "
+             "clip at 0)."),
+        Case("errors going down", ([1.0, 0.8, 0.6, 0.4, 0.2, 0.0],),
+             "return a finite number >= 0."),
         Case("a coin flip: errors 0 or 1 at random (the noisy button)", (coin,),
              "return a finite number >= 0 on any history."),
-        Case("a long history", ([0.9 ** k for k in range(60)],), "return a number."),
+        Case("a long history", ([0.9 ** k for k in range(60)],),
+             "return a finite number >= 0."),
     ]
 
 

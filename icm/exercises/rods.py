@@ -44,8 +44,8 @@ def _step_cases():
     knows = _q(3)
     knows[1] = [0.1, 0.5, 0.2, 0.1]
     cases = [
-        Case("an untried move topples the red rod: the episode ends",
-             (_q(3), {}, 0, 1, [1.0, 0.0], 1, True, 0.5, 0.9, 0.2),
+        Case("an untried move topples the red rod",
+             (_q(3), {}, 0, 1, [1.0, 0.0], 1, False, 0.5, 0.9, 0.2),
              "An untried (state, action) is predicted 0 (\"the rods stay up\"). " + reward_hint),
         Case("the episode ended: no next value",
              (knows, {(0, 1): [0.5, 0.0]}, 0, 1, [1.0, 0.0], 1, True, 0.5, 0.9, 0.2),
