@@ -12,7 +12,7 @@ loads MuJoCo), so `import icm` is quick.
 import importlib
 
 __version__ = "0.1.0"
-__all__ = ["envs", "experiments", "figures", "learners", "stats", "widgets"]
+__all__ = ["envs", "exercises", "experiments", "figures", "learners", "stats", "widgets"]
 
 
 def __getattr__(name):
