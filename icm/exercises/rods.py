@@ -16,7 +16,7 @@ def reference_q_learning_step(q, predictions, state, action, observed, next_stat
                               alpha, gamma, lr):
     """One move of the rods' learner, as `QLearner.learn` with a `LinearPredictor` makes
     it (a test checks they agree): the reward is the predictor's absolute error on
-    (state, action) before it learns, sum_i |o_i - p_i|; the prediction moves towards
+    (state, action) before it learns, sum_i abs(o_i - p_i); the prediction moves towards
     the outcome, p += lr * (o - p); then equation 3, Q(s, a) += alpha * (r + gamma *
     max_a' Q(s', a') - Q(s, a)), with no next value when the move ended the episode.
     `q` (a list of rows) and `predictions` ((state, action) -> list, missing: zeros)
@@ -40,7 +40,7 @@ def _q(rows, value=0.1):
 def _step_cases():
     eq3 = ("Equation 3: Q(s, a) += alpha * (r + gamma * max over a' of Q(s', a') - Q(s, a)).")
     reward_hint = ("The reward is the predictor's error before it learns from this move: "
-                   "sum_i |o_i - p_i| with the old prediction, then p += lr * (o - p).")
+                   "sum_i abs(o_i - p_i) with the old prediction, then p += lr * (o - p).")
     knows = _q(3)
     knows[1] = [0.1, 0.5, 0.2, 0.1]
     cases = [
