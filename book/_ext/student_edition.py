@@ -234,7 +234,11 @@ def reuse_execution(stripped, book_cache, student_output):
             executed = cache.get_cache_bundle(record.pk).nb
         except Exception:  # not cached, or unreadable: execute it afresh
             continue
-        students.store(path, strip_solutions(executed, path.name), 0.0)
+        # (The cache keeps the code cells only: the structure was checked on the
+        # source, in `prepare`; here the solutions' cells and outputs just go.)
+        executed = nbformat.from_dict(executed)
+        executed.cells = [c for c in executed.cells if not _is_solution(c)]
+        students.store(path, executed, 0.0)
         reused.append(path.name)
     return reused
 
