@@ -136,7 +136,15 @@ def _figure_html(figure):
 
 def show(value, limit=SHOW_LIMIT):
     """A short text of a value for a report: numbers to 6 significant digits, arrays
-    and sequences as lists, an error as its type and message."""
+    and sequences as lists, an error as its type and message, a string as it is.
+
+    Args:
+      value: what to show.
+      limit: the most characters shown (longer texts are cut, ending in "...").
+
+    Returns:
+      The text.
+    """
     if isinstance(value, BaseException):
         text = f"{type(value).__name__}: {value}"
     elif isinstance(value, str):  # a description, not a result
@@ -168,13 +176,26 @@ def _plain(value):
 
 
 def show_arguments(names, args):
-    """The arguments of a case as `name=value, ...`."""
+    """The arguments of a case as `name=value, ...`.
+
+    Args:
+      names: the exercise's argument names, in order.
+      args: the case's arguments.
+
+    Returns:
+      The text.
+    """
     return ", ".join(f"{name}={show(value, 120)}" for name, value in zip(names, args))
 
 
 def check_function(name, function, parameters):
     """Returns `function` if it is callable with the exercise's arguments, given
     positionally in the order of `parameters`; else raises a clear error.
+
+    Args:
+      name: the check's name for the argument, for the message.
+      function: what the student passed.
+      parameters: the exercise's argument names, in order.
 
     Raises:
       ArgumentTypeError (a TypeError and a ValueError): if `function` is not a function
@@ -200,7 +221,16 @@ def check_function(name, function, parameters):
 
 def close(expected, given, tolerance=1e-9):
     """Whether `given` equals `expected`, numbers to a relative `tolerance` (and 1e-12
-    absolute), sequences and dicts entry by entry."""
+    absolute), sequences and dicts entry by entry, True and False only as booleans.
+
+    Args:
+      expected: the reference's result.
+      given: the student's result.
+      tolerance: the relative tolerance on numbers.
+
+    Returns:
+      True or False.
+    """
     if isinstance(expected, dict):
         return isinstance(given, dict) and set(given) == set(expected) and all(
             close(expected[k], given[k], tolerance) for k in expected)

@@ -17,7 +17,15 @@ r + gamma (V(s) - V(s')), equation 2 as the paper prints it."""
 
 
 def reference_softmax(preferences, temperature):
-    """The softmax probabilities of `preferences` at `temperature`, a list."""
+    """The softmax of the library (`icm.learners.softmax`).
+
+    Args:
+      preferences: the actor's preferences.
+      temperature: T > 0.
+
+    Returns:
+      The probabilities, a list.
+    """
     return softmax(preferences, temperature).tolist()
 
 
@@ -66,9 +74,18 @@ def check_softmax(softmax_function):
 
 def reference_td_update(critic, actor, state, action, reward, next_state, td_form,
                         lr_actor, lr_critic, gamma):
-    """One step of Figure 4 on `critic` (state -> V, missing states 0) and `actor`
-    (state -> list of preferences), changed in place, as `ActorCritic.learn` makes it;
-    returns the TD error."""
+    """One step of Figure 4 as `ActorCritic.learn` makes it, after the reward is known.
+
+    Args:
+      critic: state -> V (a missing state is worth 0), changed in place.
+      actor: state -> list of preferences, changed in place.
+      state, action, reward, next_state: the step.
+      td_form: "standard" or "printed" (`TD_FORMS`).
+      lr_actor, lr_critic, gamma: the learner's rates and discount.
+
+    Returns:
+      The TD error.
+    """
     _validate.one_of("td_form", td_form, TD_FORMS)
     learner = ActorCritic(len(actor[state]), lr_actor=lr_actor, lr_critic=lr_critic,
                           gamma=gamma, variant="standard" if td_form == "standard"

@@ -15,7 +15,15 @@ _LIGHT_NAMES = {buttons.OFF: "off", buttons.RED: "lit red", buttons.GREEN: "lit 
 
 
 def reference_press_outcome(lights, button):
-    """The boxes (red, green) after pressing `button` under `lights`, a tuple of 0/1."""
+    """The boxes after a press, by the console's rule (`icm.envs.buttons.press_outcome`).
+
+    Args:
+      lights: 5 values, 0 off, 1 red, 2 green.
+      button: the button pressed, 0-4.
+
+    Returns:
+      (red, green), each 1 for an open box, else 0.
+    """
     return tuple(int(b) for b in buttons.press_outcome(np.array(lights), button))
 
 
@@ -58,7 +66,18 @@ def check_press_outcome(press_outcome):
 
 def reference_predict(memory, context, action, action_weight, default):
     """What `NearestNeighbourPredictor(action_weight)` predicts for (context, action)
-    after storing `memory` (a list of (context, action, effect), oldest first)."""
+    after storing `memory`.
+
+    Args:
+      memory: a list of (context, action, effect), oldest first.
+      context: the lights of the query.
+      action: the button of the query.
+      action_weight: the cost of a different button.
+      default: the prediction of an empty memory.
+
+    Returns:
+      The predicted effect, a tuple.
+    """
     predictor = NearestNeighbourPredictor(action_weight)
     for stored_context, stored_action, effect in memory:
         predictor.update(tuple(stored_context), stored_action, tuple(effect))

@@ -26,8 +26,16 @@ SIGMAS = 5.0
 
 
 def region_probabilities(interests, epsilon):
-    """The probability of each region under the rule: epsilon / n + (1 - epsilon) *
-    interest / total, or 1 / n for every region while the total interest is 0."""
+    """The probability of each region under the rule.
+
+    Args:
+      interests: the regions' interests (>= 0).
+      epsilon: the share of uniform choices.
+
+    Returns:
+      An array: epsilon / n + (1 - epsilon) * interest / total, or 1 / n for every
+      region while the total interest is 0.
+    """
     interests = np.asarray(interests, dtype=float)
     n = len(interests)
     total = interests.sum()

@@ -74,10 +74,19 @@ def check_least_squares_slope(least_squares_slope_function):
 def reference_task_interest(history, others, window=DEFAULT_WINDOW,
                             new_task_factor=DEFAULT_NEW_TASK_FACTOR):
     """The interest of one task, as `icm.learners.LearningProgressInterest` gives it (a
-    test checks they agree): 0 for an empty history; for a task seen once,
-    `new_task_factor` times the mean of `others` (the interests of the other tasks seen
-    at least twice; 0 if there are none); else max(0, -slope) of its last `window`
-    errors."""
+    test checks they agree).
+
+    Args:
+      history: the task's prediction errors, oldest first.
+      others: the interests of the other tasks seen at least twice.
+      window: k, the errors in the slope.
+      new_task_factor: the share of the others' mean a task seen once receives.
+
+    Returns:
+      0 for an empty history; for a task seen once, `new_task_factor` times the mean
+      of `others` (0 if there are none); else max(0, -slope) of its last `window`
+      errors.
+    """
     if len(history) == 0:
         return 0.0
     if len(history) == 1:
@@ -161,12 +170,24 @@ class FunctionInterest:
         self._values = {}
 
     def record(self, task, error):
-        """Appends an error to the task's history."""
+        """Appends an error to the task's history.
+
+        Args:
+          task: the task witnessed.
+          error: the prediction error.
+        """
         self.histories.setdefault(task, []).append(float(error))
         self._values = {}
 
     def interest(self, task):
-        """The student's function on the task's history (0 if never witnessed)."""
+        """The student's function on the task's history.
+
+        Args:
+          task: a task.
+
+        Returns:
+          Its interest (0 if never witnessed).
+        """
         if not self._values:
             known = {t: float(self.function(list(h), [], self.window, self.new_task_factor))
                      for t, h in self.histories.items() if len(h) >= 2}
@@ -269,11 +290,23 @@ class SignalInterest:
         self.histories = {}
 
     def record(self, task, error):
-        """Appends an error to the task's history."""
+        """Appends an error to the task's history.
+
+        Args:
+          task: the task witnessed.
+          error: the prediction error.
+        """
         self.histories.setdefault(task, []).append(float(error))
 
     def interest(self, task):
-        """The student's signal on the task's history."""
+        """The student's signal on the task's history.
+
+        Args:
+          task: a task.
+
+        Returns:
+          Its interest, a float.
+        """
         return float(self.function(list(self.histories.get(task, []))))
 
 

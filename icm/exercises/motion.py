@@ -11,7 +11,14 @@ PARAMETERS = ("fraction",)
 
 
 def reference_minimum_jerk(fraction):
-    """The minimum-jerk profile at `fraction` of the motion's time, a float."""
+    """The minimum-jerk profile (`icm.envs.icub.minimum_jerk`).
+
+    Args:
+      fraction: the share of the motion's time, 0 to 1.
+
+    Returns:
+      The share of the way covered, a float.
+    """
     return float(minimum_jerk(fraction))
 
 

@@ -16,6 +16,13 @@ def option_for(value, edges):
     (increasing): option 0 below edges[0], option i in [edges[i-1], edges[i]), the last
     from edges[-1] up.
 
+    Args:
+      value: the number computed.
+      edges: the options' boundaries, increasing.
+
+    Returns:
+      The index of the option.
+
     Raises:
       ValueError: for a value that is not a finite number or edges that do not
         increase.

@@ -8,8 +8,16 @@ PARAMETERS = ("red_trial", "green_trial")
 
 
 def reference_red_first(red_trial, green_trial):
-    """Whether red was mastered strictly before green (trials from 1, -1 for never), as
-    `icm.stats.comes_first` and the book's "red first" count it."""
+    """Whether red was mastered first, as `icm.stats.comes_first` and the book's "red
+    first" count it.
+
+    Args:
+      red_trial: the trial red was mastered at (from 1; -1 for never).
+      green_trial: the same for green.
+
+    Returns:
+      True if red was mastered strictly before green.
+    """
     return bool(comes_first(red_trial, green_trial))
 
 

@@ -19,8 +19,18 @@ def reference_q_learning_step(q, predictions, state, action, observed, next_stat
     (state, action) before it learns, sum_i abs(o_i - p_i); the prediction moves towards
     the outcome, p += lr * (o - p); then equation 3, Q(s, a) += alpha * (r + gamma *
     max_a' Q(s', a') - Q(s, a)), with no next value when the move ended the episode.
-    `q` (a list of rows) and `predictions` ((state, action) -> list, missing: zeros)
-    change in place; returns the reward."""
+
+    Args:
+      q: the Q-table, a list of rows (one per state), changed in place.
+      predictions: (state, action) -> list of predicted outcomes (missing: zeros),
+        changed in place.
+      state, action, observed, next_state: the move and what it did.
+      done: whether the move ended the episode.
+      alpha, gamma, lr: the step size, the discount, the predictor's rate.
+
+    Returns:
+      The reward.
+    """
     predicted = predictions.get((state, action), [0.0] * len(observed))
     reward = sum(abs(o - p) for o, p in zip(observed, predicted))
     predictions[(state, action)] = [p + lr * (o - p) for o, p in zip(observed, predicted)]
@@ -106,10 +116,16 @@ def check_q_learning_step(q_learning_step):
 
 
 def reference_state_confidence(last_errors):
-    """The state confidence of a cell from the latest error of each move there (None:
-    never tried), as `LinearPredictor.confidence` computes it (a test checks it): 1
-    minus the mean, over the moves, of the error capped at 1, an untried move counting
-    `UNTRIED_ERROR` (1)."""
+    """The state confidence of a cell, as `LinearPredictor.confidence` computes it (a
+    test checks it).
+
+    Args:
+      last_errors: the latest error of each move in the cell (None: never tried).
+
+    Returns:
+      1 minus the mean, over the moves, of the error capped at 1, an untried move
+      counting `UNTRIED_ERROR` (1).
+    """
     capped = [UNTRIED_ERROR if e is None else min(e, 1.0) for e in last_errors]
     return 1.0 - sum(capped) / len(capped)
 
