@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: book test lab bench clean check-system
+.PHONY: book book-students test lab bench clean check-system
 
 # Before anything slow: what the system must provide besides Python packages
 # (icm/_system.py: Python 3.11+, Mesa's EGL on Linux), with the command that installs it.
@@ -28,6 +28,9 @@ $(STAMP): requirements.txt pyproject.toml
 
 book: check-system $(STAMP)  ## execute the notebooks (unless cached and the library unchanged), build _build/html
 	$(BIN)/python book/_ext/build_book.py
+
+book-students: check-system $(STAMP)  ## the book without the exercises' solutions, into _build/students/_build/html
+	$(BIN)/python book/_ext/student_edition.py
 
 test: check-system $(STAMP)  ## unit tests, then a full book build with warnings and errors fatal
 	$(BIN)/python -m pytest

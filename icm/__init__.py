@@ -13,7 +13,8 @@ loads MuJoCo), so `import icm` is quick.
 import importlib
 
 __version__ = "0.1.0"
-__all__ = ["envs", "experiments", "figures", "learners", "stats", "viewer", "widgets"]
+__all__ = ["envs", "exercises", "experiments", "figures", "learners", "stats", "viewer",
+           "widgets"]
 
 
 def __getattr__(name):

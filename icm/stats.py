@@ -108,7 +108,7 @@ def bootstrap_band(values, level=None, resamples=1000, seed=0):
 
     Args:
       values: array [seed, ...] of finite numbers.
-      level: confidence level in (0, 1).
+      level: confidence level in (0, 1); default `BAND_LEVEL`.
       resamples: bootstrap resamples (integer >= 100).
       seed: seed of the resampling (integer >= 0).
 
@@ -119,7 +119,8 @@ def bootstrap_band(values, level=None, resamples=1000, seed=0):
     if values.ndim < 1 or values.shape[0] < 1:
         raise ValueError(f"values must have a seed axis with at least one seed, got shape "
                          f"{values.shape}")
-    level = _validate.real("level", level, 0.0, 1.0, low_open=True, high_open=True)
+    level = BAND_LEVEL if level is None else _validate.real(
+        "level", level, 0.0, 1.0, low_open=True, high_open=True)
     resamples = _validate.integer("resamples", resamples, 100)
     seed = _validate.integer("seed", seed, 0)
     n = values.shape[0]

@@ -32,8 +32,10 @@ def cpu_burners(count=None):
     runner."""
     if count is None:
         count = os.cpu_count() or 1
-    burners = [subprocess.Popen([sys.executable, "-c", "while True: pass"])
-               for _ in range(count)]
+    # Each burner spins until its parent is gone, so that a test run killed before its
+    # cleanup leaves no burner behind.
+    spin = "import os\nparent = os.getppid()\nwhile os.getppid() == parent:\n    pass"
+    burners = [subprocess.Popen([sys.executable, "-c", spin]) for _ in range(count)]
     try:
         yield len(burners)
     finally:

@@ -11,7 +11,7 @@ import shutil
 
 import pytest
 
-from conftest import toc_files
+from conftest import ROOT, toc_files
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 playwright_api = pytest.importorskip("playwright.sync_api",
@@ -309,3 +309,139 @@ def test_a_live_view_starts_in_the_book_and_presses_a_button(built_book):
         assert "opened the red box" in view.locator(".icm-live-status").inner_text()
         browser.close()
     assert errors == [] and requests == []
+
+
+# The "predict, then check" questions: every option of every question answered, wrong
+# and right, with the keyboard and with the mouse, and the feedback read.
+
+QUIZ_STATE = """id => {
+  const choices = document.getElementById(id);
+  const quiz = choices.closest(".icm-quiz") || choices.parentElement;
+  const explanation = quiz.querySelector(".icm-quiz-explanation");
+  const feedback = choices.querySelector(".icm-quiz-feedback");
+  return {feedback: feedback ? feedback.textContent : null,
+          role: feedback ? feedback.getAttribute("role") : null,
+          live: feedback ? feedback.getAttribute("aria-live") : null,
+          explanation_shown: explanation ? !explanation.hidden && explanation.offsetHeight > 0 : null,
+          explanation_text: explanation ? explanation.textContent : ""};
+}"""
+
+QUIZ_LABELS = """id => {
+  const choices = document.getElementById(id);
+  const legend = choices.querySelector("legend");
+  return {legend: legend ? legend.textContent.trim() : "",
+          button: (choices.querySelector("button.icm-quiz-check") || {}).textContent,
+          options: Array.from(choices.querySelectorAll("input[type=radio]")).map(input => {
+            const label = document.querySelector("label[for='" + input.id + "']");
+            return {id: input.id, label: label ? label.textContent.trim() : "",
+                    correct: input.dataset.correct, hint: input.dataset.hint};
+          })};
+}"""
+
+
+@pytest.fixture(scope="module")
+def quizzes(built_book):
+    """Opens every page with questions, offline; answers each question first with no
+    option chosen, then every option in turn (by keyboard for even-numbered options,
+    by mouse for odd ones), recording the feedback after each Check."""
+    record = {"questions": [], "requests": [], "errors": {}}
+    with playwright_api.sync_playwright() as playwright:
+        browser = playwright.chromium.launch(
+            executable_path=CHROMIUM, args=["--no-sandbox", "--disable-gpu"])
+        context = browser.new_context(offline=True, viewport={"width": 1366, "height": 900})
+
+        def refuse_network(route):
+            if route.request.url.startswith("file:"):
+                route.continue_()
+            else:
+                record["requests"].append(route.request.url)
+                route.abort()
+
+        context.route("**/*", refuse_network)
+        for name in toc_files():
+            path = built_book / f"{name}.html"
+            if "icm-quiz-choices" not in path.read_text():
+                continue
+            page = context.new_page()
+            errors = record["errors"].setdefault(name, [])
+            page.on("console", lambda message: errors.append(message.text)
+                    if message.type == "error" else None)
+            page.on("pageerror", lambda error: errors.append(str(error)))
+            page.goto(path.as_uri(), wait_until="load")
+            page.wait_for_selector("fieldset.icm-quiz-ready", state="attached", timeout=30000)
+            for quiz_id in page.eval_on_selector_all("fieldset.icm-quiz-choices",
+                                                     "els => els.map(e => e.id)"):
+                labels = page.evaluate(QUIZ_LABELS, quiz_id)
+                before = page.evaluate(QUIZ_STATE, quiz_id)
+                button = page.locator(f"#{quiz_id} button.icm-quiz-check")
+                button.click()
+                answers = [("none", None, page.evaluate(QUIZ_STATE, quiz_id))]
+                for i, option in enumerate(labels["options"]):
+                    radio = page.locator(f"#{option['id']}")
+                    if i % 2 == 0:  # the keyboard: focus the option, Space, Tab, Enter
+                        radio.focus()
+                        page.keyboard.press("Space")
+                        page.keyboard.press("Tab")
+                        focused = page.evaluate("document.activeElement.className")
+                        page.keyboard.press("Enter")
+                        how = f"keyboard (Tab went to {focused})"
+                    else:  # the mouse: a click on the option's label, then on Check
+                        page.locator(f"label[for='{option['id']}']").click()
+                        button.click()
+                        how = "mouse"
+                    page.wait_for_timeout(50)
+                    answers.append((how, option, page.evaluate(QUIZ_STATE, quiz_id)))
+                record["questions"].append({"page": name, "id": quiz_id, "labels": labels,
+                                            "before": before, "answers": answers})
+            page.close()
+        browser.close()
+    return record
+
+
+def test_every_chapter_has_a_question_answered_in_the_page(quizzes):
+    pages = {q["page"] for q in quizzes["questions"]}
+    chapters = [n for n in toc_files() if (ROOT / f"{n}.ipynb").exists()]
+    assert len(chapters) == 8
+    assert set(chapters) <= pages, set(chapters) - pages
+
+
+def test_questions_are_labelled_for_keyboard_and_screen_readers(quizzes):
+    for question in quizzes["questions"]:
+        labels = question["labels"]
+        assert labels["legend"], question["id"]
+        assert labels["button"] == "Check", question["id"]
+        assert len(labels["options"]) >= 2
+        assert all(option["label"] for option in labels["options"]), question["id"]
+        assert [o["correct"] for o in labels["options"]].count("true") == 1, question["id"]
+        assert question["before"]["role"] == "status" and question["before"]["live"] == "polite"
+        assert question["before"]["explanation_shown"] is False, \
+            f"{question['id']}: the explanation shows before an answer"
+
+
+def test_every_answer_gets_its_feedback(quizzes):
+    answered = 0
+    for question in quizzes["questions"]:
+        for how, option, state in question["answers"]:
+            if option is None:
+                assert state["feedback"] == "Choose an answer first.", question["id"]
+                assert state["explanation_shown"] is False
+                continue
+            if how.startswith("keyboard"):
+                assert "icm-quiz-check" in how, f"{question['id']}: Tab did not reach Check"
+            if option["correct"] == "true":
+                assert state["feedback"].startswith("Right."), (question["id"], how, state)
+                assert state["explanation_shown"] is True, (question["id"], how)
+                assert re.search(r"\d", state["explanation_text"]), \
+                    f"{question['id']}: the explanation quotes no number"
+            else:
+                assert state["feedback"] == "Not quite. " + option["hint"], (question["id"], how)
+                assert option["hint"], question["id"]
+                assert state["explanation_shown"] is False, (question["id"], how)
+            answered += 1
+    assert answered >= 8 * 3
+
+
+def test_questions_need_no_network_and_log_no_errors(quizzes):
+    assert quizzes["requests"] == []
+    assert quizzes["errors"] and all(e == [] for e in quizzes["errors"].values()), \
+        quizzes["errors"]

@@ -1,0 +1,56 @@
+"""Check of the simulated iCub's exercise: the minimum-jerk profile along which every
+motion of the arm moves its actuators' targets."""
+
+import numpy as np
+
+from icm.envs.icub import minimum_jerk
+from icm.exercises import _core
+from icm.exercises._core import Case
+
+PARAMETERS = ("fraction",)
+
+
+def reference_minimum_jerk(fraction):
+    """The minimum-jerk profile (`icm.envs.icub.minimum_jerk`).
+
+    Args:
+      fraction: the share of the motion's time, 0 to 1.
+
+    Returns:
+      The share of the way covered, a float.
+    """
+    return float(minimum_jerk(fraction))
+
+
+def _cases():
+    cases = [
+        Case("the start: fraction 0", (0.0,), "At the start the profile is 0."),
+        Case("the end: fraction 1", (1.0,), "At the end the profile is 1: the target is "
+             "reached exactly (10 - 15 + 6 = 1)."),
+        Case("half-way: fraction 0.5", (0.5,), "Half-way in time is half-way in space: the "
+             "profile is symmetric."),
+        Case("a quarter of the time", (0.25,), "The profile is 10 s^3 - 15 s^4 + 6 s^5 "
+             "(not the cubic 3 s^2 - 2 s^3, which has a jump in acceleration at the ends)."),
+        Case("three quarters of the time", (0.75,), "10 s^3 - 15 s^4 + 6 s^5."),
+    ]
+    for i, s in enumerate(np.linspace(0.05, 0.95, 7).round(3).tolist()):
+        cases.append(Case(f"fraction {s}", (s,), "10 s^3 - 15 s^4 + 6 s^5."))
+    return cases
+
+
+def check_minimum_jerk(minimum_jerk_function):
+    """Checks a student's minimum-jerk profile, `f(fraction)`: the share of the way
+    covered at `fraction` (0 to 1) of the motion's time, 10 s^3 - 15 s^4 + 6 s^5, which
+    starts and ends with zero speed and zero acceleration.
+
+    Args:
+      minimum_jerk_function: the student's function.
+
+    Returns:
+      A `CheckResult`.
+
+    Raises:
+      ArgumentTypeError: if the argument is not a function of one argument.
+    """
+    return _core.run_cases("minimum_jerk", "minimum_jerk_function", minimum_jerk_function,
+                           PARAMETERS, _cases(), reference_minimum_jerk, returns="a number")

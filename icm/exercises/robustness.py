@@ -1,0 +1,58 @@
+"""Check of the robustness exercise: when is the easy task mastered first?"""
+
+from icm.exercises import _core
+from icm.exercises._core import Case
+from icm.stats import comes_first
+
+PARAMETERS = ("red_trial", "green_trial")
+
+
+def reference_red_first(red_trial, green_trial):
+    """Whether red was mastered first, as `icm.stats.comes_first` and the book's "red
+    first" count it.
+
+    Args:
+      red_trial: the trial red was mastered at (from 1; -1 for never).
+      green_trial: the same for green.
+
+    Returns:
+      True if red was mastered strictly before green.
+    """
+    return bool(comes_first(red_trial, green_trial))
+
+
+def _cases():
+    never = ("-1 means never: a task never mastered comes after any trial, and a seed "
+             "that masters neither has not mastered red first.")
+    return [
+        Case("red at trial 3, green at trial 9", (3, 9), "Red comes first when its trial "
+             "number is smaller."),
+        Case("green first", (9, 3), "Red does not come first when green's trial is "
+             "smaller."),
+        Case("ties: both at the same trial", (5, 5), "\"First\" means strictly before: a "
+             "tie is not red first."),
+        Case("green never mastered, red at trial 12", (12, -1), never),
+        Case("red never mastered, green at trial 4", (-1, 4), never),
+        Case("neither mastered", (-1, -1), never),
+        Case("red at trial 1, green at trial 2", (1, 2), "Red comes first when its trial "
+             "number is smaller."),
+        Case("red at trial 60, green never", (60, -1), never),
+    ]
+
+
+def check_red_first(red_first):
+    """Checks a student's rule for "red mastered first", `red_first(red_trial,
+    green_trial)`: True when red was mastered strictly before green, the trials counted
+    from 1 and -1 meaning never.
+
+    Args:
+      red_first: the student's function.
+
+    Returns:
+      A `CheckResult`.
+
+    Raises:
+      ArgumentTypeError: if the argument is not a function of two arguments.
+    """
+    return _core.run_cases("red_first", "red_first", red_first, PARAMETERS, _cases(),
+                           reference_red_first, returns="True or False")

@@ -1,0 +1,578 @@
+"""The exercises' checks: each passes its reference solution, fails typical wrong
+answers (a sign error, a window off by one, a forgotten edge case) naming the case,
+reports a placeholder as not implemented yet, refuses a wrong argument, and never
+shows the reference's code; the references agree with the library."""
+
+import inspect
+import math
+
+import numpy as np
+import pytest
+
+from icm import _validate
+from icm.exercises import (_core, actor_critic, buttons, goal_choice, interest, motion,
+                           quiz, robustness, rods)
+from icm.learners.interest import LearningProgressInterest, least_squares_slope
+
+
+def _slope(values):
+    x = np.arange(len(values), dtype=float)
+    return float(np.polyfit(x, np.asarray(values, dtype=float), 1)[0])
+
+
+# --- typical wrong answers, one function each ------------------------------------------
+
+def slope_sign_error(values):
+    return -_slope(values)
+
+
+def slope_endpoints(values):  # the first and the last value only
+    return (values[-1] - values[0]) / (len(values) - 1)
+
+
+def slope_divided_by_n(values):  # a covariance, not a slope: grows with the window
+    x = np.arange(len(values)) - (len(values) - 1) / 2
+    return float(x @ (np.asarray(values) - np.mean(values)) / len(values))
+
+
+def interest_sign_error(history, others, window, new_task_factor):
+    if len(history) == 0:
+        return 0.0
+    if len(history) == 1:
+        return new_task_factor * sum(others) / len(others) if others else 0.0
+    return max(0.0, _slope(history[-window:]))  # the literal reading: errors going up
+
+
+def interest_window_off_by_one(history, others, window, new_task_factor):
+    if len(history) == 0:
+        return 0.0
+    if len(history) == 1:
+        return new_task_factor * sum(others) / len(others) if others else 0.0
+    return max(0.0, -_slope(history[-(window + 1):]))
+
+
+def interest_forgets_new_task(history, others, window, new_task_factor):
+    if len(history) < 2:  # "0 or one element: zero", the new-task rule forgotten
+        return 0.0
+    return max(0.0, -_slope(history[-window:]))
+
+
+def interest_divides_by_zero(history, others, window, new_task_factor):
+    if len(history) == 0:
+        return 0.0
+    if len(history) == 1:
+        return new_task_factor * sum(others) / len(others)  # no known task: 0 / 0
+    return max(0.0, -_slope(history[-window:]))
+
+
+def outcome_swapped(lights, button):
+    return (int(lights[button] == 2), int(lights[button] == 1))
+
+
+def outcome_any_lit_opens_red(lights, button):
+    return (int(lights[button] != 0), 0)
+
+
+def _distance(c1, a1, c2, a2, weight):
+    return sum(x != y for x, y in zip(c1, c2)) + (weight if a1 != a2 else 0.0)
+
+
+def predict_first_of_ties(memory, context, action, action_weight, default):
+    best, effect = math.inf, default
+    for c, a, e in memory:
+        d = _distance(c, a, context, action, action_weight)
+        if d < best:  # the earliest wins a tie
+            best, effect = d, e
+    return effect
+
+
+def predict_ignores_weight(memory, context, action, action_weight, default):
+    best, effect = math.inf, default
+    for c, a, e in memory:
+        d = _distance(c, a, context, action, 1.0)
+        if d <= best:
+            best, effect = d, e
+    return effect
+
+
+def predict_empty_memory_crashes(memory, context, action, action_weight, default):
+    distances = [_distance(c, a, context, action, action_weight) for c, a, _ in memory]
+    best = max(i for i, d in enumerate(distances) if d == min(distances))
+    return memory[best][2]
+
+
+def jerk_smoothstep(fraction):
+    return 3 * fraction ** 2 - 2 * fraction ** 3
+
+
+def jerk_sign_error(fraction):
+    return 10 * fraction ** 3 + 15 * fraction ** 4 + 6 * fraction ** 5
+
+
+def softmax_overflows(preferences, temperature):
+    weights = np.exp(np.asarray(preferences, dtype=float) / temperature)
+    return (weights / weights.sum()).tolist()
+
+
+def softmax_times_temperature(preferences, temperature):
+    p = np.asarray(preferences, dtype=float) * temperature
+    weights = np.exp(p - p.max())
+    return (weights / weights.sum()).tolist()
+
+
+def td_sign_error(critic, actor, state, action, reward, next_state, td_form, lr_actor,
+                  lr_critic, gamma):
+    v, v_next = critic.get(state, 0.0), critic.get(next_state, 0.0)
+    td = reward + gamma * v - v_next if td_form == "standard" else \
+        reward + gamma * (v - v_next)
+    critic[state] = v + lr_critic * td
+    actor[state][action] += lr_actor * td
+    return td
+
+
+def td_one_reading(critic, actor, state, action, reward, next_state, td_form, lr_actor,
+                   lr_critic, gamma):
+    v, v_next = critic.get(state, 0.0), critic.get(next_state, 0.0)
+    td = reward + gamma * v_next - v  # td_form ignored
+    critic[state] = v + lr_critic * td
+    actor[state][action] += lr_actor * td
+    return td
+
+
+def td_unseen_state_crashes(critic, actor, state, action, reward, next_state, td_form,
+                            lr_actor, lr_critic, gamma):
+    td = reward + gamma * critic[next_state] - critic[state] if td_form == "standard" \
+        else reward + gamma * (critic[state] - critic[next_state])
+    critic[state] += lr_critic * td
+    actor[state][action] += lr_actor * td
+    return td
+
+
+def q_step_error_after_update(q, predictions, state, action, observed, next_state, done,
+                              alpha, gamma, lr):
+    old = predictions.get((state, action), [0.0] * len(observed))
+    new = [p + lr * (o - p) for o, p in zip(observed, old)]
+    predictions[(state, action)] = new
+    reward = sum(abs(o - p) for o, p in zip(observed, new))  # the error after learning
+    target = reward if done else reward + gamma * max(q[next_state])
+    q[state][action] += alpha * (target - q[state][action])
+    return reward
+
+
+def q_step_bootstraps_at_the_end(q, predictions, state, action, observed, next_state, done,
+                                 alpha, gamma, lr):
+    old = predictions.get((state, action), [0.0] * len(observed))
+    predictions[(state, action)] = [p + lr * (o - p) for o, p in zip(observed, old)]
+    reward = sum(abs(o - p) for o, p in zip(observed, old))
+    target = reward + gamma * max(q[next_state])  # done forgotten
+    q[state][action] += alpha * (target - q[state][action])
+    return reward
+
+
+def confidence_untried_as_right(last_errors):
+    return 1 - sum(0.0 if e is None else min(e, 1.0) for e in last_errors) / len(last_errors)
+
+
+def confidence_uncapped(last_errors):
+    return 1 - sum(1.0 if e is None else e for e in last_errors) / len(last_errors)
+
+
+def red_first_ties_count(red, green):
+    return red >= 1 and (green == -1 or red <= green)
+
+
+def red_first_forgets_never(red, green):
+    return red < green
+
+
+def choose_greedy(interests, epsilon, rng):
+    return int(np.argmax(interests))
+
+
+def choose_without_epsilon(interests, epsilon, rng):
+    values = np.asarray(interests, dtype=float)
+    if values.sum() <= 0:
+        return int(rng.integers(len(values)))
+    return int(rng.choice(len(values), p=values / values.sum()))
+
+
+def choose_divides_by_zero(interests, epsilon, rng):
+    values = np.asarray(interests, dtype=float)
+    if rng.random() < epsilon:
+        return int(rng.integers(len(values)))
+    return int(rng.choice(len(values), p=values / values.sum()))
+
+
+def choose_returns_a_goal(interests, epsilon, rng):
+    return rng.random(3)
+
+
+def signal_raw_slope(history):
+    return -_slope(history) if len(history) >= 2 else 0.0  # negative when errors go up
+
+
+def signal_last_error(history):
+    return history[-1]  # an empty history: IndexError
+
+
+def signal_sorts_in_place(history):
+    history.sort()
+    return float(sum(history[:2]))
+
+
+def signal_random(history, _rng=np.random.default_rng(0)):
+    return float(_rng.random())
+
+
+def signal_recent_error(history):
+    return float(np.mean(history[-5:])) if history else 1.0
+
+
+# --- the checks, their references and their wrong answers ------------------------------
+
+CHECKS = {
+    "least_squares_slope": (interest.check_least_squares_slope, least_squares_slope, [
+        (slope_sign_error, "two values"),
+        (slope_endpoints, "not on a line"),
+        (slope_divided_by_n, "two values"),
+    ]),
+    "task_interest": (lambda f: interest.check_task_interest(f, experiment=False),
+                      interest.reference_task_interest, [
+        (interest_sign_error, "two elements, the error went down"),
+        (interest_window_off_by_one, "more than k errors: only the last k count"),
+        (interest_forgets_new_task, "one element: a new task gets half the mean"),
+        (interest_divides_by_zero, "one element, no other known task"),
+    ]),
+    "press_outcome": (buttons.check_press_outcome, buttons.reference_press_outcome, [
+        (outcome_swapped, "button 2 (lit red)"),
+        (outcome_any_lit_opens_red, "(lit green)"),
+    ]),
+    "nearest_neighbour": (buttons.check_nearest_neighbour, buttons.reference_predict, [
+        (predict_first_of_ties, "ties: two experiences at the same distance"),
+        (predict_ignores_weight, "the same button under other lights, action weight 10"),
+        (predict_empty_memory_crashes, "empty memory"),
+    ]),
+    "minimum_jerk": (motion.check_minimum_jerk, motion.reference_minimum_jerk, [
+        (jerk_smoothstep, "a quarter of the time"),
+        (jerk_sign_error, "the end: fraction 1"),
+    ]),
+    "softmax": (actor_critic.check_softmax, actor_critic.reference_softmax, [
+        (softmax_overflows, "large preferences"),
+        (softmax_times_temperature, "one preferred action"),
+    ]),
+    "td_update": (actor_critic.check_td_update, actor_critic.reference_td_update, [
+        (td_sign_error, "standard form, both states valued"),
+        (td_one_reading, "printed form, both states valued"),
+        (td_unseen_state_crashes, "a state the critic has never valued"),
+    ]),
+    "q_learning_step": (rods.check_q_learning_step, rods.reference_q_learning_step, [
+        (q_step_error_after_update, "an untried move topples the red rod"),
+        (q_step_bootstraps_at_the_end, "the episode ended: no next value"),
+    ]),
+    "state_confidence": (rods.check_state_confidence, rods.reference_state_confidence, [
+        (confidence_untried_as_right, "a cell never visited"),
+        (confidence_uncapped, "an error above 1"),
+    ]),
+    "red_first": (robustness.check_red_first, robustness.reference_red_first, [
+        (red_first_ties_count, "ties: both at the same trial"),
+        (red_first_forgets_never, "green never mastered"),
+    ]),
+    "goal_choice": (goal_choice.check_goal_choice, None, [
+        (choose_greedy, "every interest 0"),
+        (choose_without_epsilon, "epsilon 1: uniform"),
+        (choose_divides_by_zero, "every interest 0"),
+        (choose_returns_a_goal, "every interest 0"),
+    ]),
+    "curiosity_signal": (lambda f: interest.check_curiosity_signal(f, experiment=False),
+                         signal_recent_error, [
+        (signal_raw_slope, "errors going up"),
+        (signal_last_error, "empty history"),
+        (signal_sorts_in_place, "two elements"),  # the first history it changes
+        (signal_random, "empty history"),
+    ]),
+}
+
+
+def reference_goal_choice(interests, epsilon, rng):
+    """The rule as `run_goal_babbling` documents it."""
+    values = np.asarray(interests, dtype=float)
+    if rng.random() < epsilon or not values.sum() > 0:
+        return int(rng.integers(len(values)))
+    return int(rng.choice(len(values), p=values / values.sum()))
+
+
+def _reference(name):
+    return reference_goal_choice if name == "goal_choice" else CHECKS[name][1]
+
+
+@pytest.mark.parametrize("name", sorted(CHECKS))
+def test_the_reference_solution_passes(name):
+    check = CHECKS[name][0]
+    result = check(_reference(name))
+    assert result.passed, repr(result)
+    assert bool(result) is True
+    assert "passed" in repr(result) and "passed" in result._repr_html_()
+
+
+WRONG = [(name, wrong, case) for name, (_, _, wrongs) in CHECKS.items()
+         for wrong, case in wrongs]
+
+
+@pytest.mark.parametrize("name, wrong, case", WRONG,
+                         ids=[f"{n}-{w.__name__}" for n, w, _ in WRONG])
+def test_a_typical_wrong_answer_fails_naming_the_case(name, wrong, case):
+    result = CHECKS[name][0](wrong)
+    assert not result.passed and not bool(result)
+    assert result.status == _core.FAILED
+    assert case in result.case.name, (case, repr(result))
+    report = repr(result)
+    assert result.case.name in report
+    for label in ("input:", "expected:", "given:", "hint:"):
+        assert label in report, (label, report)
+    assert result.hint and result.arguments
+    html = result._repr_html_()
+    assert "failed" in html and "<dt>hint</dt>" in html
+
+
+@pytest.mark.parametrize("name", sorted(CHECKS))
+def test_each_check_has_at_least_two_wrong_answers(name):
+    assert len(CHECKS[name][2]) >= 2
+
+
+@pytest.mark.parametrize("name, wrong, case", WRONG,
+                         ids=[f"{n}-{w.__name__}" for n, w, _ in WRONG])
+def test_a_report_never_shows_the_reference_code(name, wrong, case):
+    reference = _reference(name)
+    sources = [reference]
+    if name != "goal_choice":
+        sources.append(CHECKS[name][1])
+    report = repr(CHECKS[name][0](wrong))
+    for function in sources:
+        for line in inspect.getsource(function).splitlines():
+            line = line.strip()
+            if len(line) > 20 and not line.startswith(("\"", "#", "Args", "Returns")):
+                assert line not in report, line
+
+
+def not_implemented(*args):
+    raise NotImplementedError("write this function")
+
+
+@pytest.mark.parametrize("name", sorted(CHECKS))
+def test_a_placeholder_is_not_implemented_yet_not_a_traceback(name):
+    parameters = {"least_squares_slope": 1, "task_interest": 4, "press_outcome": 2,
+                  "nearest_neighbour": 5, "minimum_jerk": 1, "softmax": 2, "td_update": 10,
+                  "q_learning_step": 10, "state_confidence": 1, "red_first": 2,
+                  "goal_choice": 3, "curiosity_signal": 1}[name]
+    placeholder = eval("lambda " + ", ".join(f"a{i}" for i in range(parameters))
+                       + ": not_implemented()")
+    result = CHECKS[name][0](placeholder)
+    assert result.status == _core.NOT_IMPLEMENTED and not result
+    assert "not implemented yet" in repr(result)
+    assert "Traceback" not in repr(result)
+
+
+@pytest.mark.parametrize("name", sorted(CHECKS))
+def test_a_check_refuses_what_is_not_a_function(name):
+    with pytest.raises(_validate.ArgumentTypeError) as raised:
+        CHECKS[name][0](3.0)
+    assert "must be a function" in str(raised.value)
+    assert isinstance(raised.value, TypeError) and isinstance(raised.value, ValueError)
+
+
+@pytest.mark.parametrize("name", sorted(CHECKS))
+def test_a_check_refuses_a_function_of_the_wrong_signature(name):
+    with pytest.raises(TypeError) as raised:
+        CHECKS[name][0](lambda a, b, c, d, e, f, g, h, i, j, k, extra: 0)
+    assert "must take the arguments" in str(raised.value)
+    assert "yours takes (a, b, c" in str(raised.value)
+
+
+def test_a_failure_inside_the_student_code_is_reported_with_the_error():
+    result = buttons.check_nearest_neighbour(predict_empty_memory_crashes)
+    assert "ValueError" in repr(result) or "IndexError" in repr(result)
+    assert "raised" in result.hint
+
+
+def test_a_function_that_forgets_return_is_told_so():
+    def forgets(values):
+        _slope(values)
+    result = interest.check_least_squares_slope(forgets)
+    assert "did you forget `return`" in result.hint
+
+
+def test_inputs_are_copied_so_a_function_that_changes_them_changes_nothing_else():
+    def mutates(history, others, window, new_task_factor):
+        answer = interest.reference_task_interest(list(history), list(others), window,
+                                                  new_task_factor)
+        history.clear()
+        others.clear()
+        return answer
+    assert interest.check_task_interest(mutates, experiment=False).passed
+
+
+# --- the references are the library's --------------------------------------------------
+
+def test_reference_task_interest_is_learning_progress_interest():
+    rng = np.random.default_rng(0)
+    for _ in range(50):
+        window, factor = int(rng.integers(2, 7)), float(rng.choice([0.0, 0.5, 1.0]))
+        module = LearningProgressInterest(window, factor)
+        histories = {}
+        for _ in range(int(rng.integers(1, 30))):
+            task = int(rng.integers(4))
+            error = float(rng.random())
+            module.record(task, error)
+            histories.setdefault(task, []).append(error)
+        known = {t: interest.reference_task_interest(h, [], window, factor)
+                 for t, h in histories.items() if len(h) >= 2}
+        for task in range(5):
+            history = histories.get(task, [])
+            others = [known[t] for t in sorted(known) if t != task]
+            assert interest.reference_task_interest(history, others, window, factor) == \
+                pytest.approx(module.interest(task), abs=1e-12)
+
+
+def test_function_interest_with_the_reference_gives_the_library_run():
+    from icm.exercises._runs import run_goal_oriented_with
+    from icm.experiments import run_goal_oriented
+
+    mine = run_goal_oriented_with(
+        lambda: interest.FunctionInterest(interest.reference_task_interest), 4, 20)
+    library = run_goal_oriented(n_seeds=4, n_trials=20, seed=0, progress=False)
+    np.testing.assert_allclose(mine.interest, library.interest, atol=1e-12)
+    np.testing.assert_array_equal(mine.mastery_trial, library.mastery_trial)
+    np.testing.assert_allclose(mine.button_share, library.button_share)
+    np.testing.assert_allclose(mine.prediction_error, library.prediction_error)
+
+
+def test_reference_q_learning_step_is_the_q_learner():
+    from icm.learners import LinearPredictor, QLearner
+
+    rng = np.random.default_rng(1)
+    learner = QLearner(6, 4, LinearPredictor(4, 2, lr=0.2), alpha=0.5, gamma=0.9,
+                       initial_q=0.1, seed=0)
+    q, predictions = [[0.1] * 4 for _ in range(6)], {}
+    for _ in range(300):
+        state, action, next_state = (int(v) for v in rng.integers(0, [6, 4, 6]))
+        observed = [float(rng.integers(2)), 0.0]
+        done = bool(rng.random() < 0.3)
+        paid = learner.learn(state, action, observed, next_state, discount=0.0 if done else 1.0)
+        mine = rods.reference_q_learning_step(q, predictions, state, action, observed,
+                                              next_state, done, 0.5, 0.9, 0.2)
+        assert mine == pytest.approx(paid, abs=1e-12)
+    np.testing.assert_allclose(np.array(q), learner.q, atol=1e-12)
+
+
+def test_reference_state_confidence_is_the_linear_predictors():
+    from icm.learners import LinearPredictor
+
+    rng = np.random.default_rng(2)
+    predictor = LinearPredictor(4, 2, lr=0.2)
+    last = {}
+    for _ in range(200):
+        state, action = int(rng.integers(5)), int(rng.integers(4))
+        error = predictor.update(state, action, [float(rng.integers(2)), float(rng.integers(2))])
+        last.setdefault(state, [None] * 4)[action] = error
+    for state in range(6):
+        errors = last.get(state, [None] * 4)
+        assert rods.reference_state_confidence(errors) == pytest.approx(
+            predictor.confidence(state), abs=1e-12)
+
+
+def test_region_probabilities_are_the_goal_choice_of_goal_babbling():
+    # The behaviour run_goal_babbling documents, measured on the function that makes
+    # the choice there (it draws two numbers per choice).
+    from icm.experiments import goal_babbling
+
+    choose = getattr(goal_babbling, "_choose_region")
+    for values, epsilon in (([0.0, 0.0, 0.0], 0.3), ([0.1, 0.3, 0.6, 0.0], 0.3),
+                            ([0.0, 1.0], 0.0), ([0.2, 0.2, 0.1], 1.0)):
+        rng = np.random.default_rng(3)
+        counts = np.bincount([choose(np.array(values), epsilon, rng) for _ in range(20000)],
+                             minlength=len(values)) / 20000
+        np.testing.assert_allclose(counts, goal_choice.region_probabilities(values, epsilon),
+                                   atol=0.015)
+
+
+def test_reference_td_update_is_the_actor_critics_learn_step():
+    # ActorCritic.learn on a console observation, against the reference on the same
+    # states and values.
+    from icm.learners import ActorCritic
+
+    for td_form, variant in (("standard", "standard"), ("printed", "printed_td")):
+        learner = ActorCritic(3, variant=variant, reward="extrinsic", state_keys=("x",),
+                              effect_key="y", seed=0)
+        critic, actor = {}, {}
+        rng = np.random.default_rng(4)
+        for _ in range(50):
+            s, s2, a = int(rng.integers(3)), int(rng.integers(3)), int(rng.integers(3))
+            reward = float(rng.integers(2))
+            _, td = learner.learn({"x": np.array([s]), "y": np.array([0])}, a,
+                                  {"x": np.array([s2]), "y": np.array([0])}, reward)
+            actor.setdefault((s,), [0.0] * 3)
+            mine = actor_critic.reference_td_update(critic, actor, (s,), a, reward, (s2,),
+                                                    td_form, 0.5, 0.5, 0.5)
+            assert mine == pytest.approx(td, abs=1e-12)
+        for state, value in learner.critic.items():
+            assert critic[state] == pytest.approx(value, abs=1e-12)
+            assert actor[state] == pytest.approx(learner.actor[state], abs=1e-12)
+
+
+# --- the experiments the checks run ----------------------------------------------------
+
+def test_check_task_interest_runs_your_figure5_beside_the_librarys():
+    result = interest.check_task_interest(interest.reference_task_interest, n_seeds=3,
+                                          n_trials=15)
+    assert result.passed and result.figure is not None
+    assert "Your Figure 5" in result.notes[0]
+    assert '<img src="data:image/png;base64,' in result._repr_html_()
+    assert interest.check_task_interest(interest_window_off_by_one).figure is None
+
+
+def test_check_curiosity_signal_runs_the_learner_with_the_noisy_button():
+    result = interest.check_curiosity_signal(signal_recent_error, n_seeds=3, n_trials=10)
+    assert result.passed and result.figure is not None
+    assert "noisy button" in result.notes[0]
+
+
+def test_check_goal_choice_draws_the_shares_for_given_interests():
+    result = goal_choice.check_goal_choice(reference_goal_choice,
+                                           interests=[0.0, 0.1, 0.4, 0.0])
+    assert result.passed and result.figure is not None
+    with pytest.raises(ValueError, match="interests"):
+        goal_choice.check_goal_choice(reference_goal_choice, interests=[-1.0, 0.5])
+    with pytest.raises(ValueError, match="epsilon"):
+        goal_choice.check_goal_choice(reference_goal_choice, epsilon=2.0)
+
+
+def test_experiment_flag_must_be_a_bool():
+    with pytest.raises(_validate.ArgumentTypeError, match="experiment"):
+        interest.check_task_interest(interest.reference_task_interest, experiment="yes")
+
+
+# --- the "predict, then check" options -------------------------------------------------
+
+def test_option_for_picks_the_bin_of_a_value():
+    assert [quiz.option_for(v, [0.5, 0.9]) for v in (0.1, 0.5, 0.89, 0.9, 1.0)] == \
+        [0, 1, 1, 2, 2]
+    with pytest.raises(ValueError, match="edges must increase"):
+        quiz.option_for(0.5, [0.9, 0.5])
+    with pytest.raises(ValueError, match="value"):
+        quiz.option_for(float("nan"), [0.5])
+
+
+def test_choices_render_labelled_radio_buttons_with_one_right_option():
+    choices = quiz.Choices("epsilon-zero", ["under half", "half to 90%", "90% or more"], 2,
+                           ["hint a", "hint b", "unused"])
+    html = choices._repr_html_()
+    assert html.count('type="radio"') == 3
+    assert html.count('data-correct="true"') == 1
+    assert '<label for="icm-quiz-epsilon-zero-2">90% or more</label>' in html
+    assert "<legend>" in html and 'data-hint="hint a"' in html
+    with pytest.raises(ValueError, match="correct"):
+        quiz.Choices("x", ["a", "b"], 2, ["", ""])
+    with pytest.raises(ValueError, match="hints"):
+        quiz.Choices("x", ["a", "b"], 0, [""])
+    with pytest.raises(ValueError, match="name"):
+        quiz.Choices("Has Space", ["a", "b"], 0, ["", ""])
