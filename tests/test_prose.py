@@ -5,8 +5,9 @@ reason it may be typed: a value of the model that is not a result (an encoding, 
 of the grid), the paper's own words, or arithmetic the sentence shows.
 
 What is left out before looking for numbers: glue and other roles, citations, math,
-inline code, links, quotations (the paper's words), and references to the paper's
-figures, sections and equations.
+inline code, links, quotations (the paper's words), references to the paper's
+figures, sections and equations, and the statements of the exercises (whose numbers
+are the problem's parameters; their solutions and explanations are read).
 """
 
 import re
@@ -74,10 +75,19 @@ def typed_numbers(text, allowed):
     return found
 
 
+def is_exercise_statement(source):
+    """Whether a markdown cell states an exercise: its numbers are the problem's
+    parameters, given to the student (its solution and the explanation of a question,
+    which quote results, are other cells and are read)."""
+    return "{exercise-start}" in source or "{exercise}" in source
+
+
 def chapter_text(path):
-    """The markdown of a notebook and the captions of its figures, one string."""
+    """The markdown of a notebook (less the exercises' statements) and the captions of
+    its figures, one string."""
     nb = nbformat.read(path, as_version=4)
-    parts = [c.source for c in nb.cells if c.cell_type == "markdown"]
+    parts = [c.source for c in nb.cells
+             if c.cell_type == "markdown" and not is_exercise_statement(c.source)]
     for cell in nb.cells:
         figure = cell.metadata.get("mystnb", {}).get("figure", {})
         if "caption" in figure:

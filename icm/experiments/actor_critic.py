@@ -119,6 +119,27 @@ class ActorCriticResult:
         is, for the moment, more familiar with the hard task than with the easy one."""
         return self.prediction_error[:, :, 1] < self.prediction_error[:, :, 0]
 
+    def green_below_red_only_before_red_press(self):
+        """Whether, in every seed, the green error is below the red one only in trials
+        before the red button was first pressed (before a press opened the red box;
+        none at all if it never was)."""
+        below = self.green_below_red()
+        pressed = self.practice[:, :, 0] > 0  # a red press opens the red box
+        trials = np.arange(1, self.n_trials + 1)
+        first_press = np.where(pressed.any(axis=1), np.argmax(pressed, axis=1) + 1,
+                               self.n_trials + 1)
+        last_below = np.where(below, trials, 0).max(axis=1)
+        return bool(np.all(last_below <= first_press))
+
+    def claims(self):
+        """{claim name: whether it holds in this run}, for each of `CLAIMS` (checked
+        on the book's run when it is built, and by the tests on their own seeds)."""
+        s = self.summary()
+        return {"red_sooner": s["red_zero_mean"] < s["green_zero_mean"],
+                "red_first_mostly": s["red_first"] > 0.5,
+                "green_below_only_before_red_press":
+                    self.green_below_red_only_before_red_press()}
+
     def green_below_red_fraction(self):
         """Share of seeds in which the green error is below the red one at some trial
         (the paper's "familiarity with the more complex task would temporarily
@@ -166,6 +187,15 @@ class ActorCriticResult:
         out["max_abs_value"] = float(self.max_abs_value[:, -1].max())
         out["median_abs_value"] = float(np.median(self.max_abs_value[:, -1]))
         return out
+
+
+CLAIMS = {
+    "red_sooner": "the red error reaches zero for good sooner than the green one on average",
+    "red_first_mostly": "the red error reaches zero first in most seeds",
+    "green_below_only_before_red_press": "the green error is below the red one only before "
+                                         "the red button was first pressed",
+}
+"""The claims about Figure 6 that the book states in words (`ActorCriticResult.claims`)."""
 
 
 def _check_run_arguments(n_seeds, n_trials, rewarded_box, presses_per_trial, red_button,
