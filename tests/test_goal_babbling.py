@@ -349,3 +349,44 @@ def test_no_outcome_lies_inside_the_console(lab):
     over = np.all(np.abs(done["outcome"][:, :2] - centre[:2]) <= half[:2], axis=1)
     assert over.sum() >= 10
     assert np.all(done["outcome"][over, 2] >= geometry["console_top"] - 1e-9)
+
+
+# --- whatever the physics does, the console answers and the learner copes -----------------
+
+TWO_BUTTONS = np.array([-1.0953, 0.0, 0.4169, 0.1709, 0.2794, -0.8854, 0.0432])
+"""Joint targets (a movement formed for button 2 by learning progress on root seed 100)
+whose finger pushes button 2 and the hand button 3 with it."""
+
+
+def test_a_movement_that_pushes_two_lit_buttons_opens_both_boxes(lab):
+    done = lab.perform(TWO_BUTTONS[None], retract=True)
+    assert done["pressed"].tolist() == [2]
+    motions = [lab.phases(TWO_BUTTONS)] * 5
+    console = buttons.PhysicsButtonConsole(seed=0, press_motions=motions)
+    console.reset()
+    assert console.lights.tolist() == [0, 0, 1, 2, 0]  # red 2, green 3
+    assert console.press(2).tolist() == [1, 1] and console.task.press_log == [2, 3]
+    # The batch of consoles answers it as an effect of its own (it raised ValueError).
+    batch = buttons.PhysicsButtonConsoleBatch([0], press_motions=[motions])
+    assert batch.new_trials().tolist() == [2]  # green 3: the third of 0, 1, 3, 4
+    assert batch.press([2]).tolist() == [buttons.BOTH_BOXES]
+    assert buttons.ALL_EFFECTS[buttons.BOTH_BOXES] == (1, 1)
+    assert buttons.effect_index([1, 1]) == buttons.BOTH_BOXES
+
+
+def test_the_learner_copes_with_formed_actions_that_open_both_boxes(small, scripted_downs):
+    # Seed 0's press of button 2 pushes buttons 2 and 3: when 3 is green, both boxes
+    # open. The learner runs (it crashed), counts those presses as practice of both
+    # boxes, and they differ from the scripted press's effect.
+    movements = np.stack([scripted_downs] * 2)
+    movements[0, 2] = TWO_BUTTONS
+    formed = dataclasses.replace(small, press_movements=movements)
+    run = goal_babbling.run_formed_actions(formed, n_trials=8, seed=5, progress=False)
+    clean = goal_babbling.run_formed_actions(
+        dataclasses.replace(small, press_movements=np.stack([scripted_downs] * 2)),
+        n_trials=8, seed=5, progress=False)
+    assert clean.as_scripted == 1.0 and run.as_scripted < 1.0
+    # Seed 1 has the scripted presses: its run is unchanged, press for press.
+    assert np.array_equal(run.learner.interest[1], clean.learner.interest[1])
+    both = run.learner.practice[0].min(axis=1)  # presses that opened both boxes
+    assert both.sum() >= 1

@@ -475,6 +475,7 @@ class _Recorder:
     def __init__(self, env):
         self.env, self.log = env, []
         self.n_actions, self.red_button = env.n_actions, env.red_button
+        self.effects = env.effects
 
     def __len__(self):
         return len(self.env)
@@ -525,8 +526,7 @@ def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True)
     env = _Recorder(buttons.PhysicsButtonConsoleBatch(
         [s[0] for s in seeds], red, buttons.DEFAULT_PRESSES_PER_TRIAL, press_motions=motions))
     agent = goal_oriented.GoalOrientedBatch(
-        [s[1] for s in seeds], np.array(buttons.layouts(red)), buttons.EFFECTS,
-        env.n_actions)
+        [s[1] for s in seeds], np.array(buttons.layouts(red)), env.effects, env.n_actions)
     learner = _goal_oriented._play(settings, env, agent, n_trials,
                                    buttons.DEFAULT_PRESSES_PER_TRIAL, red, progress)
     table = buttons.outcome_table(red)

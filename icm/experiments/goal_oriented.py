@@ -281,7 +281,7 @@ def run_goal_oriented_grid(grid, **arguments):
         env = buttons.ButtonConsoleBatch(env_seeds, red_button, first["noisy_button"])
     rows = {name: _grid.per_row(settings, name, n) for name in GRID_ARGUMENTS}
     agent = goal_oriented.GoalOrientedBatch(
-        agent_seeds, np.array(buttons.layouts(red_button)), buttons.EFFECTS, env.n_actions,
+        agent_seeds, np.array(buttons.layouts(red_button)), env.effects, env.n_actions,
         interest=first["interest"], interest_per=first["interest_per"], **rows)
     result = _play(first, env, agent, first["n_trials"], presses, red_button, progress)
     return _grid.split(result, settings, n)
@@ -310,9 +310,10 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progres
         values[:, trial] = agent.interest.values()
         predictions[:, trial] = agent.predictor.effect
 
-    effects = np.asarray(buttons.EFFECTS)
-    practice = np.stack([(outcomes == buttons.RED_BOX).sum(axis=2),
-                         (outcomes == buttons.GREEN_BOX).sum(axis=2)], axis=2)
+    effects = agent.effects  # buttons.EFFECTS, and on the physics both boxes too
+    both = outcomes == buttons.BOTH_BOXES
+    practice = np.stack([((outcomes == buttons.RED_BOX) | both).sum(axis=2),
+                         ((outcomes == buttons.GREEN_BOX) | both).sum(axis=2)], axis=2)
     presses = np.stack([(actions == a).sum(axis=2) for a in range(n_actions)], axis=2)
     per_layout = predictions.reshape(n_seeds, n_trials, 4, n_actions)
     if agent.interest_per == "task":

@@ -19,13 +19,13 @@ from dm_env import specs
 from icm import _validate
 from icm.envs import icub
 from icm.envs._common import check_discrete_action, check_seed, dm_control_random
-from icm.envs.buttons.rules import (BOX_NAMES, DEFAULT_PRESSES_PER_TRIAL,
-                                        DEFAULT_RED_BUTTON, EFFECTS, GREEN, GREEN_BOX,
+from icm.envs.buttons.rules import (ALL_EFFECTS, BOX_NAMES, DEFAULT_PRESSES_PER_TRIAL,
+                                        DEFAULT_RED_BUTTON, GREEN, GREEN_BOX,
                                         N_BUTTONS, NOISY_BUTTON, OFF, RED, RED_BOX,
                                         check_lights, check_red_button,
-                                        check_rewarded_box, draw_green, extrinsic_reward,
-                                        green_candidates, lights_for, n_actions,
-                                        noisy_effect)
+                                        check_rewarded_box, draw_green, effect_index,
+                                        extrinsic_reward, green_candidates, lights_for,
+                                        n_actions, noisy_effect)
 from icm.envs.buttons.twin import ButtonTrials
 
 PRESS_DEPTH = 0.008
@@ -446,6 +446,10 @@ class PhysicsButtonConsoleBatch:
       noisy_button: add the noisy button, action 5.
       press_motions: None (the scripted presses), or one `press_motions` of
         `PhysicsButtonConsole` per row.
+
+    Attributes:
+      effects: the effects a press can have, `ALL_EFFECTS`: on the physics, both boxes
+        too, which the scripted presses never give but other movements can.
     """
 
     def __init__(self, seeds, red_button=DEFAULT_RED_BUTTON,
@@ -467,6 +471,7 @@ class PhysicsButtonConsoleBatch:
         self.n_actions = n_actions(self.noisy_button)
         self._greens = green_candidates(self.red_button)
         self.layout = np.zeros(len(self.consoles), dtype=np.int64)
+        self.effects = ALL_EFFECTS
 
     def __len__(self):
         return len(self.consoles)
@@ -479,6 +484,7 @@ class PhysicsButtonConsoleBatch:
 
     def press(self, actions):
         """Runs the press primitive of `actions[k]` on console k; returns the effect
-        indices [rows], read from the lids."""
-        return np.array([EFFECTS.index(tuple(c.step(int(a)).observation["boxes"].tolist()))
+        indices [rows] into `effects`, read from the lids (whatever they show: a
+        press that pushes the red and the green button at once opens both boxes)."""
+        return np.array([effect_index(c.step(int(a)).observation["boxes"])
                          for c, a in zip(self.consoles, actions)])
