@@ -133,7 +133,7 @@ def babbling_against_raw(repeats=5, n_movements=40):
     import mujoco
 
     from icm.experiments import goal_babbling
-    from icm.experiments._babbling_physics import MovementLab
+    from icm.envs.buttons.movements import MovementLab
 
     lab = MovementLab()
     targets = np.random.default_rng(0).uniform(lab.lower, lab.upper, (n_movements, 7))
@@ -156,7 +156,8 @@ def babbling_against_raw(repeats=5, n_movements=40):
     settings = goal_babbling._check_run_arguments(
         "learning_progress", 5, n_movements // 5, 0, False,
         goal_babbling.DEFAULT_EXPLORATION_NOISE, goal_babbling.DEFAULT_EPSILON,
-        goal_babbling.DEFAULT_WINDOW)
+        goal_babbling.DEFAULT_WINDOW, goal_babbling.DEFAULT_OUTCOME_SPACE,
+        "nearest_neighbour", "learning_progress", None)
 
     def whole_run():  # the rollouts of a run, without the final press test
         goal_babbling._babble(settings, lab, [1, 2, 3, 4, 5], progress=False)

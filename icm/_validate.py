@@ -271,6 +271,21 @@ def finite_array(name, value, shape=None, ndim=None):
     return array
 
 
+def integer_array(name, value, ndim=None):
+    """`value` as an int64 array of integers (Python or numpy integers; bools, floats,
+    even whole ones, and text are refused as the wrong type), of `ndim` dimensions
+    if given."""
+    if isinstance(value, (str, bytes)):
+        raise _type_error(name, "an array of integers", value)
+    array = np.asarray(value)
+    if array.dtype.kind not in "iu":
+        raise _type_error(name, "an array of integers", value)
+    if ndim is not None and array.ndim != ndim:
+        raise ValueError(f"{name} must have {ndim} dimension(s), got {array.ndim}: "
+                         f"{show(value)}")
+    return array.astype(np.int64)
+
+
 def available_memory():
     """Bytes of memory this machine can still give (Linux: MemAvailable)."""
     try:

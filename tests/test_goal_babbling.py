@@ -11,7 +11,7 @@ import pytest
 import icm
 from icm.envs import buttons, icub
 from icm.experiments import goal_babbling
-from icm.experiments._babbling_physics import MovementLab, first_press, lowest_capsule_point
+from icm.envs.buttons.movements import MovementLab, first_press, lowest_capsule_point
 from icm.figures import forming_actions
 
 from test_bad_input import refused
@@ -217,7 +217,7 @@ def test_a_movement_that_misses_the_console_presses_nothing(lab):
     assert done["pressed"].tolist() == [-1, -1]
     assert not done["touched"].any()
     # Both end in the air, above the caps.
-    assert (done["outcome"][:, 2] > goal_babbling.console_geometry()["cap_top"]).all()
+    assert (done["point"][:, 2] > goal_babbling.console_geometry()["cap_top"]).all()
     # On the console too: no press, no box.
     console = buttons.PhysicsButtonConsole(seed=0, press_motions=[lab.phases(raised)] * 5)
     console.reset()
@@ -234,7 +234,7 @@ def test_outcomes_are_where_the_physics_stops_the_finger(lab, scripted_downs):
     geometry = goal_babbling.console_geometry()
     arm = icub.Arm(lab.physics)
     scratch = mujoco.MjData(lab.model)
-    for target, outcome in zip(scripted_downs, done["outcome"]):
+    for target, outcome in zip(scripted_downs, done["point"]):
         scratch.qpos[:] = lab.initial_state[lab.qpos_slice]
         scratch.qpos[arm.qpos_index] = target
         mujoco.mj_kinematics(lab.model, scratch)  # where the posture alone puts the finger
@@ -243,14 +243,14 @@ def test_outcomes_are_where_the_physics_stops_the_finger(lab, scripted_downs):
             lab.radius, lab.half_length)
         assert outcome[2] > posture_point[2] + 0.005
         assert outcome[2] > geometry["cap_top"] - 0.015 - 0.002  # the travel, give or take
-    assert np.linalg.norm(done["outcome"] - geometry["press_goals"], axis=1).max() < 0.01
+    assert np.linalg.norm(done["point"] - geometry["press_goals"], axis=1).max() < 0.01
     # A sturdier console (stiffer springs) is pressed less deep by the same movements.
     stiff = MovementLab()
     for b in range(5):
         stiff.model.jnt_stiffness[stiff.model.jnt(f"button{b}").id] *= 20
     stopped = stiff.perform(scripted_downs)
     assert stopped["pressed"].tolist() == [-1] * 5
-    assert np.all(stopped["outcome"][:, 2] > done["outcome"][:, 2] + 0.005)
+    assert np.all(stopped["point"][:, 2] > done["point"][:, 2] + 0.005)
 
 
 def test_rollouts_in_c_equal_the_console_stepped_from_python(lab, scripted_downs):
@@ -261,7 +261,7 @@ def test_rollouts_in_c_equal_the_console_stepped_from_python(lab, scripted_downs
     targets = np.concatenate([scripted_downs[[1, 4]], rng.uniform(lab.lower, lab.upper, (2, 7))])
     done = lab.perform(targets, retract=True)
     outcome_update = sum(lab.n_updates[:2])
-    for target, outcome, touched, pressed in zip(targets, done["outcome"], done["touched"],
+    for target, outcome, touched, pressed in zip(targets, done["point"], done["touched"],
                                                  done["pressed"]):
         console = buttons.PhysicsButtonConsole(seed=0, press_motions=[lab.phases(target)] * 5)
         console.reset()
@@ -273,7 +273,7 @@ def test_rollouts_in_c_equal_the_console_stepped_from_python(lab, scripted_downs
         assert (console.task.press_log[:1] or [-1]) == [pressed]
     # The batch does not matter: one movement alone gives the same numbers.
     alone = lab.perform(targets[2:3], retract=True)
-    assert np.array_equal(alone["outcome"][0], done["outcome"][2])
+    assert np.array_equal(alone["point"][0], done["point"][2])
 
 
 def test_buttons_pressed_is_measured_on_the_console(lab, scripted_downs, small):
@@ -343,12 +343,12 @@ def test_no_outcome_lies_inside_the_console(lab):
     rng = np.random.default_rng(2)
     geometry = goal_babbling.console_geometry()
     downs = np.array(buttons.ButtonsTask().motions(lab.physics).down)
-    targets = downs[rng.integers(5, size=60)] + rng.normal(0, 0.15, (60, 7))
+    targets = lab.clip(downs[rng.integers(5, size=60)] + rng.normal(0, 0.15, (60, 7)))
     done = lab.perform(targets)
     centre, half = geometry["console_centre"], geometry["console_half"]
-    over = np.all(np.abs(done["outcome"][:, :2] - centre[:2]) <= half[:2], axis=1)
+    over = np.all(np.abs(done["point"][:, :2] - centre[:2]) <= half[:2], axis=1)
     assert over.sum() >= 10
-    assert np.all(done["outcome"][over, 2] >= geometry["console_top"] - 1e-9)
+    assert np.all(done["point"][over, 2] >= geometry["console_top"] - 1e-9)
 
 
 # --- whatever the physics does, the console answers and the learner copes -----------------

@@ -141,7 +141,8 @@ def goal_choice_figure(result, n_stretches=8):
     fig.colorbar(mesh, ax=left, shrink=0.85, label="interest (m per goal)")
     left.set_title(f"Interest of each column of regions, mean of {result.n_seeds} seeds",
                    fontsize=10)
-    edges = np.unique(np.geomspace(start, result.n_rollouts, n_stretches + 1).round())
+    edges = np.unique(np.geomspace(start, result.n_rollouts, n_stretches + 1).round()
+                      .astype(np.int64))
     edges[0], edges[-1] = start, result.n_rollouts
     shares = result.goal_shares(edges)[:, order]
     mesh = right.pcolormesh(edges, np.arange(len(order) + 1) - 0.5, shares.T,
@@ -177,7 +178,7 @@ def record_learned_press(result, seed=0, button=0, camera="close_up", height=240
       A dict: "frame" (RGB image), "pressed" (the buttons pushed past the press
       depth, in order), "boxes" (the boxes seen after the press: red, green).
     """
-    from icm.experiments._babbling_physics import MovementLab
+    from icm.envs.buttons.movements import MovementLab
     from icm.figures.icub import check_camera, check_image_size, render
 
     check_result("result", result, GoalBabblingResult, _MADE_BY)
