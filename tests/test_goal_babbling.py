@@ -13,6 +13,8 @@ from icm.envs import buttons, icub
 from icm.experiments import goal_babbling
 from icm.envs.buttons.movements import MovementLab, first_press, lowest_capsule_point
 from icm.figures import forming_actions
+from icm.learners import goal_babbling as learners_goal_babbling
+from icm.learners import goal_choice, sensorimotor
 
 from test_bad_input import refused
 
@@ -143,16 +145,38 @@ run = goal_babbling.run_goal_babbling
     (lambda: goal_babbling.run_formed_actions("babbling"), "babbling", "'babbling'", "type"),
     (lambda: buttons.PhysicsButtonConsole(press_motions=[[]] * 5), "press_motions[0]", "[]",
      "value"),
-    (lambda: buttons.PhysicsButtonConsole(press_motions=[[(np.zeros(7), 0.4)]] * 4),
+    (lambda: buttons.PhysicsButtonConsole(press_motions=[[(icub.POSTURE, 0.4)]] * 4),
      "press_motions", "one motion per button", "value"),
     (lambda: buttons.PhysicsButtonConsole(press_motions=[[(np.zeros(6), 0.4)]] * 5),
      "press_motions[0][0] joint targets", "(6,)", "value"),
-    (lambda: buttons.PhysicsButtonConsole(press_motions=[[(np.zeros(7), -1.0)]] * 5),
+    (lambda: buttons.PhysicsButtonConsole(press_motions=[[(icub.POSTURE, -1.0)]] * 5),
      "press_motions[0][0] seconds", "-1.0", "value"),
-    (lambda: buttons.PhysicsButtonConsole(press_motions=[[np.zeros(7)]] * 5),
+    (lambda: buttons.PhysicsButtonConsole(press_motions=[[icub.POSTURE]] * 5),
      "press_motions[0][0]", "pair", "value"),
     (lambda: buttons.PhysicsButtonConsoleBatch([0, 1], press_motions=[None]),
      "press_motions", "one entry per row", "value"),
+    # A phase of 1e4 s ran for minutes, 1e9 s raised MemoryError; 100 rad was clipped.
+    (lambda: buttons.PhysicsButtonConsole(press_motions=[[(icub.POSTURE, 1e4)]] * 5),
+     "press_motions[0][0] seconds", "10000.0", "value"),
+    (lambda: buttons.PhysicsButtonConsole(press_motions=[[(icub.POSTURE, 1e9)]] * 5),
+     "press_motions[0][0] seconds", "1000000000.0", "value"),
+    (lambda: buttons.PhysicsButtonConsole(
+        press_motions=[[(icub.POSTURE, 0.4)]] * 4 + [[(np.full(7, 100.0), 0.4)]]),
+     "press_motions[4][0] joint targets", "100.0", "value"),
+    (lambda: buttons.PhysicsButtonConsole(press_motions=[[(icub.POSTURE + 0j, 0.4)]] * 5),
+     "press_motions[0][0] joint targets", "j", "type"),
+    (lambda: buttons.PhysicsButtonConsole(press_motions=[[(icub.POSTURE, "0.4")]] * 5),
+     "press_motions[0][0] seconds", "'0.4'", "type"),
+    (lambda: run(threads=0), "threads", "0", "value"),
+    (lambda: run(threads=10 ** 6), "threads", "1000000", "value"),
+    (lambda: run(threads=1.0), "threads", "1.0", "type"),
+    (lambda: run(outcome_space="depth"), "outcome_space", "'depth'", "value"),
+    (lambda: run(inverse_model="lwpr"), "inverse_model", "'lwpr'", "value"),
+    (lambda: run(measure="novelty"), "measure", "'novelty'", "value"),
+    (lambda: run(regions="tree"), "regions", "'tree'", "value"),
+    (lambda: goal_babbling.region_of(["0.3", "0.1", "0.5"]), "points", "'0.3'", "type"),
+    (lambda: goal_babbling.region_of([0.3 + 1j, 0.1, 0.5]), "points", "j", "type"),
+    (lambda: goal_babbling.checkpoints_of(0), "n_rollouts", "0", "value"),
 ])
 def test_bad_input_is_refused(call, name, shown, kind):
     refused(call, name, shown, kind)
@@ -174,6 +198,67 @@ def test_bad_input_to_the_figures_and_the_loop_is_refused(small):
     refused(lambda: goal_babbling.run_formed_actions(small, n_trials=0), "n_trials", "0",
             "value")
     refused(lambda: small.goal_shares([0, 50]), "edges", "50", "value")
+    # Booleans and fractions gave zero-width stretches.
+    refused(lambda: small.goal_shares([False, True]), "edges", "False", "type")
+    refused(lambda: small.goal_shares([0, 10.5, 40]), "edges", "10.5", "type")
+    refused(lambda: small.goal_shares([0.0, 40.0]), "edges", "40.0", "type")
+    refused(lambda: small.goal_shares([0]), "edges", "[0]", "value")
+
+
+def test_the_environment_and_the_learners_refuse_bad_input(lab):
+    refused(lambda: MovementLab(threads=0), "threads", "0", "value")
+    refused(lambda: MovementLab(threads=65), "threads", "65", "value")
+    refused(lambda: lab.perform(np.zeros((0, 7))), "targets", "(0, 7)", "value")
+    refused(lambda: lab.perform(np.full((1, 7), 100.0)), "targets", "100.0", "value")
+    refused(lambda: lab.perform(lab.home[None] + 0.1j), "targets", "j", "type")
+    refused(lambda: lab.perform(np.tile(lab.home, (10 ** 7, 1))), "perform", "memory",
+            "value")
+    refused(lambda: lab.phases(np.stack([lab.home] * 2)), "target", "2", "value")
+    model = sensorimotor.NearestNeighbourInverse(2, 5, lab.lower, lab.upper, 3)
+    refused(lambda: model.nearest(np.zeros((2, 3))), "model", "no movement", "value")
+    refused(lambda: model.update(np.zeros((2, 6)), np.zeros((2, 3))), "movements", "(2, 7)",
+            "value")
+    refused(lambda: model.update(np.zeros((2, 7)), np.full((2, 3), np.nan)), "outcomes",
+            "nan", "value")
+    refused(lambda: sensorimotor.NearestNeighbourInverse(2, 5, lab.upper, lab.lower, 3),
+            "upper", "lower", "value")
+    refused(lambda: sensorimotor.make_inverse_model("lwpr", 2, 5, lab.lower, lab.upper, 3),
+            "inverse_model", "'lwpr'", "value")
+    refused(lambda: sensorimotor.LocallyWeightedInverse(2, 5, lab.lower, lab.upper, 3,
+                                                        neighbours=1),
+            "neighbours", "1", "value")
+    grid = goal_choice.RegionGrid(goal_babbling.GOAL_LOW, goal_babbling.GOAL_HIGH, (1, 7, 2))
+    refused(lambda: goal_choice.RegionGrid([0, 0], [1, 0], (1, 1)), "high", "low", "value")
+    refused(lambda: goal_choice.RegionGrid([0, 0], [1, 1], (1,)), "cells", "(1,)", "value")
+    choice = goal_choice.RegionProgress(grid, 2)
+    refused(lambda: choice.update([0, 14], [0.1, 0.1]), "regions", "14", "value")
+    refused(lambda: choice.update([0, 1], [0.1, -0.1]), "distances", "-0.1", "value")
+    refused(lambda: choice.update([0, 1.0], [0.1, 0.1]), "regions", "1.", "type")
+    refused(lambda: goal_choice.RegionProgress(grid, 2, epsilon=1.5), "epsilon", "1.5",
+            "value")
+    refused(lambda: goal_choice.SplittingRegionProgress(grid, 2, window=10, max_goals=10),
+            "max_goals", "10", "value")
+    refused(lambda: goal_choice.SplittingRegionProgress(grid, 2).update([0, 0], [0, 0]),
+            "update", "sample", "value")
+    refused(lambda: learners_goal_babbling.GoalBabblingAgent(
+        model, choice, [np.random.default_rng(0)]), "generators", "1", "value")
+    refused(lambda: learners_goal_babbling.GoalBabblingAgent(
+        model, "curiosity", [np.random.default_rng(0)] * 2), "goal_choice", "'curiosity'",
+        "type")
+
+
+def test_the_checkpoints_are_never_at_rollout_zero():
+    # With 10 rollouts or fewer a checkpoint fell at rollout 0, and the first test
+    # error was the final one.
+    for n in (1, 5, 10, 11, 1000):
+        points = goal_babbling.checkpoints_of(n)
+        assert points[0] >= 1 and points[-1] == n and np.all(np.diff(points) > 0)
+        assert len(points) == min(n, goal_babbling.N_CHECKPOINTS)
+    short = goal_babbling.run_goal_babbling("random_motor", n_seeds=1, n_rollouts=5, seed=3,
+                                            progress=False)
+    assert short.checkpoints.tolist() == [1, 2, 3, 4, 5]
+    first = np.linalg.norm(short.test_goals - short.outcomes[0, 0], axis=1).mean()
+    assert short.test_error[0, 0] == pytest.approx(first, abs=1e-12)
 
 
 # --- determinism ---------------------------------------------------------------------------
@@ -192,6 +277,25 @@ def test_the_same_seed_gives_identical_results_and_seed_k_runs_alone(small):
     other = goal_babbling.run_goal_babbling("learning_progress", n_seeds=1, n_rollouts=40,
                                             seed=4, progress=False)
     assert not np.array_equal(other.movements[0], small.movements[0])
+
+
+def test_the_number_of_threads_changes_no_number(lab):
+    # mujoco.rollout splits the movements between its threads; each is stepped from
+    # the same initial state, so the results are the same whatever the split.
+    rng = np.random.default_rng(5)
+    targets = rng.uniform(lab.lower, lab.upper, (7, 7))
+    one = MovementLab(threads=1).perform(targets, retract=True)
+    for threads in (2, 3):
+        many = MovementLab(threads=threads).perform(targets, retract=True)
+        for key in one:
+            assert np.array_equal(one[key], many[key]), (threads, key)
+    runs = [goal_babbling.run_goal_babbling("learning_progress", n_seeds=3, n_rollouts=30,
+                                            seed=8, progress=False, threads=threads)
+            for threads in (1, 2)]
+    for field in dataclasses.fields(runs[0]):
+        a, b = getattr(runs[0], field.name), getattr(runs[1], field.name)
+        if isinstance(a, np.ndarray):
+            assert np.array_equal(a, b, equal_nan=True), field.name
 
 
 def test_the_strategies_choose_differently():

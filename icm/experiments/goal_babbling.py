@@ -34,7 +34,8 @@ from icm.experiments._seeding import check_run_size, run_seeds
 from icm.learners import goal_oriented, interest, predictors
 from icm.learners.goal_babbling import N_BOOTSTRAP, GoalBabblingAgent
 from icm.learners.goal_choice import (  # noqa: F401 (re-exported)
-    DEFAULT_EPSILON, DEFAULT_WINDOW, MEASURES, RandomGoals, RegionGrid, RegionProgress)
+    DEFAULT_EPSILON, DEFAULT_WINDOW, MEASURES, RandomGoals, RegionGrid, RegionProgress,
+    SplittingRegionProgress)
 from icm.learners.sensorimotor import (  # noqa: F401 (re-exported)
     DEFAULT_EXPLORATION_NOISE, INVERSE_MODELS, NOISE_DISTANCE, make_inverse_model)
 from icm.stats import PANEL_RESAMPLES, bootstrap_band
@@ -66,6 +67,16 @@ and one beyond each end; the 2 layers split at z = 0.525 m, 1 cm above the caps:
 the console, and in the air."""
 N_CHECKPOINTS = 20
 """Checkpoints of the test error, evenly spread over a run."""
+REGION_KINDS = ("fixed", "splitting")
+"""Learning progress's regions: the fixed `REGION_GRID`, or regions that split as goals
+accumulate (`icm.learners.goal_choice.SplittingRegionProgress`)."""
+DEFAULT_INVERSE_MODEL = "nearest_neighbour"
+"""The inverse model of a run unless told otherwise (`INVERSE_MODELS`)."""
+DEFAULT_MEASURE = "learning_progress"
+"""How learning progress measures a region's progress unless told otherwise
+(`MEASURES`)."""
+DEFAULT_REGIONS = "fixed"
+"""Learning progress's regions unless told otherwise (`REGION_KINDS`)."""
 DEFAULT_TRIALS = 30
 """Trials of the goal-oriented learner on the formed actions (`run_formed_actions`)."""
 
@@ -288,7 +299,8 @@ def _region_columns():
 
 
 def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, exploration_noise,
-                         epsilon, window, outcome_space, inverse_model, measure, threads):
+                         epsilon, window, outcome_space, inverse_model, measure, regions,
+                         threads):
     checked = dict(
         strategy=_validate.one_of("strategy", strategy, STRATEGIES),
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
@@ -300,10 +312,11 @@ def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, explorat
         window=_validate.integer_at_least("window", window, 2),
         outcome_space=_validate.one_of("outcome_space", outcome_space, OUTCOME_SPACES),
         inverse_model=_validate.one_of("inverse_model", inverse_model, INVERSE_MODELS),
-        measure=_validate.one_of("measure", measure, MEASURES))
+        measure=_validate.one_of("measure", measure, MEASURES),
+        regions=_validate.one_of("regions", regions, REGION_KINDS))
     _validate.boolean("progress", progress)
     if threads is not None:
-        _validate.integer_at_least("threads", threads, 1)
+        _validate.integer_in_range("threads", threads, 1, _movements.MAX_THREADS)
     n_goals = len(_geometry()["test_goals"])
     # Per rollout: movement, outcome, depths, goal, flags and two distances per test
     # goal; per seed: one rollout's simulated states.
@@ -324,8 +337,8 @@ def checkpoints_of(n_rollouts):
 def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAULT_N_ROLLOUTS,
                       seed=0, progress=True, exploration_noise=DEFAULT_EXPLORATION_NOISE,
                       epsilon=DEFAULT_EPSILON, window=DEFAULT_WINDOW,
-                      outcome_space=DEFAULT_OUTCOME_SPACE, inverse_model="nearest_neighbour",
-                      measure="learning_progress", threads=None):
+                      outcome_space=DEFAULT_OUTCOME_SPACE, inverse_model=DEFAULT_INVERSE_MODEL,
+                      measure=DEFAULT_MEASURE, regions=DEFAULT_REGIONS, threads=None):
     """Runs goal babbling on the simulated iCub, all seeds at once.
 
     Every rollout is a movement performed in physics from the start of a trial
@@ -356,8 +369,9 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
       inverse_model: one of `icm.learners.sensorimotor.INVERSE_MODELS`.
       measure: how learning progress measures a region's progress, one of
         `icm.learners.goal_choice.MEASURES`.
-      threads: threads stepping the rollouts (None: the cores this process may
-        use). The results do not depend on it.
+      regions: learning progress's regions, one of `REGION_KINDS`.
+      threads: threads stepping the rollouts, 1 to `movements.MAX_THREADS` (None:
+        the cores this process may use). The results do not depend on it.
 
     Returns:
       A `GoalBabblingResult`.
@@ -368,7 +382,7 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
     """
     settings = _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress,
                                     exploration_noise, epsilon, window, outcome_space,
-                                    inverse_model, measure, threads)
+                                    inverse_model, measure, regions, threads)
     lab = MovementLab(threads)
     seeds = run_seeds(settings["seed"], n_seeds, 2)
     arrays = _babble(settings, lab, [s[0] for s in seeds], progress)
@@ -408,8 +422,9 @@ def _babble(settings, lab, seeds, progress):
     elif strategy == "random_goal":
         choice = RandomGoals(grid, n_seeds)
     else:
-        choice = RegionProgress(grid, n_seeds, settings["measure"], settings["epsilon"],
-                                settings["window"])
+        kind = RegionProgress if settings["regions"] == "fixed" else SplittingRegionProgress
+        choice = kind(grid, n_seeds, settings["measure"], settings["epsilon"],
+                      settings["window"])
     agent = GoalBabblingAgent(model, choice, [np.random.default_rng(s) for s in seeds],
                               lambda goals: goal_outcomes(goals, space))
     movements = np.zeros((n_seeds, n_rollouts, 7))

@@ -6,7 +6,7 @@ a movement, and both learn from what the movement reached; explauto's agent loop
 import numpy as np
 
 from icm import _validate
-from icm.learners.goal_choice import RandomGoals, RegionProgress
+from icm.learners.goal_choice import RandomGoals, RegionProgress, SplittingRegionProgress
 from icm.learners.sensorimotor import NearestNeighbourInverse
 
 N_BOOTSTRAP = 20
@@ -27,8 +27,9 @@ class GoalBabblingAgent:
     Args:
       inverse_model: a sensorimotor model (`icm.learners.sensorimotor`), with one
         row per agent.
-      goal_choice: an interest model (`icm.learners.goal_choice.RandomGoals` or
-        `RegionProgress`), or None for random motor babbling.
+      goal_choice: an interest model (`icm.learners.goal_choice.RandomGoals`,
+        `RegionProgress` or `SplittingRegionProgress`), or None for random motor
+        babbling.
       generators: one `numpy.random.Generator` per row.
       goal_outcome: a function from goals [rows, dims] to the outcomes they ask for
         [rows, n_outcome] (default: the goals themselves).
@@ -40,8 +41,9 @@ class GoalBabblingAgent:
         self.inverse_model = _validate.instance("inverse_model", inverse_model,
                                                 NearestNeighbourInverse)
         if goal_choice is not None:
-            _validate.instance("goal_choice", goal_choice, (RandomGoals, RegionProgress),
-                               "RandomGoals, RegionProgress or None")
+            _validate.instance("goal_choice", goal_choice,
+                               (RandomGoals, RegionProgress, SplittingRegionProgress),
+                               "RandomGoals, RegionProgress, SplittingRegionProgress or None")
         self.goal_choice = goal_choice
         self.generators = list(generators)
         if len(self.generators) != inverse_model.n_rows:

@@ -103,7 +103,9 @@ class RandomGoals:
         return goals, self.grid.region_of(goals)
 
     def update(self, regions, distances):
-        """Nothing to learn: random goals do not depend on the outcomes."""
+        """Nothing to learn: random goals do not depend on the outcomes (the arguments
+        are checked as `RegionProgress.update` checks them)."""
+        check_update(regions, distances, self.n_rows, self.grid.n_regions)
 
     def values(self):
         """Every region's interest: 0."""
@@ -162,12 +164,14 @@ class RegionProgress:
     def update(self, regions, distances):
         """Records the distance between each row's goal (in `regions[k]`) and what its
         movement reached."""
+        regions, distances = check_update(regions, distances, self.n_rows,
+                                          self.grid.n_regions)
         if self.measure == "learning_progress":
             self._table.record(None, regions, distances)
             return
         rows = np.arange(self.n_rows)
         history = self._competence[rows, regions]
-        history = np.concatenate([history[:, 1:], -np.asarray(distances)[:, None]], axis=1)
+        history = np.concatenate([history[:, 1:], -distances[:, None]], axis=1)
         self._competence[rows, regions] = history
         count = self._count[rows, regions] + 1
         self._count[rows, regions] = count
@@ -189,6 +193,19 @@ def competence_progress(history, count):
     return np.where(n >= 2, np.abs(mean(newer) - mean(older)), 0.0)
 
 
+def check_update(regions, distances, n_rows, n_regions):
+    """`regions` (one region index per row, in 0..n_regions-1) and `distances` (one
+    finite distance >= 0 per row), checked, as int and float arrays."""
+    regions = _validate.integer_array("regions", regions, ndim=1)
+    if len(regions) != n_rows or np.any((regions < 0) | (regions >= n_regions)):
+        raise ValueError(f"regions must be one region in 0..{n_regions - 1} per row "
+                         f"({n_rows}), got {_validate.show(regions)}")
+    distances = _validate.finite_array("distances", distances, shape=(n_rows,))
+    if np.any(distances < 0):
+        raise ValueError(f"distances must be >= 0, got {_validate.show(distances)}")
+    return regions, distances
+
+
 def choose_region(values, epsilon, rng):
     """A region: uniformly with probability `epsilon` (or while every interest is 0),
     else with probability proportional to its interest. Draws two numbers from
@@ -199,3 +216,134 @@ def choose_region(values, epsilon, rng):
         return min(int(draw * len(values)), len(values) - 1)
     return min(int(np.searchsorted(np.cumsum(values), draw * total, side="right")),
                len(values) - 1)
+
+
+DEFAULT_MAX_GOALS = 100
+"""Splitting regions: a region holding more goals than this splits in two (explauto's
+SAGG-RIAC tree, `max_points_per_region`). Not in the paper."""
+
+
+class SplittingRegionProgress:
+    """Goals chosen by progress over regions that split as goals accumulate, SAGG-RIAC's
+    way (Baranes and Oudeyer 2013), for many agents (rows) at once.
+
+    Each row starts from the whole box as one region. When a region holds more than
+    `max_goals` goals it splits in two across one dimension (x, then y, then z, then
+    x again down the tree) at the midpoint between two of its goals' coordinates
+    that maximises n_low x n_high x |interest_low - interest_high|, explauto's
+    "best_interest_diff" for a region that just passed its limit: each half keeps
+    the goals (and distances) that fall in it. A region's interest is measured by
+    `measure` over its last `window` goals: "learning_progress", max(-slope, 0) of
+    its distances (0 with fewer than 2; unlike the fixed regions, no new-region
+    share), or "competence_progress" (`competence_progress`). Regions are chosen as
+    `RegionProgress` chooses them (two numbers, then one per dimension for the goal).
+
+    The region numbers reported (`sample`'s second result) are those of the fixed
+    `grid`, for comparison with the other interest models; `values` gives each fixed
+    region the interest of the region that holds its centre.
+
+    Args:
+      grid: a `RegionGrid` (its box is the goal space).
+      n_rows: agents.
+      measure: one of `MEASURES`.
+      epsilon: share of uniformly chosen regions, in [0, 1].
+      window: goals per region in the progress (>= 2).
+      max_goals: goals a region may hold before it splits (> window).
+    """
+
+    def __init__(self, grid, n_rows, measure="learning_progress", epsilon=DEFAULT_EPSILON,
+                 window=DEFAULT_WINDOW, max_goals=DEFAULT_MAX_GOALS):
+        self.grid = _validate.instance("grid", grid, RegionGrid)
+        self.n_rows = _validate.integer_at_least("n_rows", n_rows, 1)
+        self.measure = _validate.one_of("measure", measure, MEASURES)
+        self.epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
+        self.window = _validate.integer_at_least("window", window, 2)
+        self.max_goals = _validate.integer_at_least("max_goals", max_goals, self.window + 1)
+        self._centres = grid.bounds().mean(axis=1)
+        box = np.stack([grid.low, grid.high])
+        # Per row: the regions' corners, split dimension, goals and distances, interest.
+        self.bounds = [[box.copy()] for _ in range(self.n_rows)]
+        self.split_dims = [[0] for _ in range(self.n_rows)]
+        self.members = [[[]] for _ in range(self.n_rows)]  # [(goal, distance)] per region
+        self.interests = [[0.0] for _ in range(self.n_rows)]
+        self._chosen = np.zeros(self.n_rows, dtype=np.int64)
+        self._goals = None
+
+    def n_regions(self):
+        """The number of regions of each row, [rows]."""
+        return np.array([len(b) for b in self.bounds])
+
+    def values(self):
+        """Each fixed region's interest: that of the row's region holding its centre,
+        [rows, fixed regions]."""
+        out = np.zeros((self.n_rows, len(self._centres)))
+        for k in range(self.n_rows):
+            out[k] = np.array(self.interests[k])[self._leaf_of(k, self._centres)]
+        return out
+
+    def _leaf_of(self, k, points):
+        bounds = np.array(self.bounds[k])  # [regions, 2, dims]
+        inside = np.all((points[:, None, :] >= bounds[None, :, 0])
+                        & (points[:, None, :] <= bounds[None, :, 1]), axis=2)
+        return np.argmax(inside, axis=1)
+
+    def sample(self, generators):
+        """One goal per row: (goals [rows, dims], fixed regions [rows])."""
+        goals = np.empty((self.n_rows, len(self.grid.low)))
+        for k, rng in enumerate(generators):
+            leaf = choose_region(np.array(self.interests[k]), self.epsilon, rng)
+            self._chosen[k] = leaf
+            goals[k] = rng.uniform(*self.bounds[k][leaf])
+        self._goals = goals
+        return goals, self.grid.region_of(goals)
+
+    def update(self, regions, distances):
+        """Records the distance between each row's last goal and what its movement
+        reached (`regions`, the fixed ones, are not needed: the row knows its region)."""
+        if self._goals is None:
+            raise ValueError("update must follow sample: no goal has been proposed yet")
+        _, distances = check_update(regions, distances, self.n_rows, self.grid.n_regions)
+        for k in range(self.n_rows):
+            leaf = self._chosen[k]
+            self.members[k][leaf].append((self._goals[k].copy(), float(distances[k])))
+            if len(self.members[k][leaf]) > self.max_goals:
+                self._split(k, leaf)
+            else:
+                self.interests[k][leaf] = self._interest(self.members[k][leaf])
+
+    def _interest(self, members):
+        distances = np.array([d for _, d in members[-self.window:]])
+        if len(distances) < 2:
+            return 0.0
+        if self.measure == "learning_progress":
+            x = np.arange(len(distances)) - (len(distances) - 1) / 2.0
+            return max(0.0, -float(x @ (distances - distances.mean()) / (x @ x)))
+        return float(competence_progress(-distances[None, :], np.array([len(distances)]))[0])
+
+    def _split(self, k, leaf):
+        members, dim = self.members[k][leaf], self.split_dims[k][leaf]
+        coordinate = np.array([goal[dim] for goal, _ in members])
+        values = np.unique(coordinate)
+        best, best_fitness = None, -1.0
+        for cut in (values[:-1] + values[1:]) / 2:
+            low = [m for m, c in zip(members, coordinate) if c <= cut]
+            high = [m for m, c in zip(members, coordinate) if c > cut]
+            fitness = len(low) * len(high) * abs(self._interest(low) - self._interest(high))
+            if fitness > best_fitness:
+                best, best_fitness = cut, fitness
+        if best is None:  # every goal at one coordinate: nothing to split on
+            self.interests[k][leaf] = self._interest(members)
+            return
+        bounds = self.bounds[k][leaf]
+        low_bounds, high_bounds = bounds.copy(), bounds.copy()
+        low_bounds[1, dim] = high_bounds[0, dim] = best
+        low = [m for m, c in zip(members, coordinate) if c <= best]
+        high = [m for m, c in zip(members, coordinate) if c > best]
+        following = (dim + 1) % len(self.grid.low)
+        self.bounds[k][leaf], self.members[k][leaf] = low_bounds, low
+        self.split_dims[k][leaf] = following
+        self.interests[k][leaf] = self._interest(low)
+        self.bounds[k].append(high_bounds)
+        self.members[k].append(high)
+        self.split_dims[k].append(following)
+        self.interests[k].append(self._interest(high))

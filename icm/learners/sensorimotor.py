@@ -84,8 +84,10 @@ class NearestNeighbourInverse:
         `outcomes` [rows, n_outcome]."""
         if self.size == self.movements.shape[1]:
             raise ValueError(f"the model is full: it was made for {self.size} pairs a row")
-        self.movements[:, self.size] = movements
-        self.outcomes[:, self.size] = outcomes
+        self.movements[:, self.size] = _validate.finite_array(
+            "movements", movements, shape=self.movements.shape[::2])
+        self.outcomes[:, self.size] = _validate.finite_array(
+            "outcomes", outcomes, shape=self.outcomes.shape[::2])
         self.size += 1
 
     def nearest(self, goals):
@@ -93,6 +95,7 @@ class NearestNeighbourInverse:
         [rows])."""
         if self.size == 0:
             raise ValueError("the model has seen no movement yet")
+        goals = _validate.finite_array("goals", goals, shape=self.outcomes.shape[::2])
         squared = ((self.outcomes[:, :self.size] - goals[:, None, :]) ** 2).sum(axis=2)
         index = np.argmin(squared, axis=1)
         return index, np.sqrt(np.take_along_axis(squared, index[:, None], axis=1)[:, 0])
@@ -101,7 +104,7 @@ class NearestNeighbourInverse:
         """The movement each row's model gives for its goal, without exploration noise,
         [rows, joints]."""
         index, _ = self.nearest(goals)
-        return self._from_nearest(goals, index)
+        return self._from_nearest(np.asarray(goals, dtype=float), index)
 
     def _from_nearest(self, goals, index):
         return self.movements[np.arange(self.n_rows), index]
@@ -110,8 +113,12 @@ class NearestNeighbourInverse:
         """The movements to try for `goals` [rows, n_outcome]: `infer`'s plus
         exploration noise, each row drawing 7 normal numbers from its own generator
         (`generators[k]`), clipped to the joint ranges."""
+        generators = list(generators)
+        if len(generators) != self.n_rows:
+            raise ValueError(f"generators must be one per row ({self.n_rows}), got "
+                             f"{len(generators)}")
         index, distance = self.nearest(goals)
-        movements = self._from_nearest(goals, index)
+        movements = self._from_nearest(np.asarray(goals, dtype=float), index)
         scale = np.minimum(1.0, distance / self.noise_distance)
         noise = self.exploration_noise * self.span
         out = np.empty_like(movements)

@@ -27,12 +27,18 @@ FINGER = "r_finger"
 """The geom whose lowest point is where a movement brought the finger."""
 
 
+MAX_THREADS = 64
+"""The most threads a `MovementLab` takes (each holds a copy of the simulation)."""
+
+
 def default_threads():
-    """The cores this process may run on (`mujoco.rollout`'s threads by default)."""
+    """The cores this process may run on, at most `MAX_THREADS` (`mujoco.rollout`'s
+    threads by default)."""
     try:
-        return max(1, len(os.sched_getaffinity(0)))
+        cores = len(os.sched_getaffinity(0))
     except AttributeError:  # not on Linux
-        return max(1, os.cpu_count() or 1)
+        cores = os.cpu_count() or 1
+    return max(1, min(cores, MAX_THREADS))
 
 
 @functools.lru_cache(maxsize=1)
@@ -93,8 +99,8 @@ class MovementLab:
     steps sooner, and "depths" and "pressed" cover the reach and the hold.
 
     Args:
-      threads: MjData instances for `mujoco.rollout` (its threads), >= 1; default
-        `default_threads()`. The results do not depend on it.
+      threads: MjData instances for `mujoco.rollout` (its threads), 1 to
+        `MAX_THREADS`; default `default_threads()`. The results do not depend on it.
     """
 
     def __init__(self, threads=None):
@@ -102,7 +108,7 @@ class MovementLab:
         from mujoco import rollout
 
         threads = default_threads() if threads is None else \
-            _validate.integer_at_least("threads", threads, 1)
+            _validate.integer_in_range("threads", threads, 1, MAX_THREADS)
         self.threads = threads
         self._mujoco, self._rollout = mujoco, rollout
         physics = _physics.load_physics()
@@ -144,27 +150,27 @@ class MovementLab:
         self._scratch = mujoco.MjData(model)
 
     def check_targets(self, targets):
-        """`targets` as an array [movement, 7] of joint targets within the joint
-        ranges.
+        """`targets` as an array [movement, 7] of joint targets, at least one movement,
+        each target within its joint's range (up to `icub.ACTION_TOLERANCE`, then
+        clipped).
 
         Raises:
           ValueError: for anything else (an `ArgumentTypeError` for what is not an
             array of real numbers), naming the joint and its range.
         """
-        if np.iscomplexobj(targets):
-            raise _validate.ArgumentTypeError(f"targets must be an array of real joint "
-                                              f"targets, got {_validate.show(targets)}")
         targets = _validate.finite_array("targets", targets)
-        if targets.ndim != 2 or targets.shape[1] != len(self.home):
+        if targets.ndim != 2 or targets.shape[1] != len(self.home) or not len(targets):
             raise ValueError(f"targets must be an array [movement, {len(self.home)}] "
-                             f"of joint targets, got shape {targets.shape}")
-        outside = (targets < self.lower) | (targets > self.upper)
+                             f"of joint targets, at least one movement, got shape "
+                             f"{targets.shape}")
+        outside = (targets < self.lower - icub.ACTION_TOLERANCE) \
+            | (targets > self.upper + icub.ACTION_TOLERANCE)
         if outside.any():
             row, j = np.argwhere(outside)[0]
-            raise ValueError(f"targets must lie within the joint ranges: joint {j} "
+            raise ValueError(f"targets must lie within the joints' ranges: joint {j} "
                              f"({icub.ARM_JOINTS[j]}) in [{self.lower[j]:.4f}, "
                              f"{self.upper[j]:.4f}] rad, got {targets[row, j]!r} in row {row}")
-        return targets
+        return np.clip(targets, self.lower, self.upper)
 
     def clip(self, targets):
         """`targets` [..., 7] clipped to the joint ranges (exploration noise may push
@@ -218,6 +224,10 @@ class MovementLab:
           the press depth, -1 for none).
         """
         retract = _validate.boolean("retract", retract)
+        n = len(self.check_targets(targets))
+        steps = self.n_steps if retract else self.outcome_step + 1
+        _validate.fits_in_memory(f"perform with {n} movements",
+                                 8 * n * steps * (len(self.initial_ctrl) + len(self.initial_state)))
         controls = self.controls(targets)
         if not retract:
             controls = controls[:, :self.outcome_step + 1]
