@@ -157,7 +157,8 @@ def babbling_against_raw(repeats=5, n_movements=40):
         "learning_progress", 5, n_movements // 5, 0, False,
         goal_babbling.DEFAULT_EXPLORATION_NOISE, goal_babbling.DEFAULT_EPSILON,
         goal_babbling.DEFAULT_WINDOW, goal_babbling.DEFAULT_OUTCOME_SPACE,
-        "nearest_neighbour", "learning_progress", "fixed", None)
+        "nearest_neighbour", "learning_progress", "fixed", goal_babbling.DEPTH_WEIGHT, False,
+        None)
 
     def whole_run():  # the rollouts of a run, without the final press test
         goal_babbling._babble(settings, lab, [1, 2, 3, 4, 5], progress=False)

@@ -49,12 +49,17 @@ OUTCOME_SPACES = ("point", "point_and_depths")
 """What a movement's outcome is: "point", where it brought the finger (3 numbers, m);
 "point_and_depths", that and how far each of the five caps went down (5 more, each
 times `DEPTH_WEIGHT`)."""
-DEFAULT_OUTCOME_SPACE = "point"
-"""The outcome space of a run unless told otherwise."""
+DEFAULT_OUTCOME_SPACE = "point_and_depths"
+"""The outcome space of a run unless told otherwise: with the depths, since where the
+finger stopped does not tell a press from a touch (a press at a cap's edge lies
+farther from the press goal than an untouched cap's top at its centre) nor a clean
+press from one that also pushes a neighbour; the chapter measures both."""
 DEPTH_WEIGHT = 2.0
 """How much a cap's depth counts in the outcome space "point_and_depths", against the
 finger's position: a cap pushed all the way in (1.5 cm) counts as 3 cm. Our choice
 (the chapter shows 1, 2 and 3)."""
+MAX_DEPTH_WEIGHT = 100.0
+"""The largest `depth_weight` a run takes."""
 GOAL_LOW = np.array([0.22, -0.375, 0.45])
 """Lower corner of the goal space (m, world frame): the console (x 0.28 to 0.38, y
 -0.315 to 0.055, top at 0.485), the table around it (top at 0.45) and the air above."""
@@ -137,18 +142,19 @@ def goal_depths(points):
     return np.where(across <= geometry["cap_radius"], down, 0.0)
 
 
-def outcome_vectors(points, depths, outcome_space):
+def outcome_vectors(points, depths, outcome_space, depth_weight=DEPTH_WEIGHT):
     """Outcomes in `outcome_space` (`OUTCOME_SPACES`) from where the finger went
-    [..., 3] and how far each cap went down [..., 5]."""
+    [..., 3] and how far each cap went down [..., 5], the depths times
+    `depth_weight`."""
     if outcome_space == "point":
         return np.asarray(points, dtype=float)
-    return np.concatenate([points, DEPTH_WEIGHT * np.asarray(depths)], axis=-1)
+    return np.concatenate([points, depth_weight * np.asarray(depths)], axis=-1)
 
 
-def goal_outcomes(points, outcome_space):
+def goal_outcomes(points, outcome_space, depth_weight=DEPTH_WEIGHT):
     """The outcomes goals at `points` [..., 3] ask for, in `outcome_space`: the point,
-    and in "point_and_depths" the depths of `goal_depths`."""
-    return outcome_vectors(points, goal_depths(points), outcome_space)
+    and in "point_and_depths" the depths of `goal_depths` (times `depth_weight`)."""
+    return outcome_vectors(points, goal_depths(points), outcome_space, depth_weight)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -175,7 +181,7 @@ class GoalBabblingResult:
       outcomes: [seed, rollout, 3], where each rollout brought the finger's lowest
         point at the end of its hold (m).
       depths: [seed, rollout, 5], how far each cap went down during the rollout's
-        reach and hold (m).
+        reach and hold (and return home, with `retract`) (m).
       touched: [seed, rollout], whether the finger then touched the console.
       pressed: [seed, rollout], the first button pushed past the press depth in the
         rollout, -1 for none.
@@ -300,7 +306,7 @@ def _region_columns():
 
 def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, exploration_noise,
                          epsilon, window, outcome_space, inverse_model, measure, regions,
-                         threads):
+                         depth_weight, retract, threads):
     checked = dict(
         strategy=_validate.one_of("strategy", strategy, STRATEGIES),
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
@@ -313,7 +319,10 @@ def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, explorat
         outcome_space=_validate.one_of("outcome_space", outcome_space, OUTCOME_SPACES),
         inverse_model=_validate.one_of("inverse_model", inverse_model, INVERSE_MODELS),
         measure=_validate.one_of("measure", measure, MEASURES),
-        regions=_validate.one_of("regions", regions, REGION_KINDS))
+        regions=_validate.one_of("regions", regions, REGION_KINDS),
+        depth_weight=_validate.real("depth_weight", depth_weight, 0.0, MAX_DEPTH_WEIGHT,
+                                    low_open=True),
+        retract=_validate.boolean("retract", retract))
     _validate.boolean("progress", progress)
     if threads is not None:
         _validate.integer_in_range("threads", threads, 1, _movements.MAX_THREADS)
@@ -338,7 +347,8 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
                       seed=0, progress=True, exploration_noise=DEFAULT_EXPLORATION_NOISE,
                       epsilon=DEFAULT_EPSILON, window=DEFAULT_WINDOW,
                       outcome_space=DEFAULT_OUTCOME_SPACE, inverse_model=DEFAULT_INVERSE_MODEL,
-                      measure=DEFAULT_MEASURE, regions=DEFAULT_REGIONS, threads=None):
+                      measure=DEFAULT_MEASURE, regions=DEFAULT_REGIONS,
+                      depth_weight=DEPTH_WEIGHT, retract=False, threads=None):
     """Runs goal babbling on the simulated iCub, all seeds at once.
 
     Every rollout is a movement performed in physics from the start of a trial
@@ -370,6 +380,10 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
       measure: how learning progress measures a region's progress, one of
         `icm.learners.goal_choice.MEASURES`.
       regions: learning progress's regions, one of `REGION_KINDS`.
+      depth_weight: how much a cap's depth counts in "point_and_depths", in (0,
+        `MAX_DEPTH_WEIGHT`].
+      retract: also simulate each movement's return home while babbling (the depths
+        then cover it too); the outcome is read at the end of the hold either way.
       threads: threads stepping the rollouts, 1 to `movements.MAX_THREADS` (None:
         the cores this process may use). The results do not depend on it.
 
@@ -382,7 +396,8 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
     """
     settings = _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress,
                                     exploration_noise, epsilon, window, outcome_space,
-                                    inverse_model, measure, regions, threads)
+                                    inverse_model, measure, regions, depth_weight,
+                                    retract, threads)
     lab = MovementLab(threads)
     seeds = run_seeds(settings["seed"], n_seeds, 2)
     arrays = _babble(settings, lab, [s[0] for s in seeds], progress)
@@ -391,8 +406,9 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
     space = settings["outcome_space"]
     checkpoints = checkpoints_of(n_rollouts)
     test_goals = geometry["test_goals"]
-    reached = outcome_vectors(outcomes, arrays["depths"], space)
-    wanted = goal_outcomes(test_goals, space)
+    weight = settings["depth_weight"]
+    reached = outcome_vectors(outcomes, arrays["depths"], space, weight)
+    wanted = goal_outcomes(test_goals, space, weight)
     distance = np.sqrt(((reached[:, :, None, :] - wanted[None, None]) ** 2).sum(axis=3))
     best = np.minimum.accumulate(distance, axis=1)  # [seed, rollout, goal]
     test_error = best[:, checkpoints - 1].mean(axis=2)
@@ -412,6 +428,7 @@ def _babble(settings, lab, seeds, progress):
     a dict of the arrays `GoalBabblingResult` keeps per rollout."""
     strategy, n_rollouts = settings["strategy"], settings["n_rollouts"]
     n_seeds, space = len(seeds), settings["outcome_space"]
+    weight, retract = settings["depth_weight"], settings["retract"]
     n_outcome = 3 if space == "point" else 3 + buttons.N_BUTTONS
     grid = _grid()
     model = make_inverse_model(settings["inverse_model"], n_seeds, n_rollouts, lab.lower,
@@ -426,7 +443,7 @@ def _babble(settings, lab, seeds, progress):
         choice = kind(grid, n_seeds, settings["measure"], settings["epsilon"],
                       settings["window"])
     agent = GoalBabblingAgent(model, choice, [np.random.default_rng(s) for s in seeds],
-                              lambda goals: goal_outcomes(goals, space))
+                              lambda goals: goal_outcomes(goals, space, weight))
     movements = np.zeros((n_seeds, n_rollouts, 7))
     outcomes = np.zeros((n_seeds, n_rollouts, 3))
     depths = np.zeros((n_seeds, n_rollouts, buttons.N_BUTTONS))
@@ -439,8 +456,8 @@ def _babble(settings, lab, seeds, progress):
                           f"goal babbling ({strategy}, {n_seeds} seeds at once)", progress,
                           unit="rollout"):
         targets, goal, region = agent.produce()
-        done = lab.perform(targets)
-        agent.perceive(targets, outcome_vectors(done["point"], done["depths"], space))
+        done = lab.perform(targets, retract)
+        agent.perceive(targets, outcome_vectors(done["point"], done["depths"], space, weight))
         movements[:, i], outcomes[:, i], depths[:, i] = targets, done["point"], done["depths"]
         touched[:, i], pressed[:, i] = done["touched"], done["pressed"]
         if goal is not None:
