@@ -38,7 +38,7 @@ from icm.learners.goal_choice import (  # noqa: F401 (re-exported)
     SplittingRegionProgress)
 from icm.learners.sensorimotor import (  # noqa: F401 (re-exported)
     DEFAULT_EXPLORATION_NOISE, INVERSE_MODELS, NOISE_DISTANCE, make_inverse_model)
-from icm.stats import PANEL_RESAMPLES, bootstrap_band
+from icm.stats import PANEL_RESAMPLES, bootstrap_band, comes_first
 
 STRATEGIES = ("random_motor", "random_goal", "learning_progress")
 """How the next movement is chosen (see the module docstring)."""
@@ -469,6 +469,41 @@ def _babble(settings, lab, seeds, progress):
             "interest": interest_log}
 
 
+def presses_formed(result, rollouts):
+    """Whether each seed had formed a press for each button after `rollouts` rollouts:
+    the movement among its first n rollouts whose outcome lies nearest the button's
+    press goal, tested on the physics console as at the end of a run (so that at
+    n = `n_rollouts` it is `buttons_pressed`).
+
+    Args:
+      result: a `GoalBabblingResult`.
+      rollouts: increasing whole rollout counts in 1..n_rollouts.
+
+    Returns:
+      A bool array [len(rollouts), seed, button].
+    """
+    _validate.instance("result", result, GoalBabblingResult,
+                       "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
+    rollouts = _validate.integer_array("rollouts", rollouts, ndim=1)
+    if not len(rollouts) or np.any(np.diff(rollouts) <= 0) or rollouts[0] < 1 \
+            or rollouts[-1] > result.n_rollouts:
+        raise ValueError(f"rollouts must be increasing rollout counts in 1.."
+                         f"{result.n_rollouts}, got {_validate.show(rollouts)}")
+    settings = result.settings
+    space, weight = settings["outcome_space"], settings["depth_weight"]
+    reached = outcome_vectors(result.outcomes, result.depths, space, weight)
+    wanted = goal_outcomes(_geometry()["press_goals"], space, weight)
+    distance = np.sqrt(((reached[:, :, None, :] - wanted[None, None]) ** 2).sum(axis=3))
+    seeds = [s[1] for s in run_seeds(settings["seed"], result.n_seeds, 2)]
+    lab = MovementLab(1)
+    out = np.zeros((len(rollouts), result.n_seeds, buttons.N_BUTTONS), dtype=bool)
+    for i, n in enumerate(rollouts):
+        nearest = distance[:, :n].argmin(axis=1)  # [seed, button]
+        movements = np.take_along_axis(result.movements, nearest[:, :, None], axis=1)
+        out[i] = _press_each_button(lab, movements, seeds)
+    return out
+
+
 def _press_each_button(lab, press_movements, seeds):
     """[seed, button]: whether the movement for each button, run on a physics console
     where that button is lit red (one console per button), presses that button and
@@ -499,17 +534,25 @@ class FormedActionsResult:
       as_scripted: the share of the learner's presses whose effect (which box
         opened) is what the scripted press of the same button gives in that layout.
       n_presses: the presses the learner made, over all seeds.
+      as_scripted_per_seed: [seed], that share in each seed's presses (every seed
+        makes the same number of presses).
     """
 
     settings: dict
     learner: _goal_oriented.GoalOrientedResult
     as_scripted: float
     n_presses: int
+    as_scripted_per_seed: np.ndarray
 
     def red_first_fraction(self):
         """Share of seeds in which red is mastered strictly before green (see
         `GoalOrientedResult.red_first_fraction`)."""
         return self.learner.red_first_fraction()
+
+    def red_first(self):
+        """[seed], whether red is mastered strictly before green in each seed."""
+        mastery = self.learner.mastery_trial
+        return comes_first(mastery[:, 0], mastery[:, 1])
 
 
 class _Recorder:
@@ -573,8 +616,10 @@ def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True)
     learner = _goal_oriented._play(settings, env, agent, n_trials,
                                    buttons.DEFAULT_PRESSES_PER_TRIAL, red, progress)
     table = buttons.outcome_table(red)
-    matches = [table[layout, actions] == effects for layout, actions, effects in env.log]
-    return FormedActionsResult(settings, learner, float(np.mean(matches)), int(np.size(matches)))
+    matches = np.array([table[layout, actions] == effects
+                        for layout, actions, effects in env.log])  # [press, seed]
+    return FormedActionsResult(settings, learner, float(np.mean(matches)), int(np.size(matches)),
+                               matches.mean(axis=0))
 
 
 def comparison_table(results):
