@@ -110,7 +110,7 @@ class MovementLab:
         threads = default_threads() if threads is None else \
             _validate.integer_in_range("threads", threads, 1, MAX_THREADS)
         self.threads = threads
-        self._mujoco, self._rollout = mujoco, rollout
+        self._mujoco = mujoco
         physics = _physics.load_physics()
         task = _physics.ButtonsTask(random=0)
         with physics.reset_context():
@@ -147,6 +147,9 @@ class MovementLab:
         # Where qpos sits in a rollout's state vector (time first, then qpos).
         self.qpos_slice = slice(1, 1 + model.nq)
         self.datas = [mujoco.MjData(model) for _ in range(threads)]
+        # One pool of threads for the lab's life (starting threads at every call of
+        # mujoco.rollout costs more than 10 movements take); none for one thread.
+        self._runner = rollout.Rollout(nthread=threads if threads > 1 else 0)
         self._scratch = mujoco.MjData(model)
 
     def check_targets(self, targets):
@@ -232,8 +235,8 @@ class MovementLab:
         if not retract:
             controls = controls[:, :self.outcome_step + 1]
         n = len(controls)
-        state, _ = self._rollout.rollout(self.model, self.datas, self.initial_state, controls,
-                                         initial_warmstart=self.warmstart)
+        state, _ = self._runner.rollout(self.model, self.datas, self.initial_state, controls,
+                                        initial_warmstart=self.warmstart)
         qpos = state[:, :, self.qpos_slice]
         point = np.empty((n, 3))
         touched = np.zeros(n, dtype=bool)
