@@ -504,6 +504,47 @@ def presses_formed(result, rollouts):
     return out
 
 
+PRESS_FAILURES = ("formed", "not pushed in far enough", "off the cap",
+                  "a neighbour pushed too", "a neighbour pushed instead", "other")
+"""What became of the movement formed for each button (`press_failures`), by code."""
+
+
+def press_failures(result):
+    """What became of the movement formed for each button: a code into
+    `PRESS_FAILURES` per [seed, button].
+
+    "formed" where `buttons_pressed` holds. Otherwise the movement is rolled out again
+    with its return home and read: "a neighbour pushed too" if the button and
+    another went past the press depth, "a neighbour pushed instead" if only another
+    did, "not pushed in far enough" if none did and the finger ended over the cap
+    (within its radius of its centre), "off the cap" if none did and it ended
+    elsewhere, and "other" if the button alone was pushed yet the red box alone did
+    not open.
+
+    Args:
+      result: a `GoalBabblingResult`.
+    """
+    _validate.instance("result", result, GoalBabblingResult,
+                       "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
+    geometry = _geometry()
+    lab = MovementLab(1)
+    n_seeds = result.n_seeds
+    done = lab.perform(result.press_movements.reshape(-1, 7), retract=True)
+    over = done["depths"].reshape(n_seeds, buttons.N_BUTTONS, buttons.N_BUTTONS) \
+        > buttons.PRESS_DEPTH  # [seed, movement for button, button pushed]
+    across = np.linalg.norm(result.press_outcomes[..., :2] - geometry["caps"][:, :2], axis=2)
+    codes = np.full((n_seeds, buttons.N_BUTTONS), PRESS_FAILURES.index("other"))
+    for b in range(buttons.N_BUTTONS):
+        own, others = over[:, b, b], np.delete(over[:, b], b, axis=1).any(axis=1)
+        on_cap = across[:, b] <= geometry["cap_radius"]
+        codes[own & others, b] = PRESS_FAILURES.index("a neighbour pushed too")
+        codes[~own & others, b] = PRESS_FAILURES.index("a neighbour pushed instead")
+        codes[~own & ~others & on_cap, b] = PRESS_FAILURES.index("not pushed in far enough")
+        codes[~own & ~others & ~on_cap, b] = PRESS_FAILURES.index("off the cap")
+    codes[result.buttons_pressed] = PRESS_FAILURES.index("formed")
+    return codes
+
+
 def _press_each_button(lab, press_movements, seeds):
     """[seed, button]: whether the movement for each button, run on a physics console
     where that button is lit red (one console per button), presses that button and

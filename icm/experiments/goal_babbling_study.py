@@ -69,8 +69,10 @@ def run_variant(label, root, n_seeds=N_SEEDS, progress=False):
       progress: show progress bars.
 
     Returns:
-      {"pressed": [seed][budget][button] (0 or 1, budgets `BUDGETS`), "test_error":
-      [seed] (final, in the run's outcome space), and for `LOOP_VARIANTS`
+      {"pressed": [seed][budget][button] (0 or 1, budgets `BUDGETS`), "failures":
+      [seed][button] (codes of `goal_babbling.PRESS_FAILURES` at the default
+      budget), "test_error": [seed] (final, in the run's outcome space), and for
+      `LOOP_VARIANTS`
       "red_first" [seed] (0 or 1) and "as_scripted" [seed] (share of the learner's
       presses with the scripted effect)}.
     """
@@ -82,6 +84,7 @@ def run_variant(label, root, n_seeds=N_SEEDS, progress=False):
                                              progress=progress)
     pressed = goal_babbling.presses_formed(result, BUDGETS)  # [budget, seed, button]
     entry = {"pressed": np.moveaxis(pressed, 0, 1).astype(int).tolist(),
+             "failures": goal_babbling.press_failures(result).tolist(),
              "test_error": result.final_test_error().tolist()}
     if label in LOOP_VARIANTS:
         loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress)
@@ -154,3 +157,27 @@ def main():
 
 if __name__ == "__main__":
     main()
+
+
+def study_table(study=None):
+    """A Markdown table of `summary`: one row per variant on the tuning root seeds,
+    then the held-out rows.
+
+    Args:
+      study: the study (default `load_study()`).
+    """
+    rows = summary(study)
+    lines = ["| variant | root seeds | seeds | all five presses formed | presses formed (of 5) "
+             "| test error, cm | red mastered first | presses with the scripted effect |",
+             "|---|---|---|---|---|---|---|---|"]
+    for group, roots in (("tuning", TUNING_ROOTS), ("held_out", HELD_OUT_ROOTS)):
+        for label, by_group in rows.items():
+            if group not in by_group:
+                continue
+            row = by_group[group]
+            loop = (f"{row['red_first_share']:.0%} | {row['as_scripted']:.1%}"
+                    if "red_first_share" in row else "not run | not run")
+            lines.append(f"| {label} | {', '.join(map(str, roots))} | {row['n_seeds']} "
+                         f"| {row['all_pressed_share']:.0%} | {row['buttons_pressed']:.2f} "
+                         f"| {100 * row['test_error']:.2f} | {loop} |")
+    return "\n".join(lines)
