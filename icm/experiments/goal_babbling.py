@@ -157,6 +157,39 @@ def goal_outcomes(points, outcome_space, depth_weight=DEPTH_WEIGHT):
     return outcome_vectors(points, goal_depths(points), outcome_space, depth_weight)
 
 
+EDGE_SHARE = 0.8
+"""How far from a cap's centre towards its edge the press of `press_distances` is, as
+a share of the cap's radius."""
+
+
+def press_distances(button=buttons.DEFAULT_RED_BUTTON):
+    """How far three outcomes lie from a button's press goal in each outcome space:
+    {outcome space: {"touch at the centre": ..., "press at the edge": ..., "press and
+    neighbour": ...}} (m). The touch: the finger on the cap's top above its centre,
+    the cap up. The press at the edge: the cap all the way in, the finger
+    `EDGE_SHARE` of the way to its edge. The press and neighbour: the finger on the
+    cap's centre, the cap and its neighbour (the next button, or the previous one for
+    the last) all the way in.
+
+    Args:
+      button: the button (0-4).
+    """
+    button = _validate.integer("button", button, 0, buttons.N_BUTTONS - 1)
+    geometry = _geometry()
+    goal, travel = geometry["press_goals"][button], geometry["travel"]
+    neighbour = button + 1 if button + 1 < buttons.N_BUTTONS else button - 1
+    press = travel * np.eye(buttons.N_BUTTONS)[button]
+    cases = {"touch at the centre": (goal + [0.0, 0.0, travel], np.zeros(buttons.N_BUTTONS)),
+             "press at the edge": (goal + [0.0, EDGE_SHARE * geometry["cap_radius"], 0.0],
+                                   press),
+             "press and neighbour": (goal, press + travel
+                                     * np.eye(buttons.N_BUTTONS)[neighbour])}
+    return {space: {name: float(np.linalg.norm(outcome_vectors(point, depths, space)
+                                               - goal_outcomes(goal, space)))
+                    for name, (point, depths) in cases.items()}
+            for space in OUTCOME_SPACES}
+
+
 @dataclasses.dataclass(frozen=True)
 class GoalBabblingResult:
     """What `run_goal_babbling` measured. Rollouts are counted from 1 in

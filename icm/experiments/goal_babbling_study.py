@@ -16,6 +16,7 @@ import numpy as np
 from icm import _validate
 from icm.envs._assets import asset_path
 from icm.experiments import goal_babbling
+from icm.stats import PANEL_RESAMPLES, bootstrap_band
 
 STUDY_FILE = "goal_babbling_study.json"
 """The file in assets/ that holds the study."""
@@ -168,7 +169,8 @@ def study_table(study=None):
     """
     rows = summary(study)
     lines = ["| variant | root seeds | seeds | all five presses formed | presses formed (of 5) "
-             "| test error, cm | red mastered first | presses with the scripted effect |",
+             "| test error, cm (in its outcome space) | red mastered first "
+             "| presses with the scripted effect |",
              "|---|---|---|---|---|---|---|---|"]
     for group, roots in (("tuning", TUNING_ROOTS), ("held_out", HELD_OUT_ROOTS)):
         for label, by_group in rows.items():
@@ -181,3 +183,100 @@ def study_table(study=None):
                          f"| {row['all_pressed_share']:.0%} | {row['buttons_pressed']:.2f} "
                          f"| {100 * row['test_error']:.2f} | {loop} |")
     return "\n".join(lines)
+
+
+def _tuning(study, label):
+    return _pool([study["runs"][label][str(root)] for root in TUNING_ROOTS])
+
+
+def failure_counts(study, label):
+    """What became of the press formed for each button, counted over the tuning seeds
+    of variant `label`: {name in `goal_babbling.PRESS_FAILURES`: count}."""
+    label = _validate.one_of("label", label, tuple(study["runs"]))
+    codes = np.array(_tuning(study, label)["failures"])
+    return {name: int((codes == i).sum()) for i, name in
+            enumerate(goal_babbling.PRESS_FAILURES)}
+
+
+def failures_table(study, label):
+    """A Markdown table of what became of the press formed for each button (rows:
+    `goal_babbling.PRESS_FAILURES`, columns: buttons), over the tuning seeds of
+    variant `label`."""
+    label = _validate.one_of("label", label, tuple(study["runs"]))
+    codes = np.array(_tuning(study, label)["failures"])  # [seed, button]
+    n_buttons = codes.shape[1]
+    lines = ["| the press formed for the button | " + " | ".join(
+        f"button {b}" for b in range(n_buttons)) + " | all |",
+             "|---|" + "---|" * (n_buttons + 1)]
+    for i, name in enumerate(goal_babbling.PRESS_FAILURES):
+        counts = (codes == i).sum(axis=0)
+        lines.append(f"| {name} | " + " | ".join(str(c) for c in counts)
+                     + f" | {counts.sum()} |")
+    return "\n".join(lines)
+
+
+TARGETS = {"all_pressed_share": 0.9, "red_first_share": 0.9, "as_scripted": 0.95}
+"""The chapter's targets: all five presses formed in at least 90% of the seeds, red
+mastered first in at least 90% with the formed presses, and at least 95% of their
+presses with the scripted press's effect."""
+
+
+OPTIONS = ("LWLR inverse model", "competence progress", "splitting regions")
+"""The options from the field that the study compares with the default learner."""
+
+
+def _join(labels):
+    return labels[0] if len(labels) == 1 else ", ".join(labels[:-1]) + " and " + labels[-1]
+
+
+def verdicts(study=None):
+    """The numbers and words the chapter's comparisons are phrased from, a dict: for
+    learning progress ("lp") and random goal babbling ("rg") over every seed of the
+    study, the share with all five presses formed, their paired difference and its
+    95% bootstrap band, a sentence saying whether the margin is clear, the
+    closing-the-loop shares, sentences saying whether the `OPTIONS` and the simulated
+    return home did better than the default learner, and "met" or "not met" for each
+    of `TARGETS`."""
+    study = load_study() if study is None else study
+    lp, rg = (_pool(list(study["runs"][label].values()))
+              for label in ("learning progress", "random goal babbling"))
+    lp_all = np.array(lp["pressed"])[:, -1].all(axis=1).astype(float)
+    rg_all = np.array(rg["pressed"])[:, -1].all(axis=1).astype(float)
+    mean, low, high = bootstrap_band((lp_all - rg_all)[:, None], resamples=PANEL_RESAMPLES)
+    if low[0] > 0:
+        margin = ("the interval lies above zero, so on these seeds the margin of "
+                  "learning progress over random goal babbling is clear")
+    elif high[0] < 0:
+        margin = "on these seeds random goal babbling does better than learning progress"
+    else:
+        margin = ("the interval includes no difference, so on these seeds no clear "
+                  "difference between the two strategies survives")
+    rows = summary(study)["learning progress"]
+    red_first = float(np.mean(lp["red_first"]))
+    as_scripted = float(np.mean(lp["as_scripted"]))
+    word = lambda value, target: "met" if value >= target else "not met"
+    rows_all = summary(study)
+    share = lambda label: rows_all[label]["tuning"]["all_pressed_share"]
+    better = [label for label in OPTIONS
+              if label in rows_all and share(label) > share("learning progress")]
+    options = ("none of them formed all five presses in more of these seeds than the "
+               "learner without them" if not better else
+               f"{_join(better)} formed all five presses in more of these seeds than the "
+               f"learner without {'it' if len(better) == 1 else 'them'}")
+    compare = lambda label: ("better than" if share(label) > share("learning progress")
+                             else "no better than")
+    retract = (f"{compare('return home simulated')} without the return"
+               if "return home simulated" in rows_all else None)
+    return {"n_all_seeds": len(lp_all), "lp_pooled_all_share": float(lp_all.mean()),
+            "rg_pooled_all_share": float(rg_all.mean()),
+            "pooled_difference": float(mean[0]), "pooled_difference_low": float(low[0]),
+            "pooled_difference_high": float(high[0]), "margin_verdict": margin,
+            "n_loop_seeds": len(lp["red_first"]), "loop_red_first": red_first,
+            "loop_as_scripted": as_scripted,
+            "options_verdict": options, "retract_verdict": retract,
+            "target_presses_tuning": word(rows["tuning"]["all_pressed_share"],
+                                          TARGETS["all_pressed_share"]),
+            "target_presses_held_out": word(rows["held_out"]["all_pressed_share"],
+                                            TARGETS["all_pressed_share"]),
+            "target_red_first": word(red_first, TARGETS["red_first_share"]),
+            "target_as_scripted": word(as_scripted, TARGETS["as_scripted"])}
