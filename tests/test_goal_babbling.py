@@ -688,3 +688,9 @@ def test_the_presses_formed_figure_draws_and_refuses_bad_input(study):
             "labels", "'learning progress'", "type")
     refused(lambda: forming_actions.presses_formed_figure(study, ["curiosity"]),
             "labels[i]", "'curiosity'", "value")
+    refused(lambda: forming_actions.presses_formed_figure(study, ["learning progress"],
+                                                          roots="all"),
+            "roots", "'all'", "value")
+    refused(lambda: forming_actions.presses_formed_figure(study, ["LWLR inverse model"],
+                                                          roots="held_out"),
+            "labels", "LWLR", "value")

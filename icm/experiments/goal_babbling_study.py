@@ -9,12 +9,10 @@ seeds of a root seed are the same in any larger run) and expects the same number
 """
 
 import json
-import pathlib
-
 import numpy as np
 
 from icm import _validate
-from icm.envs._assets import asset_path
+from icm.envs._assets import ASSETS, asset_path
 from icm.experiments import goal_babbling
 from icm.stats import PANEL_RESAMPLES, bootstrap_band
 
@@ -94,17 +92,34 @@ def run_variant(label, root, n_seeds=N_SEEDS, progress=False):
     return entry
 
 
-def run_study(progress=True):
+def run_study(progress=True, partial=None, save=None):
     """Every variant on `TUNING_ROOTS`, and `HELD_OUT_VARIANTS` on `HELD_OUT_ROOTS`:
-    {"budgets": [...], "n_seeds": N_SEEDS, "runs": {label: {root: entry}}} (entries
-    as `run_variant` returns them; roots as strings, as JSON keys are)."""
-    runs = {}
+    {"budgets": [...], "n_seeds": N_SEEDS, "n_rollouts": ..., "runs": {label: {root:
+    entry}}} (entries as `run_variant` returns them; roots as strings, as JSON keys
+    are).
+
+    Args:
+      progress: show progress bars.
+      partial: a study of the same budgets and seeds, whose entries are kept rather
+        than run again (to finish an interrupted study), or None.
+      save: None, or a function called with the study so far after every entry.
+    """
+    study = {"budgets": list(BUDGETS), "n_seeds": N_SEEDS,
+             "n_rollouts": goal_babbling.DEFAULT_N_ROLLOUTS, "runs": {}}
+    if partial is not None and {k: partial.get(k) for k in ("budgets", "n_seeds",
+                                                            "n_rollouts")} \
+            != {k: study[k] for k in ("budgets", "n_seeds", "n_rollouts")}:
+        raise ValueError("partial must be a study of the same budgets, seeds and rollouts")
     for label in VARIANTS:
         roots = TUNING_ROOTS + (HELD_OUT_ROOTS if label in HELD_OUT_VARIANTS else ())
-        runs[label] = {str(root): run_variant(label, root, progress=progress)
-                       for root in roots}
-    return {"budgets": list(BUDGETS), "n_seeds": N_SEEDS,
-            "n_rollouts": goal_babbling.DEFAULT_N_ROLLOUTS, "runs": runs}
+        study["runs"][label] = {}
+        for root in roots:
+            kept = (partial or {}).get("runs", {}).get(label, {}).get(str(root))
+            study["runs"][label][str(root)] = kept if kept is not None else \
+                run_variant(label, root, progress=progress)
+            if save is not None:
+                save(study)
+    return study
 
 
 def load_study():
@@ -149,10 +164,12 @@ def _pool(entries):
 
 
 def main():
-    """Runs the study and writes assets/goal_babbling_study.json."""
-    study = run_study()
-    path = pathlib.Path(asset_path(STUDY_FILE))
-    path.write_text(json.dumps(study, indent=1) + "\n")
+    """Runs the study and writes assets/goal_babbling_study.json, after every entry (a
+    study left unfinished there is finished, not started again)."""
+    path = ASSETS / STUDY_FILE
+    partial = json.loads(path.read_text()) if path.exists() else None
+    write = lambda study: path.write_text(json.dumps(study, indent=1) + "\n")
+    write(run_study(partial=partial, save=write))
     print(f"wrote {path}")
 
 
@@ -235,8 +252,9 @@ def verdicts(study=None):
     study, the share with all five presses formed, their paired difference and its
     95% bootstrap band, a sentence saying whether the margin is clear, the
     closing-the-loop shares, sentences saying whether the `OPTIONS` and the simulated
-    return home did better than the default learner, and "met" or "not met" for each
-    of `TARGETS`."""
+    return home did better than the default learner and whether, on the held-out
+    seeds, its share was still rising between the last two budgets, and "met" or "not
+    met" for each of `TARGETS`."""
     study = load_study() if study is None else study
     lp, rg = (_pool(list(study["runs"][label].values()))
               for label in ("learning progress", "random goal babbling"))
@@ -267,6 +285,10 @@ def verdicts(study=None):
                              else "no better than")
     retract = (f"{compare('return home simulated')} without the return"
                if "return home simulated" in rows_all else None)
+    held = _pool([study["runs"]["learning progress"][str(r)] for r in HELD_OUT_ROOTS])
+    by_budget = np.array(held["pressed"]).all(axis=2).mean(axis=0)  # [budget]
+    trend = ("still rising at the default budget" if by_budget[-1] > by_budget[-2]
+             else "no longer rising at the default budget")
     return {"n_all_seeds": len(lp_all), "lp_pooled_all_share": float(lp_all.mean()),
             "rg_pooled_all_share": float(rg_all.mean()),
             "pooled_difference": float(mean[0]), "pooled_difference_low": float(low[0]),
@@ -274,6 +296,7 @@ def verdicts(study=None):
             "n_loop_seeds": len(lp["red_first"]), "loop_red_first": red_first,
             "loop_as_scripted": as_scripted,
             "options_verdict": options, "retract_verdict": retract,
+            "held_out_trend": trend,
             "target_presses_tuning": word(rows["tuning"]["all_pressed_share"],
                                           TARGETS["all_pressed_share"]),
             "target_presses_held_out": word(rows["held_out"]["all_pressed_share"],

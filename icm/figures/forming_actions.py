@@ -239,13 +239,15 @@ STUDY_COLOURS = {"learning progress": "#e66101", "where the finger stopped only"
 """One colour per variant of the study (`icm.experiments.goal_babbling_study`)."""
 
 
-def presses_formed_figure(study, labels, ax=None):
+def presses_formed_figure(study, labels, roots="tuning", ax=None):
     """The share of seeds that have formed all five presses against rollouts: the mean
-    over the study's tuning seeds with its 95% band, one curve per variant.
+    over the study's seeds with its 95% band, one curve per variant.
 
     Args:
       study: the study (`icm.experiments.goal_babbling_study.load_study()`).
       labels: the variants to draw, a non-empty list of the study's labels.
+      roots: "tuning" (the study's `TUNING_ROOTS`) or "held_out" (`HELD_OUT_ROOTS`,
+        run by `HELD_OUT_VARIANTS` only).
       ax: a matplotlib Axes to draw on, or None for a new figure.
     """
     from icm.experiments import goal_babbling_study
@@ -259,6 +261,14 @@ def presses_formed_figure(study, labels, ax=None):
                                           f"variants, got {_validate.show(labels)}")
     for label in labels:
         _validate.one_of("labels[i]", label, tuple(study["runs"]))
+    roots = _validate.one_of("roots", roots, ("tuning", "held_out"))
+    root_seeds = goal_babbling_study.TUNING_ROOTS if roots == "tuning" else \
+        goal_babbling_study.HELD_OUT_ROOTS
+    for label in labels:
+        missing = [r for r in root_seeds if str(r) not in study["runs"][label]]
+        if missing:
+            raise ValueError(f"labels: the study did not run {label!r} on the {roots} "
+                             f"root seeds {missing}")
     check_axes(ax)
     if ax is None:
         fig, ax = new_figure(width=6.8, height=3.8)
@@ -268,7 +278,7 @@ def presses_formed_figure(study, labels, ax=None):
     for label in labels:
         runs = study["runs"][label]
         pressed = np.concatenate([np.array(runs[str(root)]["pressed"])
-                                  for root in goal_babbling_study.TUNING_ROOTS])
+                                  for root in root_seeds])
         all_five = pressed.all(axis=2).astype(float)  # [seed, budget]
         plot_mean_band(ax, all_five, STUDY_COLOURS.get(label, "black"),
                        f"{label} ({len(all_five)} seeds)", x=budgets)
