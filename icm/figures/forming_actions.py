@@ -234,7 +234,7 @@ def learned_presses_figure(result, seed=0, camera="close_up"):
 STUDY_COLOURS = {"learning progress": "#e66101", "where the finger stopped only": "#5e3c99",
                  "random goal babbling": "#1f77b4", "random motor babbling": "#7f7f7f",
                  "depth weight 1": "#fdb863", "depth weight 3": "#b35806",
-                 "LWLR inverse model": "#1b9e77", "competence progress": "#d95f02",
+                 "LWLR inverse model": "#1b9e77", "competence progress": "#a6761d",
                  "splitting regions": "#7570b3", "return home simulated": "#e7298a"}
 """One colour per variant of the study (`icm.experiments.goal_babbling_study`)."""
 
