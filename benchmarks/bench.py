@@ -120,22 +120,26 @@ def primitive_against_c(make_env, actions, repeats=5):
 def babbling_against_raw(repeats=5, n_movements=40):
     """Goal-babbling rollouts per second against raw stepping.
 
-    Three figures, each the best of `repeats`: `MovementLab.perform` (the rollouts of
-    a run: reach and hold, stepped in C by mujoco.rollout, then measured), the same
-    with the return home, and a whole `run_goal_babbling` (learning progress, 5 seeds,
-    inverse model and goal choice included, without the final press test). Each is
-    set against mujoco.mj_step(model, data, nstep=n) from the same initial state with
-    the controls held, for the same number of physics steps: the arm at rest, no
-    contacts, so the ratio is an upper bound on the cost of everything but stepping.
+    Figures, each the best of `repeats`: `MovementLab.perform` (the rollouts of a
+    run: reach and hold, stepped in C by mujoco.rollout, then measured) on one thread
+    and on `movements.default_threads()`, the same with the return home, and the
+    rollouts of a whole `run_goal_babbling` (learning progress, 10 seeds, inverse
+    model and goal choice included, without the final press test) on one thread and
+    on the default threads. Each is set against mujoco.mj_step(model, data, nstep=n)
+    on one thread from the same initial state with the controls held, for the same
+    number of physics steps: the arm at rest, no contacts, so the ratio is an upper
+    bound on the cost of everything but stepping (below 1 with several threads).
 
     Returns [(name, rollouts per second, raw rollouts per second)].
     """
     import mujoco
 
+    from icm.envs.buttons import movements
     from icm.experiments import goal_babbling
-    from icm.experiments._babbling_physics import MovementLab
 
-    lab = MovementLab()
+    threads = movements.default_threads()
+    labs = {1: movements.MovementLab(threads=1), threads: movements.MovementLab(threads)}
+    lab = labs[1]
     targets = np.random.default_rng(0).uniform(lab.lower, lab.upper, (n_movements, 7))
     scratch = mujoco.MjData(lab.model)
     spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
@@ -153,21 +157,31 @@ def babbling_against_raw(repeats=5, n_movements=40):
             times.append(time.perf_counter() - start)
         return min(times)
 
+    n_seeds = 10
     settings = goal_babbling._check_run_arguments(
-        "learning_progress", 5, n_movements // 5, 0, False,
+        "learning_progress", n_seeds, n_movements // n_seeds, 0, False,
         goal_babbling.DEFAULT_EXPLORATION_NOISE, goal_babbling.DEFAULT_EPSILON,
-        goal_babbling.DEFAULT_WINDOW)
+        goal_babbling.DEFAULT_WINDOW, goal_babbling.DEFAULT_OUTCOME_SPACE,
+        goal_babbling.DEFAULT_INVERSE_MODEL, goal_babbling.DEFAULT_MEASURE,
+        goal_babbling.DEFAULT_REGIONS, goal_babbling.DEPTH_WEIGHT, False, None)
 
-    def whole_run():  # the rollouts of a run, without the final press test
-        goal_babbling._babble(settings, lab, [1, 2, 3, 4, 5], progress=False)
+    def whole_run(lab):  # the rollouts of a run, without the final press test
+        return lambda: goal_babbling._babble(settings, lab, list(range(n_seeds)),
+                                             progress=False)
 
     short, full = lab.outcome_step + 1, lab.n_steps
+    cases = [("rollouts, reach and hold, 1 thread", lambda: lab.perform(targets), short),
+             ("rollouts with the return home, 1 thread",
+              lambda: lab.perform(targets, retract=True), full),
+             (f"the rollouts of run_goal_babbling, {n_seeds} seeds, 1 thread", whole_run(lab),
+              short)]
+    if threads > 1:
+        cases[1:1] = [(f"rollouts, reach and hold, {threads} threads",
+                       lambda: labs[threads].perform(targets), short)]
+        cases.append((f"the rollouts of run_goal_babbling, {n_seeds} seeds, {threads} threads",
+                      whole_run(labs[threads]), short))
     out = []
-    for name, go, steps in [
-            ("rollouts, reach and hold", lambda: lab.perform(targets), short),
-            ("rollouts with the return home", lambda: lab.perform(targets, retract=True),
-             full),
-            ("the rollouts of run_goal_babbling, 5 seeds", whole_run, short)]:
+    for name, go, steps in cases:
         go()
         seconds = best(go)
         raw_seconds = best(lambda: raw(steps * n_movements))
@@ -262,7 +276,7 @@ def main(argv=None):
               f"{wall / raw:.2f} x")
 
     print("\nGoal babbling: movements stepped in C (mujoco.rollout) against raw "
-          "mj_step(nstep) of the same steps:")
+          "mj_step(nstep) of the same steps, one thread:")
     for name, per_second, raw_per_second in babbling_against_raw(3 if args.quick else 5):
         print(f"  {name}: {per_second:.0f} rollouts/s; mj_step(nstep) of the same number "
               f"of steps, arm at rest, {raw_per_second:.0f} rollouts/s: "

@@ -249,13 +249,20 @@ def function(name, value, allow_none=True):
 
 def finite_array(name, value, shape=None, ndim=None):
     """`value` as a float array, checked to be finite and of the given shape (None
-    entries in `shape` match any length) or number of dimensions."""
+    entries in `shape` match any length) or number of dimensions.
+
+    Only real numbers are accepted: bools, text (even "1.5"), complex numbers and
+    other objects raise `ArgumentTypeError`, never a silent conversion."""
+    if isinstance(value, (str, bytes)):
+        raise _type_error(name, "an array of real numbers", value)
     try:
-        array = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise _type_error(name, "an array of numbers", value) from None
-    if isinstance(value, (str, bytes)) or np.asarray(value).dtype == bool:
-        raise _type_error(name, "an array of numbers", value)
+        raw = np.asarray(value)
+    except (TypeError, ValueError):  # ragged nested sequences
+        raise _type_error(name, "an array of real numbers", value) from None
+    if raw.dtype.kind not in "iuf" and not (
+            raw.dtype.kind == "O" and all(is_real(v) for v in raw.ravel())):
+        raise _type_error(name, "an array of real numbers", value)
+    array = raw.astype(float)
     if shape is not None:
         wanted = "(" + ", ".join("any" if s is None else str(s) for s in shape) + ")"
         if array.ndim != len(shape) or any(s is not None and s != n
@@ -269,6 +276,21 @@ def finite_array(name, value, shape=None, ndim=None):
         raise ValueError(f"{name} must hold finite numbers only (no NaN or infinity), "
                          f"got {show(value)}")
     return array
+
+
+def integer_array(name, value, ndim=None):
+    """`value` as an int64 array of integers (Python or numpy integers; bools, floats,
+    even whole ones, and text are refused as the wrong type), of `ndim` dimensions
+    if given."""
+    if isinstance(value, (str, bytes)):
+        raise _type_error(name, "an array of integers", value)
+    array = np.asarray(value)
+    if array.dtype.kind not in "iu":
+        raise _type_error(name, "an array of integers", value)
+    if ndim is not None and array.ndim != ndim:
+        raise ValueError(f"{name} must have {ndim} dimension(s), got {array.ndim}: "
+                         f"{show(value)}")
+    return array.astype(np.int64)
 
 
 def available_memory():

@@ -184,7 +184,9 @@ def _goal_babbling(args):
         results[strategy] = experiments.run_goal_babbling(
             strategy=strategy, n_seeds=args.seeds, n_rollouts=args.rollouts, seed=args.seed,
             exploration_noise=args.exploration_noise, epsilon=args.epsilon,
-            window=args.window)
+            window=args.window, outcome_space=args.outcome_space,
+            inverse_model=args.inverse_model, measure=args.measure, regions=args.regions,
+            threads=args.threads)
     print(goal_babbling.comparison_table(results))
     labels = figures.forming_actions.STRATEGY_LABELS
     return figures.test_error_figure({labels[s]: r for s, r in results.items()})
@@ -209,8 +211,29 @@ def _goal_babbling_options(parser):
                              f"uniformly, in [0, 1] (default {goal_babbling.DEFAULT_EPSILON})")
     parser.add_argument("--window", type=_integer_at_least(2),
                         default=goal_babbling.DEFAULT_WINDOW,
-                        help="learning progress: distances per region in the slope, >= 2 "
-                             f"(default {goal_babbling.DEFAULT_WINDOW})")
+                        help="learning progress: distances per region in the progress, "
+                             f">= 2 (default {goal_babbling.DEFAULT_WINDOW})")
+    parser.add_argument("--outcome-space", choices=goal_babbling.OUTCOME_SPACES,
+                        default=goal_babbling.DEFAULT_OUTCOME_SPACE,
+                        help="what a movement's outcome is: where the finger stopped, or "
+                             "that and how far each cap went down "
+                             f"(default {goal_babbling.DEFAULT_OUTCOME_SPACE})")
+    parser.add_argument("--inverse-model", choices=goal_babbling.INVERSE_MODELS,
+                        default=goal_babbling.DEFAULT_INVERSE_MODEL,
+                        help="nearest neighbour, or a locally weighted linear step "
+                             f"(default {goal_babbling.DEFAULT_INVERSE_MODEL})")
+    parser.add_argument("--measure", choices=goal_babbling.MEASURES,
+                        default=goal_babbling.DEFAULT_MEASURE,
+                        help="learning progress: the paper's slope of distances, or "
+                             "SAGG-RIAC's competence progress "
+                             f"(default {goal_babbling.DEFAULT_MEASURE})")
+    parser.add_argument("--regions", choices=goal_babbling.REGION_KINDS,
+                        default=goal_babbling.DEFAULT_REGIONS,
+                        help="learning progress: fixed regions, or regions that split as "
+                             f"goals accumulate (default {goal_babbling.DEFAULT_REGIONS})")
+    parser.add_argument("--threads", type=_integer_at_least(1), default=None,
+                        help="threads stepping the rollouts (default: the cores this "
+                             "process may use); the results do not depend on it")
 
 
 COMMANDS = {

@@ -35,6 +35,10 @@ STATIC_FILES = ("icm-live.js", "icm.css", "vendor/three/three.min.js",
                 "vendor/mujoco/mujoco.js", "vendor/mujoco/mujoco-wasm.js")
 """The files of the book's `_static` folder a live view needs (the viewer loads all but
 icm.css on request)."""
+BROWSER_MUJOCO_VERSION = "3.14.0"
+"""The MuJoCo of the live views: the WebAssembly build `@mujoco/mujoco` vendored under
+book/_static/vendor (its npm lock file pins it; a test reads it there). The Python
+package runs `mujoco.__version__`: the two are compared by outcomes."""
 BOOK_ENV = "ICM_STATIC_PANELS"
 """Set to "1" while the book is built (book/_ext/execute_book.py): views are then the
 live viewer; otherwise (a Jupyter kernel, where the book's `_static` folder is not

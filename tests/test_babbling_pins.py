@@ -5,7 +5,7 @@ down), and a share epsilon of the goals fall in a region chosen uniformly.
 The checks read a run through its public result (goals, outcomes, movements, regions,
 interest), so they hold whatever module the inverse model and the goal choice live in;
 `test_a_region_is_chosen_uniformly_with_probability_epsilon` alone calls the goal
-choice itself (`goal_babbling._choose_region`, two uniform draws per choice).
+choice itself (`icm.learners.goal_choice.choose_region`, two uniform draws per choice).
 """
 
 import numpy as np
@@ -13,6 +13,7 @@ import pytest
 
 from icm.envs import buttons, icub
 from icm.experiments import goal_babbling
+from icm.learners import goal_choice
 
 N_ROLLOUTS = 200
 
@@ -43,12 +44,18 @@ def test_the_exploration_noise_shrinks_in_proportion_near_the_goal(run):
     # The inverse model takes the movement whose outcome is nearest the goal and adds
     # Gaussian noise to each joint target: standard deviation 0.05 of the joint's range
     # while that outcome is 5 cm or more from the goal, times (distance / 5 cm) nearer.
+    # Distances are in the run's outcome space (by default the finger's point and the
+    # caps' depths, weighted).
     assert run.settings["exploration_noise"] == 0.05
+    space, weight = run.settings["outcome_space"], run.settings["depth_weight"]
     arm = icub.Arm(buttons.load_physics())
     full = 0.05 * (arm.upper - arm.lower)
     near, far = [], []
     for k, i in _with_goals(run):
-        distances = np.linalg.norm(run.outcomes[k, :i] - run.goals[k, i], axis=1)
+        reached = goal_babbling.outcome_vectors(run.outcomes[k, :i], run.depths[k, :i],
+                                                space, weight)
+        wanted = goal_babbling.goal_outcomes(run.goals[k, i], space, weight)
+        distances = np.linalg.norm(reached - wanted, axis=1)
         nearest = int(np.argmin(distances))
         movement = run.movements[k, i]
         free = (movement > arm.lower) & (movement < arm.upper)  # not clipped at a limit
@@ -72,11 +79,13 @@ def test_the_exploration_noise_shrinks_in_proportion_near_the_goal(run):
 # --- the regions' interest --------------------------------------------------------------
 
 def test_a_regions_interest_is_learning_progress_not_distances_going_up(run):
-    # After each rollout with a goal, the distance between goal and outcome joins its
-    # region's history; a region's interest is the decrease of its last `window`
-    # distances (minus the least-squares slope, 0 if they go up); a region with one
-    # distance gets half the mean interest of the others (the paper's new-task share).
+    # After each rollout with a goal, the distance between goal and outcome (in the
+    # run's outcome space) joins its region's history; a region's interest is the
+    # decrease of its last `window` distances (minus the least-squares slope, 0 if they
+    # go up); a region with one distance gets half the mean interest of the others (the
+    # paper's new-task share).
     window = run.settings["window"]
+    space, weight = run.settings["outcome_space"], run.settings["depth_weight"]
     up = down = 0
     for k in range(run.n_seeds):
         history = {}
@@ -85,7 +94,10 @@ def test_a_regions_interest_is_learning_progress_not_distances_going_up(run):
             if region < 0:
                 assert not run.interest[k, i].any()
                 continue
-            distance = np.linalg.norm(run.goals[k, i] - run.outcomes[k, i])
+            reached = goal_babbling.outcome_vectors(run.outcomes[k, i], run.depths[k, i],
+                                                    space, weight)
+            distance = np.linalg.norm(goal_babbling.goal_outcomes(run.goals[k, i], space,
+                                                                  weight) - reached)
             history.setdefault(int(region), []).append(distance)
             known = {}
             for r, distances in history.items():
@@ -123,7 +135,7 @@ class _Draws:
 
 
 def test_a_region_is_chosen_uniformly_with_probability_epsilon():
-    choose = goal_babbling._choose_region
+    choose = goal_choice.choose_region
     n = int(np.prod(goal_babbling.REGION_GRID))
     interest = np.zeros(n)
     interest[3] = 1.0

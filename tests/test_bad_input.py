@@ -238,6 +238,9 @@ def continuous_buttons():
     (np.array([0.0, 0.0, 0.0, 9.0, 0.0, 0.0, 0.0]), "r_elbow", "9.0", "value"),
     (np.array([-3.0, 0.3, 0.0, 1.0, 0.0, 0.0, 0.0]), "r_shoulder_pitch", "-3.0", "value"),
     ("reach", "action", "'reach'", "type"),
+    (np.full(7, 0.5 + 0.1j), "action", "0.5+0.1j", "type"),  # complex: was read as 0.5
+    ([0.0, 0.3, 0.0, 1.0, 0.0, 0.0, "0.1"], "action", "'0.1'", "type"),  # was read as 0.1
+    (np.array(["0.1"] * 7), "action", "'0.1'", "type"),
 ])
 def test_continuous_actions_of_the_wrong_shape_non_finite_or_outside_the_spec(
         continuous_buttons, action, name, shown, kind):

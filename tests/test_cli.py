@@ -38,7 +38,8 @@ def test_help_documents_every_figure_and_option(capsys):
     assert "--temperature" in in_process(["figure6", "--help"], capsys)[1]
     assert "--predictor-lr" in in_process(["figure7", "--help"], capsys)[1]
     babbling_help = in_process(["goal-babbling", "--help"], capsys)[1]
-    for option in ("--strategy", "--rollouts", "--exploration-noise", "--window"):
+    for option in ("--strategy", "--rollouts", "--exploration-noise", "--window",
+                   "--outcome-space", "--inverse-model", "--measure", "--regions", "--threads"):
         assert option in babbling_help
 
 
@@ -77,6 +78,11 @@ def test_figure5_is_written_as_an_image(tmp_path):
     (["goal-babbling", "--exploration-noise", "0"], "exploration_noise must be"),
     (["goal-babbling", "--epsilon", "x"], "--epsilon: must be a number"),
     (["goal-babbling", "--window", "1"], "--window: must be an integer >= 2"),
+    (["goal-babbling", "--outcome-space", "depth"], "--outcome-space"),
+    (["goal-babbling", "--inverse-model", "lwpr"], "--inverse-model"),
+    (["goal-babbling", "--measure", "novelty"], "--measure"),
+    (["goal-babbling", "--regions", "tree"], "--regions"),
+    (["goal-babbling", "--threads", "0"], "--threads: must be an integer >= 1"),
 ])
 def test_bad_options_fail_with_a_clear_message(args, message, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
@@ -101,7 +107,8 @@ def test_error_messages_name_the_option_and_leak_no_internal_names(args, tmp_pat
 def test_goal_babbling_prints_the_numbers_and_writes_the_test_error(tmp_path, capsys):
     out = tmp_path / "babbling.png"
     status, stdout, _ = in_process(["goal-babbling", "--strategy", "random_goal", "--seeds",
-                                    "1", "--rollouts", "25", "--out", str(out)], capsys)
+                                    "1", "--rollouts", "25", "--outcome-space", "point",
+                                    "--threads", "1", "--out", str(out)], capsys)
     assert status == 0 and "wrote" in stdout
     assert "| random_goal | 1 | 25 |" in stdout
     image = matplotlib.image.imread(out)

@@ -483,9 +483,8 @@ def test_reference_state_confidence_is_the_linear_predictors():
 def test_region_probabilities_are_the_goal_choice_of_goal_babbling():
     # The behaviour run_goal_babbling documents, measured on the function that makes
     # the choice there (it draws two numbers per choice).
-    from icm.experiments import goal_babbling
+    from icm.learners.goal_choice import choose_region as choose
 
-    choose = getattr(goal_babbling, "_choose_region")
     for values, epsilon in (([0.0, 0.0, 0.0], 0.3), ([0.1, 0.3, 0.6, 0.0], 0.3),
                             ([0.0, 1.0], 0.0), ([0.2, 0.2, 0.1], 1.0)):
         rng = np.random.default_rng(3)

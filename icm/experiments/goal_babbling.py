@@ -2,20 +2,19 @@
 babbling (Rolf, Steil and Gienger 2010) with goals chosen by learning progress
 (SAGG-RIAC, Baranes and Oudeyer 2013; IMGEP, Forestier, Mollard and Oudeyer 2017).
 
-A movement is the arm's 7 final joint targets, reached along a minimum-jerk path from
-home, held, and retracted (`_babbling_physics.MovementLab`); its outcome, measured in
-physics, is the lowest point of the finger at the end of the hold. An inverse model
-(the nearest reached outcome's movement, plus local exploration noise, as explauto's
-nearest-neighbour model) turns goals into movements. Three strategies spend the same
-budget of rollouts:
+The experiment: the environment is `icm.envs.buttons.movements.MovementLab` (a
+movement is the arm's 7 final joint targets, rolled out in physics), the agent
+`icm.learners.goal_babbling.GoalBabblingAgent`, built from an inverse model
+(`icm.learners.sensorimotor`) and a goal choice (`icm.learners.goal_choice`). Three
+strategies spend the same budget of rollouts:
 
 - "random_motor": uniform random joint targets within the joint ranges;
 - "random_goal": uniform random goals in the goal space, through the inverse model;
-- "learning_progress": goals in regions chosen by learning progress, the decrease of
-  the distance between goals and outcomes in each region, measured as the paper's
-  interest (`icm.learners.interest.InterestTable`).
+- "learning_progress": goals in regions chosen by their progress.
 
-All seeds run at once: rollout k of every seed is stepped in one call of
+A movement's outcome (`OUTCOME_SPACES`) is where it brought the finger (the lowest
+point of the finger at the end of the hold) and, by default, how far each cap went
+down. All seeds run at once: rollout k of every seed is stepped in one call of
 `mujoco.rollout`, and seed k of a batch is seed k run alone.
 """
 
@@ -26,40 +25,43 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import buttons
-from icm.experiments import goal_oriented as _goal_oriented
-from icm.experiments._babbling_physics import (  # noqa: F401 (the times are re-exported)
+from icm.envs.buttons import movements as _movements
+from icm.envs.buttons.movements import (  # noqa: F401 (re-exported)
     HOLD_TIME, REACH_TIME, RETRACT_TIME, MovementLab)
+from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments._progress import progress_bar
 from icm.experiments.results import check_results
 from icm.experiments._seeding import check_run_size, run_seeds
-from icm.learners import goal_oriented, interest
-from icm.stats import PANEL_RESAMPLES, bootstrap_band
+from icm.learners import goal_oriented
+from icm.learners.goal_babbling import (  # noqa: F401 (N_BOOTSTRAP re-exported)
+    N_BOOTSTRAP, GoalBabblingAgent)
+from icm.learners.goal_choice import (  # noqa: F401 (re-exported)
+    DEFAULT_EPSILON, DEFAULT_WINDOW, MEASURES, RandomGoals, RegionGrid, RegionProgress,
+    SplittingRegionProgress)
+from icm.learners.sensorimotor import (  # noqa: F401 (re-exported)
+    DEFAULT_EXPLORATION_NOISE, INVERSE_MODELS, NOISE_DISTANCE, make_inverse_model)
+from icm.stats import PANEL_RESAMPLES, bootstrap_band, comes_first
 
 STRATEGIES = ("random_motor", "random_goal", "learning_progress")
 """How the next movement is chosen (see the module docstring)."""
 DEFAULT_N_ROLLOUTS = 1000
-"""Rollouts per run. Measured on 8 seeds of root seed 0 (`python -m icm goal-babbling
---seeds 8`): learning progress ends at 1.4 cm of test error against 3.3 cm for random
-motor babbling and presses 4.1 of the 5 buttons on average; on 8 seeds of root seed
-11 it presses 3.4 (3.6 after 1,600 rollouts): "at least 4 of 5" is not reached on
-every set of seeds. The lower test error holds on both."""
-DEFAULT_EXPLORATION_NOISE = 0.05
-"""Standard deviation of the inverse model's exploration noise, as a share of each
-joint's range (Forestier, Mollard and Oudeyer's 0.05; about 5 to 8 degrees), while
-the nearest outcome is `NOISE_DISTANCE` or more from the goal."""
-NOISE_DISTANCE = 0.05
-"""Below this distance (m) between the goal and the nearest outcome, the noise
-shrinks in proportion: local exploration gets finer as the goal gets closer, as in
-SAGG-RIAC's low-level exploration (a fixed noise of 0.02 left the presses about 2 cm
-off their goals after 1,000 rollouts)."""
-DEFAULT_EPSILON = 0.3
-"""Share of learning-progress goals drawn in a region chosen uniformly (explauto's
-default for its discretised progress)."""
-DEFAULT_WINDOW = 10
-"""Distances per region in the learning-progress slope (explauto's window)."""
-N_BOOTSTRAP = 20
-"""The goal strategies start with this many random motor commands (the inverse model
-needs outcomes to start from)."""
+"""Rollouts per run (our choice: the paper has no goal babbling). What the strategies
+reach with it is measured in the chapter "Forming actions"."""
+OUTCOME_SPACES = ("point", "point_and_depths")
+"""What a movement's outcome is: "point", where it brought the finger (3 numbers, m);
+"point_and_depths", that and how far each of the five caps went down (5 more, each
+times `DEPTH_WEIGHT`)."""
+DEFAULT_OUTCOME_SPACE = "point_and_depths"
+"""The outcome space of a run unless told otherwise: with the depths, since where the
+finger stopped does not tell a press from a touch (a press at a cap's edge lies
+farther from the press goal than an untouched cap's top at its centre) nor a clean
+press from one that also pushes a neighbour; the chapter measures both."""
+DEPTH_WEIGHT = 2.0
+"""How much a cap's depth counts in the outcome space "point_and_depths", against the
+finger's position: a cap pushed all the way in (1.5 cm) counts as 3 cm. Our choice
+(the chapter shows 1, 2 and 3)."""
+MAX_DEPTH_WEIGHT = 100.0
+"""The largest `depth_weight` a run takes."""
 GOAL_LOW = np.array([0.22, -0.375, 0.45])
 """Lower corner of the goal space (m, world frame): the console (x 0.28 to 0.38, y
 -0.315 to 0.055, top at 0.485), the table around it (top at 0.45) and the air above."""
@@ -72,71 +74,122 @@ and one beyond each end; the 2 layers split at z = 0.525 m, 1 cm above the caps:
 the console, and in the air."""
 N_CHECKPOINTS = 20
 """Checkpoints of the test error, evenly spread over a run."""
+REGION_KINDS = ("fixed", "splitting")
+"""Learning progress's regions: the fixed `REGION_GRID`, or regions that split as goals
+accumulate (`icm.learners.goal_choice.SplittingRegionProgress`)."""
+DEFAULT_INVERSE_MODEL = "nearest_neighbour"
+"""The inverse model of a run unless told otherwise (`INVERSE_MODELS`)."""
+DEFAULT_MEASURE = "learning_progress"
+"""How learning progress measures a region's progress unless told otherwise
+(`MEASURES`)."""
+DEFAULT_REGIONS = "fixed"
+"""Learning progress's regions unless told otherwise (`REGION_KINDS`)."""
 DEFAULT_TRIALS = 30
 """Trials of the goal-oriented learner on the formed actions (`run_formed_actions`)."""
+
+
+def _grid():
+    return RegionGrid(GOAL_LOW, GOAL_HIGH, REGION_GRID)
 
 
 def region_bounds():
     """The fixed regions' corners, [region, 2, 3] (low, high), numbered x-major as
     `region_of` numbers them."""
-    cells = np.array(REGION_GRID)
-    size = (GOAL_HIGH - GOAL_LOW) / cells
-    out = []
-    for index in np.ndindex(*REGION_GRID):
-        low = GOAL_LOW + np.array(index) * size
-        out.append((low, low + size))
-    return np.array(out)
+    return _grid().bounds()
 
 
 def region_of(points):
     """The region of each point [..., 3] (points outside the goal space fall in the
     nearest region), an int array [...]."""
-    points = _validate.finite_array("points", points)
-    if points.ndim < 1 or points.shape[-1] != 3:
-        raise ValueError(f"points must be an array [..., 3], got shape {points.shape}")
-    cells = np.array(REGION_GRID)
-    index = np.floor((points - GOAL_LOW) / (GOAL_HIGH - GOAL_LOW) * cells).astype(np.int64)
-    index = np.clip(index, 0, cells - 1)
-    return np.ravel_multi_index(tuple(np.moveaxis(index, -1, 0)), REGION_GRID)
+    return _grid().region_of(points)
 
 
 @functools.lru_cache(maxsize=1)
 def _geometry():
-    physics = buttons.load_physics()
-    physics.forward()
-    named = physics.named
-    console = named.data.geom_xpos["console"].copy()
-    half = named.model.geom_size["console"].copy()
-    top = console[2] + half[2]
-    caps = np.array([named.data.geom_xpos[f"button{b}_cap"] for b in range(buttons.N_BUTTONS)])
-    cap_radius, cap_half = named.model.geom_size["button0_cap"][:2]
-    travel = -named.model.jnt_range["button0"][0]
-    press = caps.copy()
-    press[:, 2] = caps[:, 2] + cap_half - travel
+    geometry = _movements.console_geometry()
+    caps, top = geometry["caps"], geometry["console_top"]
     # The console's top between and beside the caps: a row in front of them and one
     # behind (4 cm from their centres), at the midpoints between neighbours and one
     # spacing out from the end buttons (1 cm inside the console's edge); and the
     # midpoints along the caps' own row.
+    console = geometry["console_centre"]
     ys = caps[:, 1]
     spacing = abs(ys[1] - ys[0])
     between = (ys[:-1] + ys[1:]) / 2
     row = np.concatenate([[ys[0] + spacing / 2], between, [ys[-1] - spacing / 2]])
     grid = [(console[0] + dx, y, top) for dx in (-0.04, 0.04) for y in row]
     grid += [(console[0], y, top) for y in between]
-    return {"console_centre": console, "console_half": half, "console_top": float(top),
-            "caps": caps, "cap_radius": float(cap_radius),
-            "cap_top": float(caps[0, 2] + cap_half), "press_goals": press,
-            "test_goals": np.concatenate([press, np.array(grid)])}
+    press = geometry["pressed_in"]
+    return {**geometry, "press_goals": press, "test_goals": np.concatenate([press, grid])}
 
 
 def console_geometry():
-    """The console as the model builds it, for goals and figures: a dict with
-    "console_centre", "console_half" (its box), "console_top" (z), "caps" [5, 3]
-    (cap centres), "cap_radius", "cap_top" (z at rest), "press_goals" [5, 3] (each
+    """The console as the model builds it, for goals and figures: the dict of
+    `icm.envs.buttons.movements.console_geometry` plus "press_goals" [5, 3] (each
     cap's top centre pushed all the way in) and "test_goals" [21, 3] (the five press
     goals, then 16 points on the console's top between and beside the caps)."""
     return {key: value.copy() if isinstance(value, np.ndarray) else value
             for key, value in _geometry().items()}
+
+
+def goal_depths(points):
+    """The caps' depths a goal asks for, [..., 5] (m): a finger alone at each point
+    [..., 3]. The cap under the point (within a cap's radius of its centre) is
+    pushed down to it, clipped to the button's travel; every other cap stays up."""
+    points = np.asarray(points, dtype=float)
+    geometry = _geometry()
+    caps = geometry["caps"]
+    across = np.linalg.norm(points[..., None, :2] - caps[:, :2], axis=-1)
+    down = np.clip(geometry["cap_top"] - points[..., 2:3], 0.0, geometry["travel"])
+    return np.where(across <= geometry["cap_radius"], down, 0.0)
+
+
+def outcome_vectors(points, depths, outcome_space, depth_weight=DEPTH_WEIGHT):
+    """Outcomes in `outcome_space` (`OUTCOME_SPACES`) from where the finger went
+    [..., 3] and how far each cap went down [..., 5], the depths times
+    `depth_weight`."""
+    if outcome_space == "point":
+        return np.asarray(points, dtype=float)
+    return np.concatenate([points, depth_weight * np.asarray(depths)], axis=-1)
+
+
+def goal_outcomes(points, outcome_space, depth_weight=DEPTH_WEIGHT):
+    """The outcomes goals at `points` [..., 3] ask for, in `outcome_space`: the point,
+    and in "point_and_depths" the depths of `goal_depths` (times `depth_weight`)."""
+    return outcome_vectors(points, goal_depths(points), outcome_space, depth_weight)
+
+
+EDGE_SHARE = 0.8
+"""How far from a cap's centre towards its edge the press of `press_distances` is, as
+a share of the cap's radius."""
+
+
+def press_distances(button=buttons.DEFAULT_RED_BUTTON):
+    """How far three outcomes lie from a button's press goal in each outcome space:
+    {outcome space: {"touch at the centre": ..., "press at the edge": ..., "press and
+    neighbour": ...}} (m). The touch: the finger on the cap's top above its centre,
+    the cap up. The press at the edge: the cap all the way in, the finger
+    `EDGE_SHARE` of the way to its edge. The press and neighbour: the finger on the
+    cap's centre, the cap and its neighbour (the next button, or the previous one for
+    the last) all the way in.
+
+    Args:
+      button: the button (0-4).
+    """
+    button = _validate.integer("button", button, 0, buttons.N_BUTTONS - 1)
+    geometry = _geometry()
+    goal, travel = geometry["press_goals"][button], geometry["travel"]
+    neighbour = button + 1 if button + 1 < buttons.N_BUTTONS else button - 1
+    press = travel * np.eye(buttons.N_BUTTONS)[button]
+    cases = {"touch at the centre": (goal + [0.0, 0.0, travel], np.zeros(buttons.N_BUTTONS)),
+             "press at the edge": (goal + [0.0, EDGE_SHARE * geometry["cap_radius"], 0.0],
+                                   press),
+             "press and neighbour": (goal, press + travel
+                                     * np.eye(buttons.N_BUTTONS)[neighbour])}
+    return {space: {name: float(np.linalg.norm(outcome_vectors(point, depths, space)
+                                               - goal_outcomes(goal, space)))
+                    for name, (point, depths) in cases.items()}
+            for space in OUTCOME_SPACES}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -146,29 +199,32 @@ class GoalBabblingResult:
 
     Attributes:
       settings: the arguments of the run, as a dict.
-      checkpoints: [checkpoint], the rollouts done at each checkpoint.
+      checkpoints: [checkpoint], the rollouts done at each checkpoint (>= 1).
       test_goals: [goal, 3], the fixed test goals (m): the five press goals, then
         points on the console's top (`console_geometry`).
-      test_error: [seed, checkpoint], the mean distance (m) between the test goals
-        and the outcomes the inverse model reaches for them (with no exploration
-        noise: the nearest outcome's movement, which the deterministic physics
-        reproduces exactly).
+      test_error: [seed, checkpoint], the mean distance, in the run's outcome space,
+        between the test goals and the nearest outcomes reached so far (what the
+        inverse model reaches for them with no exploration noise: the nearest
+        outcome's movement, which the deterministic physics reproduces exactly).
       buttons_pressed: [seed, button], whether the learned movement for the button
-        (the inverse model's, for its press goal) presses it, and only it, in a
-        trial on the physics console where it is lit red, and opens the red box.
+        (the one whose outcome lies nearest its press goal) presses it, and only it,
+        in a trial on the physics console where it is lit red, and opens the red box
+        only.
       press_movements: [seed, button, 7], those learned movements (joint targets).
-      press_outcomes: [seed, button, 3], what each of them reached.
+      press_outcomes: [seed, button, 3], where each of them brought the finger.
       movements: [seed, rollout, 7], the joint targets of every rollout.
       outcomes: [seed, rollout, 3], where each rollout brought the finger's lowest
         point at the end of its hold (m).
+      depths: [seed, rollout, 5], how far each cap went down during the rollout's
+        reach and hold (and return home, with `retract`) (m).
       touched: [seed, rollout], whether the finger then touched the console.
       pressed: [seed, rollout], the first button pushed past the press depth in the
         rollout, -1 for none.
       goals: [seed, rollout, 3], the goal of each rollout (NaN for random motor
         commands).
       regions: [seed, rollout], the region of each goal (-1 for none).
-      interest: [seed, rollout, region], the interest (learning progress) of each
-        region after each rollout (learning_progress only; zeros otherwise).
+      interest: [seed, rollout, region], the interest (progress) of each region
+        after each rollout (learning_progress only; zeros otherwise).
     """
 
     settings: dict
@@ -180,6 +236,7 @@ class GoalBabblingResult:
     press_outcomes: np.ndarray
     movements: np.ndarray
     outcomes: np.ndarray
+    depths: np.ndarray
     touched: np.ndarray
     pressed: np.ndarray
     goals: np.ndarray
@@ -231,14 +288,18 @@ class GoalBabblingResult:
         has shares 0).
 
         Args:
-          edges: increasing rollout counts from 0 to `n_rollouts`, e.g. [0, 100, 200].
+          edges: increasing whole rollout counts from 0 to `n_rollouts`, e.g.
+            [0, 100, 200].
+
+        Raises:
+          ValueError: for edges that are not whole numbers (an `ArgumentTypeError`
+            for bools or text), not increasing, fewer than 2, or outside 0..n_rollouts.
         """
-        edges = _validate.finite_array("edges", edges, ndim=1)
+        edges = _validate.integer_array("edges", edges, ndim=1)
         if len(edges) < 2 or np.any(np.diff(edges) <= 0) or edges[0] < 0 \
                 or edges[-1] > self.n_rollouts:
-            raise ValueError(f"edges must be increasing rollout counts in 0.."
+            raise ValueError(f"edges must be at least 2 increasing rollout counts in 0.."
                              f"{self.n_rollouts}, got {_validate.show(edges)}")
-        edges = edges.round().astype(np.int64)
         columns = _region_columns()
         shares = np.zeros((len(edges) - 1, REGION_GRID[1]))
         for i, (start, stop) in enumerate(zip(edges[:-1], edges[1:])):
@@ -279,7 +340,8 @@ def _region_columns():
 
 
 def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, exploration_noise,
-                         epsilon, window):
+                         epsilon, window, outcome_space, inverse_model, measure, regions,
+                         depth_weight, retract, threads):
     checked = dict(
         strategy=_validate.one_of("strategy", strategy, STRATEGIES),
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
@@ -288,36 +350,53 @@ def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, explorat
         exploration_noise=_validate.real("exploration_noise", exploration_noise, 0.0, 1.0,
                                          low_open=True),
         epsilon=_validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0),
-        window=_validate.integer_at_least("window", window, 2))
+        window=_validate.integer_at_least("window", window, 2),
+        outcome_space=_validate.one_of("outcome_space", outcome_space, OUTCOME_SPACES),
+        inverse_model=_validate.one_of("inverse_model", inverse_model, INVERSE_MODELS),
+        measure=_validate.one_of("measure", measure, MEASURES),
+        regions=_validate.one_of("regions", regions, REGION_KINDS),
+        depth_weight=_validate.real("depth_weight", depth_weight, 0.0, MAX_DEPTH_WEIGHT,
+                                    low_open=True),
+        retract=_validate.boolean("retract", retract))
     _validate.boolean("progress", progress)
+    if threads is not None:
+        _validate.integer_in_range("threads", threads, 1, _movements.MAX_THREADS)
     n_goals = len(_geometry()["test_goals"])
-    # Per rollout: movement, outcome, goal, flags and two distances per test goal; per
-    # seed: one rollout's simulated states.
+    # Per rollout: movement, outcome, depths, goal, flags and two distances per test
+    # goal; per seed: one rollout's simulated states.
     check_run_size("run_goal_babbling", checked["n_seeds"], checked["n_rollouts"],
-                   8 * (7 + 3 + 3 + 3 + 2 * n_goals + int(np.prod(REGION_GRID))),
+                   8 * (7 + 8 + 5 + 3 + 3 + 2 * n_goals + int(np.prod(REGION_GRID))),
                    bytes_per_seed=150_000)
     return checked
 
 
+def checkpoints_of(n_rollouts):
+    """The rollouts (counted from 1) after which the test error is measured: up to
+    `N_CHECKPOINTS` evenly spread, the last at `n_rollouts`, none at 0."""
+    n_rollouts = _validate.integer_at_least("n_rollouts", n_rollouts, 1)
+    spread = np.linspace(0, n_rollouts, N_CHECKPOINTS + 1)[1:].round().astype(np.int64)
+    return np.unique(np.maximum(spread, 1))
+
+
 def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAULT_N_ROLLOUTS,
                       seed=0, progress=True, exploration_noise=DEFAULT_EXPLORATION_NOISE,
-                      epsilon=DEFAULT_EPSILON, window=DEFAULT_WINDOW):
+                      epsilon=DEFAULT_EPSILON, window=DEFAULT_WINDOW,
+                      outcome_space=DEFAULT_OUTCOME_SPACE, inverse_model=DEFAULT_INVERSE_MODEL,
+                      measure=DEFAULT_MEASURE, regions=DEFAULT_REGIONS,
+                      depth_weight=DEPTH_WEIGHT, retract=False, threads=None):
     """Runs goal babbling on the simulated iCub, all seeds at once.
 
     Every rollout is a movement performed in physics from the start of a trial
     (`mujoco.rollout`, in C). The goal strategies start with `N_BOOTSTRAP` random
     motor commands; then each rollout has a goal, drawn uniformly in the goal space
-    ("random_goal") or in a region chosen by learning progress
-    ("learning_progress": with probability `epsilon` a region drawn uniformly,
-    otherwise one drawn with probability proportional to its interest, uniformly
-    while every interest is 0). The inverse model takes the movement whose outcome is
-    nearest the goal and adds Gaussian noise to each joint target: standard deviation
-    `exploration_noise` times the joint's range, times min(1, distance from that
-    outcome to the goal / `NOISE_DISTANCE`).
+    ("random_goal") or in a region chosen by its progress ("learning_progress": with
+    probability `epsilon` a region drawn uniformly, otherwise one drawn with
+    probability proportional to its interest, uniformly while every interest is 0),
+    and the inverse model gives a movement for it, plus exploration noise (see
+    `icm.learners.sensorimotor`).
 
-    At the end, each seed's inverse model is asked to press each button (its press
-    goal, with no noise) and the movement is run on the physics console, the button
-    lit red.
+    At the end, each seed's movement whose outcome lies nearest each button's press
+    goal is run on the physics console, the button lit red.
 
     Args:
       strategy: one of `STRATEGIES`.
@@ -330,7 +409,18 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
       exploration_noise: the noise's standard deviation as a share of each joint's
         range, far from the goal, in (0, 1].
       epsilon: learning progress's share of uniformly drawn regions, in [0, 1].
-      window: distances per region in the learning-progress slope (>= 2).
+      window: distances per region in the progress (>= 2).
+      outcome_space: one of `OUTCOME_SPACES`.
+      inverse_model: one of `icm.learners.sensorimotor.INVERSE_MODELS`.
+      measure: how learning progress measures a region's progress, one of
+        `icm.learners.goal_choice.MEASURES`.
+      regions: learning progress's regions, one of `REGION_KINDS`.
+      depth_weight: how much a cap's depth counts in "point_and_depths", in (0,
+        `MAX_DEPTH_WEIGHT`].
+      retract: also simulate each movement's return home while babbling (the depths
+        then cover it too); the outcome is read at the end of the hold either way.
+      threads: threads stepping the rollouts, 1 to `movements.MAX_THREADS` (None:
+        the cores this process may use). The results do not depend on it.
 
     Returns:
       A `GoalBabblingResult`.
@@ -340,91 +430,154 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
         this machine's memory.
     """
     settings = _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress,
-                                    exploration_noise, epsilon, window)
-    lab = MovementLab()
+                                    exploration_noise, epsilon, window, outcome_space,
+                                    inverse_model, measure, regions, depth_weight,
+                                    retract, threads)
+    lab = MovementLab(threads)
     seeds = run_seeds(settings["seed"], n_seeds, 2)
     arrays = _babble(settings, lab, [s[0] for s in seeds], progress)
     geometry = _geometry()
     outcomes, movements = arrays["outcomes"], arrays["movements"]
-    checkpoints = np.unique(np.linspace(0, n_rollouts, N_CHECKPOINTS + 1)[1:].round()
-                            .astype(np.int64))
+    space = settings["outcome_space"]
+    checkpoints = checkpoints_of(n_rollouts)
     test_goals = geometry["test_goals"]
-    distance = np.sqrt(((outcomes[:, :, None, :] - test_goals[None, None]) ** 2).sum(axis=3))
+    weight = settings["depth_weight"]
+    reached = outcome_vectors(outcomes, arrays["depths"], space, weight)
+    wanted = goal_outcomes(test_goals, space, weight)
+    distance = np.sqrt(((reached[:, :, None, :] - wanted[None, None]) ** 2).sum(axis=3))
     best = np.minimum.accumulate(distance, axis=1)  # [seed, rollout, goal]
     test_error = best[:, checkpoints - 1].mean(axis=2)
-    to_press = np.sqrt(((outcomes[:, :, None, :] - geometry["press_goals"][None, None]) ** 2)
-                       .sum(axis=3)).argmin(axis=1)  # [seed, button]
+    to_press = distance[:, :, :buttons.N_BUTTONS].argmin(axis=1)  # [seed, button]
     press_movements = np.take_along_axis(movements, to_press[:, :, None], axis=1)
     press_outcomes = np.take_along_axis(outcomes, to_press[:, :, None], axis=1)
     buttons_pressed = _press_each_button(lab, press_movements, [s[1] for s in seeds])
     return GoalBabblingResult(settings, checkpoints, test_goals.copy(), test_error,
                               buttons_pressed, press_movements, press_outcomes, movements,
-                              outcomes, arrays["touched"], arrays["pressed"], arrays["goals"],
-                              arrays["regions"], arrays["interest"])
+                              outcomes, arrays["depths"], arrays["touched"],
+                              arrays["pressed"], arrays["goals"], arrays["regions"],
+                              arrays["interest"])
 
 
 def _babble(settings, lab, seeds, progress):
     """The rollouts of a run, all seeds at once (one generator per seed, from `seeds`):
     a dict of the arrays `GoalBabblingResult` keeps per rollout."""
     strategy, n_rollouts = settings["strategy"], settings["n_rollouts"]
-    n_seeds, epsilon = len(seeds), settings["epsilon"]
-    generators = [np.random.default_rng(s) for s in seeds]
-    n_regions = int(np.prod(REGION_GRID))
-    bounds = region_bounds()
-    noise = settings["exploration_noise"] * (lab.upper - lab.lower)
-    n_boot = n_rollouts if strategy == "random_motor" else min(N_BOOTSTRAP, n_rollouts)
-    learning = interest.InterestTable(n_seeds, n_regions, "learning_progress",
-                                      window=settings["window"])
+    n_seeds, space = len(seeds), settings["outcome_space"]
+    weight, retract = settings["depth_weight"], settings["retract"]
+    n_outcome = 3 if space == "point" else 3 + buttons.N_BUTTONS
+    grid = _grid()
+    model = make_inverse_model(settings["inverse_model"], n_seeds, n_rollouts, lab.lower,
+                               lab.upper, n_outcome,
+                               exploration_noise=settings["exploration_noise"])
+    if strategy == "random_motor":
+        choice = None
+    elif strategy == "random_goal":
+        choice = RandomGoals(grid, n_seeds)
+    else:
+        kind = RegionProgress if settings["regions"] == "fixed" else SplittingRegionProgress
+        choice = kind(grid, n_seeds, settings["measure"], settings["epsilon"],
+                      settings["window"])
+    agent = GoalBabblingAgent(model, choice, [np.random.default_rng(s) for s in seeds],
+                              lambda goals: goal_outcomes(goals, space, weight))
     movements = np.zeros((n_seeds, n_rollouts, 7))
     outcomes = np.zeros((n_seeds, n_rollouts, 3))
+    depths = np.zeros((n_seeds, n_rollouts, buttons.N_BUTTONS))
     touched = np.zeros((n_seeds, n_rollouts), dtype=bool)
     pressed = np.zeros((n_seeds, n_rollouts), dtype=np.int64)
     goals = np.full((n_seeds, n_rollouts, 3), np.nan)
     regions = np.full((n_seeds, n_rollouts), -1, dtype=np.int64)
-    interest_log = np.zeros((n_seeds, n_rollouts, n_regions))
-
+    interest_log = np.zeros((n_seeds, n_rollouts, grid.n_regions))
     for i in progress_bar(range(n_rollouts), n_rollouts,
                           f"goal babbling ({strategy}, {n_seeds} seeds at once)", progress,
                           unit="rollout"):
-        targets = np.empty((n_seeds, 7))
-        values = learning.values() if strategy == "learning_progress" and i >= n_boot \
-            else None
-        for k, rng in enumerate(generators):
-            if i < n_boot:
-                targets[k] = rng.uniform(lab.lower, lab.upper)
-                continue
-            if strategy == "random_goal":
-                goal = rng.uniform(GOAL_LOW, GOAL_HIGH)
-                region = int(region_of(goal))
-            else:
-                region = _choose_region(values[k], epsilon, rng)
-                goal = rng.uniform(*bounds[region])
-            squared = ((outcomes[k, :i] - goal) ** 2).sum(axis=1)
-            nearest = np.argmin(squared)
-            scale = min(1.0, np.sqrt(squared[nearest]) / NOISE_DISTANCE)
-            targets[k] = movements[k, nearest] + rng.normal(0.0, noise) * scale
-            goals[k, i], regions[k, i] = goal, region
-        done = lab.perform(targets)
-        movements[:, i] = lab.check_targets(targets)
-        outcomes[:, i], touched[:, i], pressed[:, i] = (done["outcome"], done["touched"],
-                                                        done["pressed"])
-        if strategy == "learning_progress" and i >= n_boot:
-            distance = np.sqrt(((goals[:, i] - outcomes[:, i]) ** 2).sum(axis=1))
-            learning.record(None, regions[:, i], distance)
-            interest_log[:, i] = learning.values()
-    return {"movements": movements, "outcomes": outcomes, "touched": touched,
-            "pressed": pressed, "goals": goals, "regions": regions, "interest": interest_log}
+        targets, goal, region = agent.produce()
+        done = lab.perform(targets, retract)
+        agent.perceive(targets, outcome_vectors(done["point"], done["depths"], space, weight))
+        movements[:, i], outcomes[:, i], depths[:, i] = targets, done["point"], done["depths"]
+        touched[:, i], pressed[:, i] = done["touched"], done["pressed"]
+        if goal is not None:
+            goals[:, i], regions[:, i] = goal, region
+            if strategy == "learning_progress":
+                interest_log[:, i] = choice.values()
+    return {"movements": movements, "outcomes": outcomes, "depths": depths,
+            "touched": touched, "pressed": pressed, "goals": goals, "regions": regions,
+            "interest": interest_log}
 
 
-def _choose_region(values, epsilon, rng):
-    """A region: uniformly with probability `epsilon` (or while every interest is 0),
-    else with probability proportional to its interest. Draws two numbers."""
-    explore, draw = rng.random(2)
-    total = values.sum()
-    if explore < epsilon or not total > 0:
-        return min(int(draw * len(values)), len(values) - 1)
-    return min(int(np.searchsorted(np.cumsum(values), draw * total, side="right")),
-               len(values) - 1)
+def presses_formed(result, rollouts):
+    """Whether each seed had formed a press for each button after `rollouts` rollouts:
+    the movement among its first n rollouts whose outcome lies nearest the button's
+    press goal, tested on the physics console as at the end of a run (so that at
+    n = `n_rollouts` it is `buttons_pressed`).
+
+    Args:
+      result: a `GoalBabblingResult`.
+      rollouts: increasing whole rollout counts in 1..n_rollouts.
+
+    Returns:
+      A bool array [len(rollouts), seed, button].
+    """
+    _validate.instance("result", result, GoalBabblingResult,
+                       "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
+    rollouts = _validate.integer_array("rollouts", rollouts, ndim=1)
+    if not len(rollouts) or np.any(np.diff(rollouts) <= 0) or rollouts[0] < 1 \
+            or rollouts[-1] > result.n_rollouts:
+        raise ValueError(f"rollouts must be increasing rollout counts in 1.."
+                         f"{result.n_rollouts}, got {_validate.show(rollouts)}")
+    settings = result.settings
+    space, weight = settings["outcome_space"], settings["depth_weight"]
+    reached = outcome_vectors(result.outcomes, result.depths, space, weight)
+    wanted = goal_outcomes(_geometry()["press_goals"], space, weight)
+    distance = np.sqrt(((reached[:, :, None, :] - wanted[None, None]) ** 2).sum(axis=3))
+    seeds = [s[1] for s in run_seeds(settings["seed"], result.n_seeds, 2)]
+    lab = MovementLab(1)
+    out = np.zeros((len(rollouts), result.n_seeds, buttons.N_BUTTONS), dtype=bool)
+    for i, n in enumerate(rollouts):
+        nearest = distance[:, :n].argmin(axis=1)  # [seed, button]
+        movements = np.take_along_axis(result.movements, nearest[:, :, None], axis=1)
+        out[i] = _press_each_button(lab, movements, seeds)
+    return out
+
+
+PRESS_FAILURES = ("formed", "not pushed in far enough", "off the cap",
+                  "a neighbour pushed too", "a neighbour pushed instead", "other")
+"""What became of the movement formed for each button (`press_failures`), by code."""
+
+
+def press_failures(result):
+    """What became of the movement formed for each button: a code into
+    `PRESS_FAILURES` per [seed, button].
+
+    "formed" where `buttons_pressed` holds. Otherwise the movement is rolled out again
+    with its return home and read: "a neighbour pushed too" if the button and
+    another went past the press depth, "a neighbour pushed instead" if only another
+    did, "not pushed in far enough" if none did and the finger ended over the cap
+    (within its radius of its centre), "off the cap" if none did and it ended
+    elsewhere, and "other" if the button alone was pushed yet the red box alone did
+    not open.
+
+    Args:
+      result: a `GoalBabblingResult`.
+    """
+    _validate.instance("result", result, GoalBabblingResult,
+                       "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
+    geometry = _geometry()
+    lab = MovementLab(1)
+    n_seeds = result.n_seeds
+    done = lab.perform(result.press_movements.reshape(-1, 7), retract=True)
+    over = done["depths"].reshape(n_seeds, buttons.N_BUTTONS, buttons.N_BUTTONS) \
+        > buttons.PRESS_DEPTH  # [seed, movement for button, button pushed]
+    across = np.linalg.norm(result.press_outcomes[..., :2] - geometry["caps"][:, :2], axis=2)
+    codes = np.full((n_seeds, buttons.N_BUTTONS), PRESS_FAILURES.index("other"))
+    for b in range(buttons.N_BUTTONS):
+        own, others = over[:, b, b], np.delete(over[:, b], b, axis=1).any(axis=1)
+        on_cap = across[:, b] <= geometry["cap_radius"]
+        codes[own & others, b] = PRESS_FAILURES.index("a neighbour pushed too")
+        codes[~own & others, b] = PRESS_FAILURES.index("a neighbour pushed instead")
+        codes[~own & ~others & on_cap, b] = PRESS_FAILURES.index("not pushed in far enough")
+        codes[~own & ~others & ~on_cap, b] = PRESS_FAILURES.index("off the cap")
+    codes[result.buttons_pressed] = PRESS_FAILURES.index("formed")
+    return codes
 
 
 def _press_each_button(lab, press_movements, seeds):
@@ -457,17 +610,25 @@ class FormedActionsResult:
       as_scripted: the share of the learner's presses whose effect (which box
         opened) is what the scripted press of the same button gives in that layout.
       n_presses: the presses the learner made, over all seeds.
+      as_scripted_per_seed: [seed], that share in each seed's presses (every seed
+        makes the same number of presses).
     """
 
     settings: dict
     learner: _goal_oriented.GoalOrientedResult
     as_scripted: float
     n_presses: int
+    as_scripted_per_seed: np.ndarray
 
     def red_first_fraction(self):
         """Share of seeds in which red is mastered strictly before green (see
         `GoalOrientedResult.red_first_fraction`)."""
         return self.learner.red_first_fraction()
+
+    def red_first(self):
+        """[seed], whether red is mastered strictly before green in each seed."""
+        mastery = self.learner.mastery_trial
+        return comes_first(mastery[:, 0], mastery[:, 1])
 
 
 class _Recorder:
@@ -476,6 +637,7 @@ class _Recorder:
     def __init__(self, env):
         self.env, self.log = env, []
         self.n_actions, self.red_button = env.n_actions, env.red_button
+        self.effects = env.effects
 
     def __len__(self):
         return len(self.env)
@@ -525,13 +687,14 @@ def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True)
     env = _Recorder(buttons.PhysicsButtonConsoleBatch(
         [s[0] for s in seeds], red, buttons.DEFAULT_PRESSES_PER_TRIAL, press_motions=motions))
     agent = goal_oriented.GoalOrientedBatch(
-        [s[1] for s in seeds], np.array(buttons.layouts(red)), buttons.EFFECTS,
-        env.n_actions)
+        [s[1] for s in seeds], np.array(buttons.layouts(red)), env.effects, env.n_actions)
     learner = _goal_oriented._play(settings, env, agent, n_trials,
                                    buttons.DEFAULT_PRESSES_PER_TRIAL, red, progress)
     table = buttons.outcome_table(red)
-    matches = [table[layout, actions] == effects for layout, actions, effects in env.log]
-    return FormedActionsResult(settings, learner, float(np.mean(matches)), int(np.size(matches)))
+    matches = np.array([table[layout, actions] == effects
+                        for layout, actions, effects in env.log])  # [press, seed]
+    return FormedActionsResult(settings, learner, float(np.mean(matches)), int(np.size(matches)),
+                               matches.mean(axis=0))
 
 
 def comparison_table(results):

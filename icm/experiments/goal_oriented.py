@@ -347,7 +347,7 @@ def run_goal_oriented_grid(grid, **arguments):
     else:
         env = buttons.ButtonConsoleBatch(env_seeds, red_button, first["noisy_button"])
     agent = goal_oriented.GoalOrientedBatch(
-        agent_seeds, np.array(buttons.layouts(red_button)), buttons.EFFECTS, env.n_actions,
+        agent_seeds, np.array(buttons.layouts(red_button)), env.effects, env.n_actions,
         settings=goal_oriented.GoalOrientedSettings.stack(blocks, n))
     result = _play(first, env, agent, first["n_trials"], presses, red_button, progress)
     return _grid.split(result, settings, n)
@@ -367,7 +367,7 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progres
     error_out = np.zeros((n_seeds, n_trials, len(TASKS)))
     # The share of the 20 (layout, button) pairs on which the predictor is wrong about
     # each box: wrong[predicted effect, true effect, box] is 1 where they differ.
-    effects = np.asarray(buttons.EFFECTS)
+    effects = agent.effects  # buttons.EFFECTS, and on the physics both boxes too
     wrong = np.abs(effects[:, None, :] - effects[None, :, :]).astype(float)
     truth = buttons.outcome_table(red_button)
     greens = buttons.green_candidates(red_button)
@@ -380,8 +380,9 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progres
             chosen = agent.select_actions(layout)
             observed = env.press(chosen)
             agent.learn(layout, chosen, observed)
+            both = observed == buttons.BOTH_BOXES  # a press of both: practice of both
             for i, box in enumerate(_TASK_EFFECTS):
-                practice[:, trial, i] += observed == box
+                practice[:, trial, i] += (observed == box) | both
             presses[rows, trial, chosen] += 1
         values = agent.interest.values()
         per_layout = agent.predictor.effect.reshape(n_seeds, 4, n_actions)

@@ -10,8 +10,8 @@ from icm.figures.actor_critic import (figure3, figure4, figure6, figure6_grid,
                                       practice_figure)
 from icm.figures.buttons import draw_console, figure2, outcome_table_figure, trial_figure
 from icm.figures.forming_actions import (coverage_figure, goal_choice_figure,
-                                        learned_presses_figure, record_learned_press,
-                                        test_error_figure)
+                                        learned_presses_figure, presses_formed_figure,
+                                        record_learned_press, test_error_figure)
 from icm.figures.goal_oriented import figure5, figure5_grid, mastery_figure
 from icm.figures.icub import (animation, animation_html, cameras_figure, figure1,
                               press_trace_figure, record_move, record_press,

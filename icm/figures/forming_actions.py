@@ -11,7 +11,7 @@ from icm.envs import buttons
 from icm.experiments import goal_babbling as _babbling
 from icm.experiments.goal_babbling import GoalBabblingResult
 from icm.experiments.results import check_results
-from icm.figures._common import check_result, new_figure, plot_mean_band
+from icm.figures._common import check_axes, check_result, new_figure, plot_mean_band
 
 _MADE_BY = "icm.experiments.run_goal_babbling"
 STRATEGY_COLOURS = {"random_motor": "#7f7f7f", "random_goal": "#1f77b4",
@@ -141,7 +141,8 @@ def goal_choice_figure(result, n_stretches=8):
     fig.colorbar(mesh, ax=left, shrink=0.85, label="interest (m per goal)")
     left.set_title(f"Interest of each column of regions, mean of {result.n_seeds} seeds",
                    fontsize=10)
-    edges = np.unique(np.geomspace(start, result.n_rollouts, n_stretches + 1).round())
+    edges = np.unique(np.geomspace(start, result.n_rollouts, n_stretches + 1).round()
+                      .astype(np.int64))
     edges[0], edges[-1] = start, result.n_rollouts
     shares = result.goal_shares(edges)[:, order]
     mesh = right.pcolormesh(edges, np.arange(len(order) + 1) - 0.5, shares.T,
@@ -177,7 +178,7 @@ def record_learned_press(result, seed=0, button=0, camera="close_up", height=240
       A dict: "frame" (RGB image), "pressed" (the buttons pushed past the press
       depth, in order), "boxes" (the boxes seen after the press: red, green).
     """
-    from icm.experiments._babbling_physics import MovementLab
+    from icm.envs.buttons.movements import MovementLab
     from icm.figures.icub import check_camera, check_image_size, render
 
     check_result("result", result, GoalBabblingResult, _MADE_BY)
@@ -227,4 +228,63 @@ def learned_presses_figure(result, seed=0, camera="close_up"):
         ax.set_title(f"button {button}: pressed {pressed}\n{opened}", fontsize=9)
     fig.suptitle(f"The learned presses ({_label(result)}, seed {seed}), at the end of "
                  "the hold", fontsize=10)
+    return fig
+
+
+STUDY_COLOURS = {"learning progress": "#e66101", "where the finger stopped only": "#5e3c99",
+                 "random goal babbling": "#1f77b4", "random motor babbling": "#7f7f7f",
+                 "depth weight 1": "#fdb863", "depth weight 3": "#b35806",
+                 "LWLR inverse model": "#1b9e77", "competence progress": "#a6761d",
+                 "splitting regions": "#7570b3", "return home simulated": "#e7298a"}
+"""One colour per variant of the study (`icm.experiments.goal_babbling_study`)."""
+
+
+def presses_formed_figure(study, labels, roots="tuning", ax=None):
+    """The share of seeds that have formed all five presses against rollouts: the mean
+    over the study's seeds with its 95% band, one curve per variant.
+
+    Args:
+      study: the study (`icm.experiments.goal_babbling_study.load_study()`).
+      labels: the variants to draw, a non-empty list of the study's labels.
+      roots: "tuning" (the study's `TUNING_ROOTS`) or "held_out" (`HELD_OUT_ROOTS`,
+        run by `HELD_OUT_VARIANTS` only).
+      ax: a matplotlib Axes to draw on, or None for a new figure.
+    """
+    from icm.experiments import goal_babbling_study
+
+    if not isinstance(study, dict) or "runs" not in study or "budgets" not in study:
+        raise _validate.ArgumentTypeError(f"study must be a study dict (from icm.experiments."
+                                          f"goal_babbling_study.load_study), got "
+                                          f"{_validate.show(study)}")
+    if isinstance(labels, str) or not isinstance(labels, (list, tuple)) or not labels:
+        raise _validate.ArgumentTypeError(f"labels must be a non-empty list of the study's "
+                                          f"variants, got {_validate.show(labels)}")
+    for label in labels:
+        _validate.one_of("labels[i]", label, tuple(study["runs"]))
+    roots = _validate.one_of("roots", roots, ("tuning", "held_out"))
+    root_seeds = goal_babbling_study.TUNING_ROOTS if roots == "tuning" else \
+        goal_babbling_study.HELD_OUT_ROOTS
+    for label in labels:
+        missing = [r for r in root_seeds if str(r) not in study["runs"][label]]
+        if missing:
+            raise ValueError(f"labels: the study did not run {label!r} on the {roots} "
+                             f"root seeds {missing}")
+    check_axes(ax)
+    if ax is None:
+        fig, ax = new_figure(width=6.8, height=3.8)
+    else:
+        fig = ax.figure
+    budgets = np.array(study["budgets"])
+    for label in labels:
+        runs = study["runs"][label]
+        pressed = np.concatenate([np.array(runs[str(root)]["pressed"])
+                                  for root in root_seeds])
+        all_five = pressed.all(axis=2).astype(float)  # [seed, budget]
+        plot_mean_band(ax, all_five, STUDY_COLOURS.get(label, "black"),
+                       f"{label} ({len(all_five)} seeds)", x=budgets)
+    ax.set_xlabel("rollouts")
+    ax.set_ylabel("share of seeds with all five presses")
+    ax.set_ylim(0, 1.02)
+    ax.set_xlim(budgets[0], budgets[-1])
+    ax.legend(frameon=False, fontsize=8, loc="upper left")
     return fig

@@ -14,9 +14,12 @@ One module per concept:
   `ButtonConsole`, one run, or many at once (`ButtonConsoleBatch`);
 - `physics`: the simulated iCub: `ButtonsPhysics`, `ButtonsTask` (continuous
   control), `load_continuous` and `PhysicsButtonConsole`, the discrete actions as
-  motor primitives (imported on first use: it loads dm_control and MuJoCo).
+  motor primitives (imported on first use: it loads dm_control and MuJoCo);
+- `movements`: `MovementLab`, movements of the arm (7 joint targets) rolled out many
+  at once in C and measured (where the finger stopped, how far each cap went down),
+  the environment of goal babbling (imported on first use).
 
-Every public name of the three is also available here, e.g. `buttons.ButtonConsole`.
+Every public name of the first three is also available here, e.g. `buttons.ButtonConsole`.
 """
 
 import importlib
@@ -36,6 +39,6 @@ __all__ = list(_rules_all) + ["ButtonConsole", "ButtonConsoleBatch", "ButtonTria
 def __getattr__(name):
     if name in _PHYSICS:
         return getattr(importlib.import_module("icm.envs.buttons.physics"), name)
-    if name in ("rules", "twin", "physics"):
+    if name in ("rules", "twin", "physics", "movements"):
         return importlib.import_module(f"icm.envs.buttons.{name}")
     raise AttributeError(f"module 'icm.envs.buttons' has no attribute {name!r}")

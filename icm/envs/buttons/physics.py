@@ -11,6 +11,7 @@ others, whose outcome the task draws from its random state (`rules.noisy_effect`
 """
 
 import collections
+import functools
 
 import mujoco
 import numpy as np
@@ -19,13 +20,13 @@ from dm_env import specs
 from icm import _validate
 from icm.envs import icub
 from icm.envs._common import check_discrete_action, check_seed, dm_control_random
-from icm.envs.buttons.rules import (BOX_NAMES, DEFAULT_PRESSES_PER_TRIAL,
-                                        DEFAULT_RED_BUTTON, EFFECTS, GREEN, GREEN_BOX,
+from icm.envs.buttons.rules import (ALL_EFFECTS, BOX_NAMES, DEFAULT_PRESSES_PER_TRIAL,
+                                        DEFAULT_RED_BUTTON, GREEN, GREEN_BOX,
                                         N_BUTTONS, NOISY_BUTTON, OFF, RED, RED_BOX,
                                         check_lights, check_red_button,
-                                        check_rewarded_box, draw_green, extrinsic_reward,
-                                        green_candidates, lights_for, n_actions,
-                                        noisy_effect)
+                                        check_rewarded_box, draw_green, effect_index,
+                                        extrinsic_reward, green_candidates, lights_for,
+                                        n_actions, noisy_effect)
 from icm.envs.buttons.twin import ButtonTrials
 
 PRESS_DEPTH = 0.008
@@ -288,13 +289,28 @@ def load_continuous(seed=None, time_limit=10.0, **task_kwargs):
     return icub.continuous_environment(load_physics(task.noisy_button), task, time_limit)
 
 
+MAX_PHASE_SECONDS = 10.0
+"""The longest phase of a press motion (`press_motions`), in simulated seconds: the
+scripted press lasts 1.6 s in all, a formed movement 0.9 s. It bounds the time and
+memory a press can take."""
+
+
+@functools.lru_cache(maxsize=1)
+def arm_ranges():
+    """The arm joints' ranges in the button scene, (lower (7,), upper (7,)) radians."""
+    arm = icub.Arm(load_physics())
+    return arm.lower.copy(), arm.upper.copy()
+
+
 def check_press_motions(press_motions):
     """`press_motions` checked: None, or for each of the `N_BUTTONS` buttons a non-empty
     sequence of (joint targets, seconds) pairs, returned as tuples of read-only (7,)
-    arrays and floats.
+    arrays and floats. Joint targets must lie within the joints' ranges (up to
+    `icub.ACTION_TOLERANCE`, then clipped), seconds in (0, `MAX_PHASE_SECONDS`].
 
     Raises:
-      ValueError: for anything else, naming the button and the step.
+      ValueError: for anything else, naming the button and the step
+        (`ArgumentTypeError` for what is not a number).
     """
     if press_motions is None:
         return None
@@ -302,6 +318,7 @@ def check_press_motions(press_motions):
             or len(press_motions) != N_BUTTONS:
         raise ValueError(f"press_motions must be None or one motion per button "
                          f"({N_BUTTONS}), got {_validate.show(press_motions)}")
+    lower, upper = arm_ranges()
     checked = []
     for button, motion in enumerate(press_motions):
         if isinstance(motion, (str, bytes)) or not hasattr(motion, "__len__") or not motion:
@@ -312,11 +329,20 @@ def check_press_motions(press_motions):
             if not isinstance(step, (list, tuple)) or len(step) != 2:
                 raise ValueError(f"press_motions[{button}][{i}] must be a (joint targets, "
                                  f"seconds) pair, got {_validate.show(step)}")
-            target = _validate.finite_array(f"press_motions[{button}][{i}] joint targets",
-                                            step[0], shape=(len(icub.ARM_JOINTS),)).copy()
+            name = f"press_motions[{button}][{i}] joint targets"
+            target = _validate.finite_array(name, step[0], shape=(len(icub.ARM_JOINTS),))
+            outside = (target < lower - icub.ACTION_TOLERANCE) \
+                | (target > upper + icub.ACTION_TOLERANCE)
+            if outside.any():
+                j = int(np.flatnonzero(outside)[0])
+                raise ValueError(f"{name} must lie within the joints' ranges: joint {j} "
+                                 f"({icub.ARM_JOINTS[j]}) in [{lower[j]:.4f}, "
+                                 f"{upper[j]:.4f}] rad, got {target[j]!r}")
+            target = np.clip(target, lower, upper)
             target.flags.writeable = False
-            steps.append((target, _validate.positive(f"press_motions[{button}][{i}] seconds",
-                                                     step[1])))
+            seconds = _validate.real(f"press_motions[{button}][{i}] seconds", step[1], 0.0,
+                                     MAX_PHASE_SECONDS, low_open=True)
+            steps.append((target, seconds))
         checked.append(tuple(steps))
     return tuple(checked)
 
@@ -448,6 +474,10 @@ class PhysicsButtonConsoleBatch:
       noisy_button: add the noisy button, action 5.
       press_motions: None (the scripted presses), or one `press_motions` of
         `PhysicsButtonConsole` per row.
+
+    Attributes:
+      effects: the effects a press can have, `ALL_EFFECTS`: on the physics, both boxes
+        too, which the scripted presses never give but other movements can.
     """
 
     def __init__(self, seeds, red_button=DEFAULT_RED_BUTTON,
@@ -469,6 +499,7 @@ class PhysicsButtonConsoleBatch:
         self.n_actions = n_actions(self.noisy_button)
         self._greens = green_candidates(self.red_button)
         self.layout = np.zeros(len(self.consoles), dtype=np.int64)
+        self.effects = ALL_EFFECTS
 
     def __len__(self):
         return len(self.consoles)
@@ -481,6 +512,7 @@ class PhysicsButtonConsoleBatch:
 
     def press(self, actions):
         """Runs the press primitive of `actions[k]` on console k; returns the effect
-        indices [rows], read from the lids."""
-        return np.array([EFFECTS.index(tuple(c.step(int(a)).observation["boxes"].tolist()))
+        indices [rows] into `effects`, read from the lids (whatever they show: a
+        press that pushes the red and the green button at once opens both boxes)."""
+        return np.array([effect_index(c.step(int(a)).observation["boxes"])
                          for c, a in zip(self.consoles, actions)])

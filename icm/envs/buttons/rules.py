@@ -36,6 +36,15 @@ box (the batched learners number effects so: in increasing order, the order in w
 the interest modules add up their tasks)."""
 NOTHING, GREEN_BOX, RED_BOX = 0, 1, 2
 """Effect indices of `EFFECTS`."""
+ALL_EFFECTS = EFFECTS + ((1, 1),)
+"""Every `boxes` observation, by effect index: `EFFECTS`, then both boxes open
+(`BOTH_BOXES`). The paper's console, and the tabular twin, never open both: one press
+pushes one button. On the physics console a movement that is not the scripted
+primitive can push two buttons at once (a formed press whose hand pushes the
+neighbouring button too), and if they are the red and the green one, both boxes
+open."""
+BOTH_BOXES = 3
+"""Effect index of both boxes open in `ALL_EFFECTS`."""
 
 DEFAULT_RED_BUTTON = 2
 """The red button sits in the middle of the console, straight in front of the robot."""
@@ -148,8 +157,17 @@ def noisy_outcome(u):
 
 
 def effect_index(boxes):
-    """The index in `EFFECTS` of a `boxes` observation."""
-    return EFFECTS.index(tuple(int(b) for b in boxes))
+    """The index in `ALL_EFFECTS` of a `boxes` observation (the same as in `EFFECTS`
+    for the effects it lists; `BOTH_BOXES` for both open).
+
+    Raises:
+      ValueError: if `boxes` is not two values, each 0 or 1.
+    """
+    array = _validate.finite_array("boxes", boxes, shape=(len(BOX_NAMES),))
+    if not np.all(np.isin(array, (0, 1))):
+        raise ValueError(f"boxes must hold 2 values, each 0 (shut) or 1 (open), got "
+                         f"{_validate.show(boxes)}")
+    return ALL_EFFECTS.index(tuple(int(b) for b in array))
 
 
 def check_rewarded_box(rewarded_box):
@@ -182,8 +200,9 @@ def action_spec(noisy_button=False):
 
 
 __all__ = ["N_BUTTONS", "NOISY_BUTTON", "OFF", "RED", "GREEN", "BOX_NAMES", "EFFECTS",
-           "NOTHING", "RED_BOX", "GREEN_BOX", "DEFAULT_RED_BUTTON",
-           "DEFAULT_PRESSES_PER_TRIAL", "PRESSES_PER_TRIAL", "n_actions", "check_red_button", "green_candidates",
+           "NOTHING", "RED_BOX", "GREEN_BOX", "ALL_EFFECTS", "BOTH_BOXES", "DEFAULT_RED_BUTTON",
+           "DEFAULT_PRESSES_PER_TRIAL", "PRESSES_PER_TRIAL", "n_actions", "check_red_button",
+           "green_candidates",
            "layout_index", "draw_green", "lights_for", "layouts", "check_lights",
            "press_outcome", "noisy_effect", "noisy_outcome", "effect_index",
            "check_rewarded_box", "extrinsic_reward", "observation_spec", "action_spec"]

@@ -174,6 +174,9 @@ class ButtonConsoleBatch:
       seeds: one integer seed (or Generator) per row.
       red_button: the button that is always red.
       noisy_button: add the noisy button, action 5.
+
+    Attributes:
+      effects: the effects a press can have, `EFFECTS` (never both boxes).
     """
 
     def __init__(self, seeds, red_button=DEFAULT_RED_BUTTON, noisy_button=False):
@@ -184,6 +187,7 @@ class ButtonConsoleBatch:
         self.outcomes = outcome_table(self.red_button)
         self._outcomes_flat = self.outcomes.reshape(-1)
         self.layout = np.zeros(len(self.streams), dtype=np.int64)
+        self.effects = EFFECTS
 
     def __len__(self):
         return len(self.streams)

@@ -1,0 +1,305 @@
+"""The longer goal-babbling runs the chapter "Forming actions" shows: every variant of
+the learner at the default budget on root seeds that no test uses, kept in
+assets/goal_babbling_study.json because they take minutes, not seconds.
+
+`run_study` runs them with `run_goal_babbling` (and `run_formed_actions`); `main`
+writes the file (`python -m icm.experiments.goal_babbling_study`, about 15 minutes of
+CPU); `load_study` reads it; a test reruns the first seeds of some of it (the first k
+seeds of a root seed are the same in any larger run) and expects the same numbers.
+"""
+
+import json
+import numpy as np
+
+from icm import _validate
+from icm.envs._assets import ASSETS, asset_path
+from icm.experiments import goal_babbling
+from icm.stats import PANEL_RESAMPLES, bootstrap_band
+
+STUDY_FILE = "goal_babbling_study.json"
+"""The file in assets/ that holds the study."""
+VARIANTS = {
+    "learning progress": {},
+    "where the finger stopped only": {"outcome_space": "point"},
+    "depth weight 1": {"depth_weight": 1.0},
+    "depth weight 3": {"depth_weight": 3.0},
+    "LWLR inverse model": {"inverse_model": "lwlr"},
+    "competence progress": {"measure": "competence_progress"},
+    "splitting regions": {"regions": "splitting"},
+    "return home simulated": {"retract": True},
+    "random goal babbling": {"strategy": "random_goal"},
+    "random motor babbling": {"strategy": "random_motor"},
+}
+"""The variants compared, by label: `run_goal_babbling` arguments that differ from
+its defaults (the first is the default learner: learning progress over fixed
+regions, the paper's interest, the nearest-neighbour inverse model, the caps' depths
+in the outcome)."""
+TUNING_ROOTS = (100, 200)
+"""Root seeds on which every variant runs (the choices of the chapter were made on
+them)."""
+HELD_OUT_ROOTS = (300, 400)
+"""Root seeds on which `HELD_OUT_VARIANTS` run again, after every choice was made."""
+HELD_OUT_VARIANTS = ("learning progress", "random goal babbling")
+"""The variants checked on the held-out root seeds: the default and its baseline."""
+N_SEEDS = 10
+"""Seeds per root seed."""
+BUDGETS = (100, 200, 300, 400, 500, 600, 700, 800, 900, 1000)
+"""Rollouts after which the presses formed so far are tested (`presses_formed`)."""
+LOOP_VARIANTS = ("learning progress", "random goal babbling")
+"""The variants whose formed presses the goal-oriented learner also runs on
+(`run_formed_actions`, seeded with the root seed)."""
+
+
+def _check_budgets():
+    if BUDGETS[-1] != goal_babbling.DEFAULT_N_ROLLOUTS:
+        raise ValueError(f"BUDGETS must end at the default budget "
+                         f"({goal_babbling.DEFAULT_N_ROLLOUTS}), got {BUDGETS[-1]}")
+
+
+def run_variant(label, root, n_seeds=N_SEEDS, progress=False):
+    """Runs one variant on the first `n_seeds` seeds of one root seed and returns its
+    entry of the study: a dict of lists, one item per seed (the first k seeds of a
+    root seed are the same in any larger run, so a shorter rerun checks them).
+
+    Args:
+      label: a key of `VARIANTS`.
+      root: the root seed (an integer >= 0).
+      n_seeds: seeds (>= 1).
+      progress: show progress bars.
+
+    Returns:
+      {"pressed": [seed][budget][button] (0 or 1, budgets `BUDGETS`), "failures":
+      [seed][button] (codes of `goal_babbling.PRESS_FAILURES` at the default
+      budget), "test_error": [seed] (final, in the run's outcome space), and for
+      `LOOP_VARIANTS`
+      "red_first" [seed] (0 or 1) and "as_scripted" [seed] (share of the learner's
+      presses with the scripted effect)}.
+    """
+    _check_budgets()
+    label = _validate.one_of("label", label, tuple(VARIANTS))
+    root = _validate.seed("root", root)
+    arguments = {"strategy": "learning_progress", **VARIANTS[label]}
+    result = goal_babbling.run_goal_babbling(**arguments, n_seeds=n_seeds, seed=root,
+                                             progress=progress)
+    pressed = goal_babbling.presses_formed(result, BUDGETS)  # [budget, seed, button]
+    entry = {"pressed": np.moveaxis(pressed, 0, 1).astype(int).tolist(),
+             "failures": goal_babbling.press_failures(result).tolist(),
+             "test_error": result.final_test_error().tolist()}
+    if label in LOOP_VARIANTS:
+        loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress)
+        entry["red_first"] = loop.red_first().astype(int).tolist()
+        entry["as_scripted"] = loop.as_scripted_per_seed.tolist()
+    return entry
+
+
+def run_study(progress=True, partial=None, save=None):
+    """Every variant on `TUNING_ROOTS`, and `HELD_OUT_VARIANTS` on `HELD_OUT_ROOTS`:
+    {"budgets": [...], "n_seeds": N_SEEDS, "n_rollouts": ..., "runs": {label: {root:
+    entry}}} (entries as `run_variant` returns them; roots as strings, as JSON keys
+    are).
+
+    Args:
+      progress: show progress bars.
+      partial: a study of the same budgets and seeds, whose entries are kept rather
+        than run again (to finish an interrupted study), or None.
+      save: None, or a function called with the study so far after every entry.
+    """
+    study = {"budgets": list(BUDGETS), "n_seeds": N_SEEDS,
+             "n_rollouts": goal_babbling.DEFAULT_N_ROLLOUTS, "runs": {}}
+    if partial is not None and {k: partial.get(k) for k in ("budgets", "n_seeds",
+                                                            "n_rollouts")} \
+            != {k: study[k] for k in ("budgets", "n_seeds", "n_rollouts")}:
+        raise ValueError("partial must be a study of the same budgets, seeds and rollouts")
+    for label in VARIANTS:
+        roots = TUNING_ROOTS + (HELD_OUT_ROOTS if label in HELD_OUT_VARIANTS else ())
+        study["runs"][label] = {}
+        for root in roots:
+            kept = (partial or {}).get("runs", {}).get(label, {}).get(str(root))
+            study["runs"][label][str(root)] = kept if kept is not None else \
+                run_variant(label, root, progress=progress)
+            if save is not None:
+                save(study)
+    return study
+
+
+def load_study():
+    """The study as `run_study` returns it, read from assets/goal_babbling_study.json."""
+    return json.loads(asset_path(STUDY_FILE).read_text())
+
+
+def summary(study=None):
+    """Per variant and root seed: the share of seeds with all five presses formed at
+    the default budget, the mean number formed, the mean final test error and, where
+    measured, the share of seeds with red mastered first and the share of presses
+    with the scripted effect. A dict {label: {root: {...}}}; "all" pools the roots
+    (the tuning roots for every variant; the held-out ones are kept apart)."""
+    study = load_study() if study is None else study
+    out = {}
+    for label, by_root in study["runs"].items():
+        out[label] = {}
+        groups = dict(by_root)
+        tuning = [r for r in by_root if int(r) in TUNING_ROOTS]
+        groups["tuning"] = _pool([by_root[r] for r in tuning])
+        held = [r for r in by_root if int(r) in HELD_OUT_ROOTS]
+        if held:
+            groups["held_out"] = _pool([by_root[r] for r in held])
+        for name, entry in groups.items():
+            pressed = np.array(entry["pressed"])[:, -1]  # [seed, button] at the budget
+            row = {"n_seeds": len(pressed), "all_pressed_share": float(pressed.all(1).mean()),
+                   "buttons_pressed": float(pressed.sum(1).mean()),
+                   "test_error": float(np.mean(entry["test_error"]))}
+            if "red_first" in entry:  # every seed made the same number of presses
+                row["red_first_share"] = float(np.mean(entry["red_first"]))
+                row["as_scripted"] = float(np.mean(entry["as_scripted"]))
+            out[label][name] = row
+    return out
+
+
+def _pool(entries):
+    pooled = {}
+    for entry in entries:
+        for key, values in entry.items():
+            pooled.setdefault(key, []).extend(values)
+    return pooled
+
+
+def main():
+    """Runs the study and writes assets/goal_babbling_study.json, after every entry (a
+    study left unfinished there is finished, not started again)."""
+    path = ASSETS / STUDY_FILE
+    partial = json.loads(path.read_text()) if path.exists() else None
+    write = lambda study: path.write_text(json.dumps(study, indent=1) + "\n")
+    write(run_study(partial=partial, save=write))
+    print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    main()
+
+
+def study_table(study=None):
+    """A Markdown table of `summary`: one row per variant on the tuning root seeds,
+    then the held-out rows.
+
+    Args:
+      study: the study (default `load_study()`).
+    """
+    rows = summary(study)
+    lines = ["| variant | root seeds | seeds | all five presses formed | presses formed (of 5) "
+             "| test error, cm (in its outcome space) | red mastered first "
+             "| presses with the scripted effect |",
+             "|---|---|---|---|---|---|---|---|"]
+    for group, roots in (("tuning", TUNING_ROOTS), ("held_out", HELD_OUT_ROOTS)):
+        for label, by_group in rows.items():
+            if group not in by_group:
+                continue
+            row = by_group[group]
+            loop = (f"{row['red_first_share']:.0%} | {row['as_scripted']:.1%}"
+                    if "red_first_share" in row else "not run | not run")
+            lines.append(f"| {label} | {', '.join(map(str, roots))} | {row['n_seeds']} "
+                         f"| {row['all_pressed_share']:.0%} | {row['buttons_pressed']:.2f} "
+                         f"| {100 * row['test_error']:.2f} | {loop} |")
+    return "\n".join(lines)
+
+
+def _tuning(study, label):
+    return _pool([study["runs"][label][str(root)] for root in TUNING_ROOTS])
+
+
+def failure_counts(study, label):
+    """What became of the press formed for each button, counted over the tuning seeds
+    of variant `label`: {name in `goal_babbling.PRESS_FAILURES`: count}."""
+    label = _validate.one_of("label", label, tuple(study["runs"]))
+    codes = np.array(_tuning(study, label)["failures"])
+    return {name: int((codes == i).sum()) for i, name in
+            enumerate(goal_babbling.PRESS_FAILURES)}
+
+
+def failures_table(study, label):
+    """A Markdown table of what became of the press formed for each button (rows:
+    `goal_babbling.PRESS_FAILURES`, columns: buttons), over the tuning seeds of
+    variant `label`."""
+    label = _validate.one_of("label", label, tuple(study["runs"]))
+    codes = np.array(_tuning(study, label)["failures"])  # [seed, button]
+    n_buttons = codes.shape[1]
+    lines = ["| the press formed for the button | " + " | ".join(
+        f"button {b}" for b in range(n_buttons)) + " | all |",
+             "|---|" + "---|" * (n_buttons + 1)]
+    for i, name in enumerate(goal_babbling.PRESS_FAILURES):
+        counts = (codes == i).sum(axis=0)
+        lines.append(f"| {name} | " + " | ".join(str(c) for c in counts)
+                     + f" | {counts.sum()} |")
+    return "\n".join(lines)
+
+
+TARGETS = {"all_pressed_share": 0.9, "red_first_share": 0.9, "as_scripted": 0.95}
+"""The chapter's targets: all five presses formed in at least 90% of the seeds, red
+mastered first in at least 90% with the formed presses, and at least 95% of their
+presses with the scripted press's effect."""
+
+
+OPTIONS = ("LWLR inverse model", "competence progress", "splitting regions")
+"""The options from the field that the study compares with the default learner."""
+
+
+def _join(labels):
+    return labels[0] if len(labels) == 1 else ", ".join(labels[:-1]) + " and " + labels[-1]
+
+
+def verdicts(study=None):
+    """The numbers and words the chapter's comparisons are phrased from, a dict: for
+    learning progress ("lp") and random goal babbling ("rg") over every seed of the
+    study, the share with all five presses formed, their paired difference and its
+    95% bootstrap band, a sentence saying whether the margin is clear, the
+    closing-the-loop shares, sentences saying whether the `OPTIONS` and the simulated
+    return home did better than the default learner and whether, on the held-out
+    seeds, its share was still rising between the last two budgets, and "met" or "not
+    met" for each of `TARGETS`."""
+    study = load_study() if study is None else study
+    lp, rg = (_pool(list(study["runs"][label].values()))
+              for label in ("learning progress", "random goal babbling"))
+    lp_all = np.array(lp["pressed"])[:, -1].all(axis=1).astype(float)
+    rg_all = np.array(rg["pressed"])[:, -1].all(axis=1).astype(float)
+    mean, low, high = bootstrap_band((lp_all - rg_all)[:, None], resamples=PANEL_RESAMPLES)
+    if low[0] > 0:
+        margin = ("the interval lies above zero, so on these seeds the margin of "
+                  "learning progress over random goal babbling is clear")
+    elif high[0] < 0:
+        margin = "on these seeds random goal babbling does better than learning progress"
+    else:
+        margin = ("the interval includes no difference, so on these seeds no clear "
+                  "difference between the two strategies survives")
+    rows = summary(study)["learning progress"]
+    red_first = float(np.mean(lp["red_first"]))
+    as_scripted = float(np.mean(lp["as_scripted"]))
+    word = lambda value, target: "met" if value >= target else "not met"
+    rows_all = summary(study)
+    share = lambda label: rows_all[label]["tuning"]["all_pressed_share"]
+    better = [label for label in OPTIONS
+              if label in rows_all and share(label) > share("learning progress")]
+    options = ("none of them formed all five presses in more of these seeds than the "
+               "learner without them" if not better else
+               f"{_join(better)} formed all five presses in more of these seeds than the "
+               f"learner without {'it' if len(better) == 1 else 'them'}")
+    compare = lambda label: ("better than" if share(label) > share("learning progress")
+                             else "no better than")
+    retract = (f"{compare('return home simulated')} without the return"
+               if "return home simulated" in rows_all else None)
+    held = _pool([study["runs"]["learning progress"][str(r)] for r in HELD_OUT_ROOTS])
+    by_budget = np.array(held["pressed"]).all(axis=2).mean(axis=0)  # [budget]
+    trend = ("still rising at the default budget" if by_budget[-1] > by_budget[-2]
+             else "no longer rising at the default budget")
+    return {"n_all_seeds": len(lp_all), "lp_pooled_all_share": float(lp_all.mean()),
+            "rg_pooled_all_share": float(rg_all.mean()),
+            "pooled_difference": float(mean[0]), "pooled_difference_low": float(low[0]),
+            "pooled_difference_high": float(high[0]), "margin_verdict": margin,
+            "n_loop_seeds": len(lp["red_first"]), "loop_red_first": red_first,
+            "loop_as_scripted": as_scripted,
+            "options_verdict": options, "retract_verdict": retract,
+            "held_out_trend": trend,
+            "target_presses_tuning": word(rows["tuning"]["all_pressed_share"],
+                                          TARGETS["all_pressed_share"]),
+            "target_presses_held_out": word(rows["held_out"]["all_pressed_share"],
+                                            TARGETS["all_pressed_share"]),
+            "target_red_first": word(red_first, TARGETS["red_first_share"]),
+            "target_as_scripted": word(as_scripted, TARGETS["as_scripted"])}

@@ -1,0 +1,86 @@
+"""The goal-babbling agent (Rolf, Steil and Gienger 2010; SAGG-RIAC, Baranes and
+Oudeyer 2013): an interest model proposes a goal, a sensorimotor model turns it into
+a movement, and both learn from what the movement reached; explauto's agent loop
+(`produce`, then `perceive`), for many agents (rows) at once."""
+
+import numpy as np
+
+from icm import _validate
+from icm.learners.goal_choice import RandomGoals, RegionProgress, SplittingRegionProgress
+from icm.learners.sensorimotor import NearestNeighbourInverse
+
+N_BOOTSTRAP = 20
+"""The goal strategies start with this many random motor commands (the inverse model
+needs outcomes to start from). Our choice; the paper has no goal babbling."""
+
+
+class GoalBabblingAgent:
+    """Goal babbling for many agents (rows) at once, each with its own generator.
+
+    `produce` gives each row's next movement: for the first `n_bootstrap` rollouts,
+    and always without an interest model (random motor babbling), joint targets
+    uniform within the joints' ranges (7 numbers from the row's generator);
+    afterwards, a goal from the interest model (`goal_choice.sample`), turned into an
+    outcome by `goal_outcome`, and a movement for it from the sensorimotor model
+    (`inverse_model.explore`). `perceive` gives both what the movement reached.
+
+    Args:
+      inverse_model: a sensorimotor model (`icm.learners.sensorimotor`), with one
+        row per agent.
+      goal_choice: an interest model (`icm.learners.goal_choice.RandomGoals`,
+        `RegionProgress` or `SplittingRegionProgress`), or None for random motor
+        babbling.
+      generators: one `numpy.random.Generator` per row.
+      goal_outcome: a function from goals [rows, dims] to the outcomes they ask for
+        [rows, n_outcome] (default: the goals themselves).
+      n_bootstrap: random motor commands before the first goal (>= 1).
+    """
+
+    def __init__(self, inverse_model, goal_choice, generators, goal_outcome=None,
+                 n_bootstrap=N_BOOTSTRAP):
+        self.inverse_model = _validate.instance("inverse_model", inverse_model,
+                                                NearestNeighbourInverse)
+        if goal_choice is not None:
+            _validate.instance("goal_choice", goal_choice,
+                               (RandomGoals, RegionProgress, SplittingRegionProgress),
+                               "RandomGoals, RegionProgress, SplittingRegionProgress or None")
+        self.goal_choice = goal_choice
+        self.generators = list(generators)
+        if len(self.generators) != inverse_model.n_rows:
+            raise ValueError(f"generators must be one per row ({inverse_model.n_rows}), "
+                             f"got {len(self.generators)}")
+        for k, rng in enumerate(self.generators):
+            _validate.instance(f"generators[{k}]", rng, np.random.Generator)
+        self.goal_outcome = _validate.function("goal_outcome", goal_outcome) or (lambda g: g)
+        self.n_bootstrap = _validate.integer_at_least("n_bootstrap", n_bootstrap, 1)
+        self.n_produced = 0
+        self._goal_outcomes = None
+
+    @property
+    def n_rows(self):
+        return self.inverse_model.n_rows
+
+    def produce(self):
+        """The next movement of every row: (movements [rows, joints], goals [rows, dims]
+        or None while babbling randomly, regions [rows] or None)."""
+        model = self.inverse_model
+        self.n_produced += 1
+        if self.goal_choice is None or self.n_produced <= self.n_bootstrap:
+            self._goal_outcomes = None
+            return (np.array([rng.uniform(model.lower, model.upper)
+                              for rng in self.generators]), None, None)
+        goals, regions = self.goal_choice.sample(self.generators)
+        self._goal_outcomes = self.goal_outcome(goals)
+        self._regions = regions
+        return model.explore(self._goal_outcomes, self.generators), goals, regions
+
+    def perceive(self, movements, outcomes):
+        """Every row learns what its last movement reached: `movements` [rows, joints]
+        (as performed), `outcomes` [rows, n_outcome]. Returns the distances between
+        the goals and the outcomes [rows] (None after a random motor command)."""
+        self.inverse_model.update(movements, outcomes)
+        if self._goal_outcomes is None:
+            return None
+        distances = np.sqrt(((self._goal_outcomes - outcomes) ** 2).sum(axis=1))
+        self.goal_choice.update(self._regions, distances)
+        return distances
