@@ -151,10 +151,12 @@ def test_stored_topple_map_equals_a_fresh_physics_measurement_of_every_pair():
         assert pair["disturbance"] < 1e-3  # a rod that stays up is not nudged
 
 
-def test_physics_rod_observations_equal_the_tabular_twin():
+@pytest.mark.parametrize("rules", [dict(max_moves=20), dict(max_moves=None, off_grid="end")],
+                         ids=["time limit", "no limit, off the grid ends"])
+def test_physics_rod_observations_equal_the_tabular_twin(rules):
     rng = np.random.RandomState(11)
-    physics_env = icm.envs.load("rods", physics=True, max_moves=20)
-    tabular_env = icm.envs.load("rods", physics=False, max_moves=20)
+    physics_env = icm.envs.load("rods", physics=True, **rules)
+    tabular_env = icm.envs.load("rods", physics=False, **rules)
     physics_env.reset(), tabular_env.reset()
     topples = 0
     for action in rng.randint(4, size=300):
@@ -182,11 +184,33 @@ def test_rod_table_rules():
     assert step.last() and step.discount == 0.0
 
 
+def test_rod_table_rules_other_readings():
+    # No time limit: a thousand moves off the grid, and the episode goes on.
+    env = icm.envs.load("rods", max_moves=None)
+    env.reset()
+    for _ in range(1000):
+        step = env.step(1)  # backward, off the grid
+    assert step.mid() and step.observation["hand"].tolist() == [0, 0]
+    # A move off the grid ends the episode, with no rod toppled, as a termination.
+    env = icm.envs.load("rods", off_grid="end")
+    env.reset()
+    step = env.step(3)  # right, on the grid: goes on
+    assert step.mid() and step.observation["hand"].tolist() == [1, 0]
+    step = env.step(1)  # backward, off the grid
+    assert step.last() and step.discount == 0.0
+    assert step.observation["hand"].tolist() == [1, 0]
+    assert step.observation["rods"].tolist() == [0, 0]
+    assert env.step(0).first()  # a new episode, over the start cell
+    assert [rods.leaves_grid((0, 0), a) for a in range(4)] == [False, True, True, False]
+    assert [rods.leaves_grid((4, 2), a) for a in range(4)] == [True, False, False, True]
+
+
 @pytest.mark.parametrize("kwargs, message", [
     (dict(start_cell=(2, 1)), "start_cell"),  # the red rod stands there
     (dict(start_cell=(5, 0)), "start_cell"),
     (dict(start_cell="corner"), "start_cell"),
     (dict(max_moves=0), "max_moves"),
+    (dict(off_grid="wrap"), "off_grid"),
     (dict(colour="red"), "unknown argument"),
 ])
 def test_bad_rod_arguments_raise_value_error(kwargs, message):
@@ -444,6 +468,16 @@ def test_learners_give_identical_results_on_the_noisy_physics():
         np.testing.assert_array_equal(getattr(tabular, field), getattr(physics, field))
 
 
+def test_rod_learner_gives_identical_results_on_the_physics_without_a_time_limit():
+    settings = dict(n_seeds=2, n_episodes=5, max_moves=None, off_grid="end", seed=3,
+                    progress=False)
+    tabular = icm.experiments.run_rod_toppling(**settings)
+    physics = icm.experiments.run_rod_toppling(physics=True, **settings)
+    assert tabular.edge_ended_share() > 0
+    for field in ("toppled", "episode_length", "edge_moves", "prediction_error", "q_table"):
+        np.testing.assert_array_equal(getattr(tabular, field), getattr(physics, field))
+
+
 # --- the physics thresholds, each tried on both sides ------------------------------------
 
 def _tilt_rod(physics, name, degrees, azimuth=0.0):
@@ -595,3 +629,4 @@ def test_each_press_of_the_physics_noisy_button_opens_what_its_own_draw_says():
         if not step.first():
             seen.append(tuple(step.observation["boxes"].tolist()))
     assert seen == expected
+
