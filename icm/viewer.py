@@ -29,6 +29,10 @@ import numpy as np
 from icm import _validate
 from icm.envs._assets import asset_path
 
+BROWSER_MUJOCO = "3.14.0"
+"""The version of MuJoCo's WebAssembly build that the live views run in the reader's
+browser (`@mujoco/mujoco`, vendored in book/_static/vendor; a test checks its lock
+file); Python runs the `mujoco` package installed with icm."""
 SCENES = ("buttons", "rods")
 """The scenes the viewer shows."""
 STATIC_FILES = ("icm-live.js", "icm.css", "vendor/three/three.min.js",

@@ -153,6 +153,7 @@ def test_the_vendored_scripts_are_the_locked_packages():
     for package in ("@mujoco/mujoco", "three", "esbuild"):
         version = lock[f"node_modules/{package}"]["version"]
         assert f"`{package}` | {version}" in readme, package
+    assert lock["node_modules/@mujoco/mujoco"]["version"] == viewer.BROWSER_MUJOCO
     text = (vendor / "mujoco" / "mujoco-wasm.js").read_text()
     wasm = gzip.decompress(base64.b64decode(re.search(r'icmMujocoWasm = "([^"]+)"', text).group(1)))
     assert wasm[:4] == b"\0asm"

@@ -12,6 +12,7 @@ from dm_env import test_utils
 import icm
 from icm.envs import buttons, icub, rods
 
+from test_bad_input import refused
 from test_envs import _noisy_boxes
 
 
@@ -630,3 +631,40 @@ def test_each_press_of_the_physics_noisy_button_opens_what_its_own_draw_says():
             seen.append(tuple(step.observation["boxes"].tolist()))
     assert seen == expected
 
+
+# --- what the chapter "The simulated iCub" states -------------------------------------
+
+def test_body_dimensions_are_read_from_the_model():
+    physics = buttons.load_physics()
+    found = icub.body_dimensions(physics)
+    assert found["torso_lean"] == pytest.approx(25.0)  # euler="0 25 0" in assets/icub.xml
+    assert found["upper_arm"] == pytest.approx(0.152) and found["forearm"] == pytest.approx(0.137)
+    assert found["arm_joints"] == 7
+    # Measured another way: the elbow's and the wrist's joints, in the world.
+    data = physics.data
+    shoulder, elbow, wrist = (data.xanchor[physics.model.joint(n).id]
+                              for n in ("r_shoulder_pitch", "r_elbow", "r_wrist_pitch"))
+    assert np.linalg.norm(elbow - shoulder) == pytest.approx(found["upper_arm"], abs=0.02)
+    assert np.linalg.norm(wrist - elbow) == pytest.approx(found["forearm"], abs=1e-6)
+
+
+def test_the_twins_claims_hold_on_other_seeds_and_fail_when_they_should():
+    from icm.experiments import twins
+
+    button_check = icm.envs.compare_twins("buttons", n_steps=20, seed=4, action_seed=5)
+    rod_check = icm.envs.compare_twins("rods", n_steps=40, seed=4, action_seed=5)
+    topple_map = rods.load_topple_map()
+    run = dict(n_seeds=2, n_trials=4, seed=4, progress=False)
+    physics_run = icm.experiments.run_goal_oriented(physics=True, **run)
+    tabular_run = icm.experiments.run_goal_oriented(**run)
+    found = twins.claims(button_check, rod_check, topple_map, physics_run, tabular_run)
+    assert set(found) == set(twins.CLAIMS) and all(found.values()), found
+    other = icm.experiments.run_goal_oriented(**{**run, "seed": 5})
+    wrong = twins.claims({**button_check, "mismatches": 1}, rod_check,
+                         {**topple_map, "topples": {**topple_map["topples"],
+                                                    twins.FOREARM_PAIR: None}},
+                         physics_run, other)
+    assert [name for name, held in wrong.items() if not held] == [
+        "buttons_agree", "learner_same", "forearm_topples_red"]
+    refused(lambda: twins.claims([], rod_check, topple_map, physics_run, tabular_run),
+            "button_check", "[]", "type")

@@ -58,6 +58,9 @@ ALLOWED = {
     "goal_oriented_interest": [
         "2 to k-1",  # which histories the paper's definition leaves out (a definition)
     ],
+    "simulated_icub": [
+        "cell (2, 2)",  # a cell of the grid, named in the text (the map's hatched cell)
+    ],
     "rod_toppling": [
         "cell (0, 0)", "cell (2, 2)", "(2, 2)",  # cells of the grid, named in the text
         "Columns 0-4", "rows 0-2",  # the grid's numbering
