@@ -200,6 +200,19 @@ def standable_cells():
     return load_topple_map()["standable"]
 
 
+def describe_moves(pairs):
+    """(cell, action) pairs in words, in cell order: e.g. "forward from cell (0, 1) or
+    backward from cell (0, 2)"."""
+    words = []
+    for cell, action in sorted(pairs, key=lambda pair: (pair[0][::-1], pair[1])):
+        column, row = check_cell("cell", cell)
+        words.append(f"{ACTIONS[check_discrete_action(action, len(ACTIONS))]} from cell "
+                     f"({column}, {row})")
+    if not words:
+        raise ValueError("pairs must hold at least one (cell, action) pair, got none")
+    return ", ".join(words[:-1]) + (" or " if len(words) > 1 else "") + words[-1]
+
+
 def topple_counts(topple_map):
     """How many (cell, action) pairs topple each rod: {"red": n, "blue": m}."""
     values = list(topple_map["topples"].values())
@@ -234,7 +247,7 @@ def transition_tables(topple_map=None):
 
 __all__ = ["N_COLUMNS", "N_ROWS", "N_CELLS", "ACTIONS", "ROD_NAMES", "DEFAULT_START_CELL",
            "MAX_MOVES", "DEFAULT_MAX_MOVES", "OFF_GRIDS", "OFF_GRID", "check_max_moves",
-           "check_off_grid", "leaves_grid", "TOPPLE_TILT", "TOPPLE_MAP_FILE", "HAND_HEIGHT", "WOBBLY",
+           "check_off_grid", "leaves_grid", "describe_moves", "TOPPLE_TILT", "TOPPLE_MAP_FILE", "HAND_HEIGHT", "WOBBLY",
            "WOBBLE_TOPPLE_PROBABILITY", "WOBBLE_MAP_FILE", "check_cell", "cell_number",
            "number_cell", "next_cell", "rod_names", "observation_spec", "action_spec",
            "load_topple_map", "load_wobble_map", "wobble_table", "standable_cells",
