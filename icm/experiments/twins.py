@@ -30,7 +30,7 @@ def claims(button_check, rod_check, topple_map, physics_run, tabular_run):
       button_check, rod_check: what `icm.envs.compare_twins` returned for the
         buttons and the rods.
       topple_map: the measured topple map (`icm.envs.rods.load_topple_map()`).
-      physics_run, tabular_run: `GoalOrientedResult`s of the same call, with
+      physics_run, tabular_run: `GoalOrientedResult` objects of the same call, with
         `physics=True` and without.
 
     Returns:
