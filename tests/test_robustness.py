@@ -433,14 +433,14 @@ def test_a_reading_that_changes_a_verdict_is_named_and_the_others_are_not():
     assert [r.key for r in changed.changes()] == [("short_history", "zero")]
     assert changed.changed(("short_history", "zero")) == ["interest_later"]
     text = changed.describe()
-    assert text.startswith(f"1 of the {len(changed.readings)} other readings changes")
+    assert text.startswith(f"Of the {len(changed.readings)} other readings, 1 changes")
     assert "zero" in text and "interest moves to green later\" fails (20.0%" in text
     assert "witnessed" not in text and "earliest" not in text
     table = changed.table()
     assert table.count("\n") == 2 + len(changed.readings)
     assert table.count("**") == 2 and "**20.0% ✗**" in table
     same = _fake_readings(1.0)
-    assert same.changes() == [] and same.describe().startswith("none of the")
+    assert same.changes() == [] and same.describe().startswith("None of the")
     assert "**" not in same.table()
 
 
@@ -541,3 +541,31 @@ def test_the_readings_summary_names_what_changes_a_verdict():
     assert "read as zero" in text and text.endswith(f"the other {total - 1} change none")
     assert robustness.readings_summary([same]).startswith("none of the")
     refused(lambda: robustness.readings_summary([]), "results", "[]", "type")
+
+
+def test_the_chapters_numbers_come_from_its_maps(maps):
+    goal, critic, rods = maps["goal_oriented"], maps["actor_critic"], maps["rod_toppling"]
+    numbers, clauses = robustness.chapter_numbers(goal, critic, rods)
+    assert numbers["goal_lowest_weight"] == goal.holds_from("red_first", "action_weight")
+    assert numbers["goal_highest_failing_weight"] < numbers["goal_lowest_weight"]
+    assert numbers["goal_red_first"] == goal.summary()["red_first"]
+    assert numbers["critic_green_printed_fewest"] == critic.share(
+        "green_learned", variant="printed_td", presses_per_trial=1)[0]
+    assert numbers["rods_q_lowest"] <= numbers["rods_q_highest"]
+    assert clauses["rods_red_first_by_q"] == rods.shares_along("red_first", "initial_q")
+    refused(lambda: robustness.chapter_numbers(goal, goal, rods), "critic", "goal_oriented",
+            "value")
+
+
+def test_the_readings_numbers_come_from_the_runs():
+    found = {name: robustness.run_readings(name, n_seeds=10, seed=SEED, progress=False)
+             for name in robustness.STUDIES}
+    numbers, clauses = robustness.readings_numbers(found)
+    book = found["rod_toppling"].run()
+    assert numbers["edge_share"] == book.edge_share() > 0
+    assert numbers["time_limit_share"] == book.time_limit_share()
+    assert numbers["no_limit_longest"] >= numbers["book_longest"]
+    assert numbers["edge_ended_share"] > 0
+    assert clauses["readings_actor_critic"] == found["actor_critic"].describe()
+    refused(lambda: robustness.readings_numbers({"goal_oriented": found["goal_oriented"]}),
+            "found", "goal_oriented", "type")

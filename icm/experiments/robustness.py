@@ -854,7 +854,7 @@ class ReadingsResult:
         changed = self.changes()
         n = len(self.readings)
         if not changed:
-            return (f"none of the {n} other readings changes the verdict of a claim: "
+            return (f"None of the {n} other readings changes the verdict of a claim: "
                     f"every claim holds, fails or stays unclear as with the book's")
         parts = []
         for r in changed:
@@ -862,15 +862,15 @@ class ReadingsResult:
                              f"({self.share(c, r)[0]:.1%} of the seeds; with the book's "
                              f"{_show(r.default)}, it {self.verdict(c)}, "
                              f"{self.share(c)[0]:.1%})" for c in self.changed(r))
-            parts.append(f"with {r.label} {_show(r.value)}, {what}")
+            parts.append(f"with {r.label} read as {_show(r.value)}, {what}")
         rest = n - len(changed)
         changes = "changes" if len(changed) == 1 else "change"
-        return (f"{len(changed)} of the {n} other readings {changes} a claim's verdict: "
+        return (f"Of the {n} other readings, {len(changed)} {changes} a claim's verdict: "
                 + "; ".join(parts) + f". The other {rest} change none")
 
 
 def readings_summary(results):
-    """In words, over several `ReadingsResult`s, which other readings change a
+    """In words, over several `ReadingsResult` objects, which other readings change a
     claim's verdict and how many change none: a clause for the chapter (Markdown).
 
     Args:
@@ -979,7 +979,7 @@ def chapter_claims(goal, critic, rods_result):
     book's maps when it is built (and by the tests on theirs).
 
     Args:
-      goal, critic, rods_result: the `RobustnessResult`s of the studies
+      goal, critic, rods_result: the `RobustnessResult` objects of the studies
         "goal_oriented", "actor_critic" and "rod_toppling".
     """
     for name, result, study in (("goal", goal, "goal_oriented"), ("critic", critic,
@@ -1039,3 +1039,110 @@ def chapter_claims(goal, critic, rods_result):
         "presses_not_needed": all(goal.verdict(c, presses_per_trial=p) == "holds"
                                   for c in ("red_first", "interest_later") for p in presses),
     }
+
+
+def chapter_numbers(goal, critic, rods_result):
+    """The numbers and clauses the chapter "What the result depends on" quotes from
+    its three maps, by the names its text uses.
+
+    Args:
+      goal, critic, rods_result: the `RobustnessResult` objects of the studies
+        "goal_oriented", "actor_critic" and "rod_toppling".
+
+    Returns:
+      (numbers, clauses): two dicts, {name: a number or a word} and {name: a clause in
+      Markdown}. Each study's `summary()` is there too, its keys prefixed with "goal_",
+      "critic_" and "rods_".
+    """
+    chapter_claims(goal, critic, rods_result)  # checks the arguments
+    numbers, clauses = {}, {}
+    for prefix, result in (("goal_", goal), ("critic_", critic), ("rods_", rods_result)):
+        numbers.update({prefix + k: v for k, v in result.summary().items()})
+    # The goal-oriented learner.
+    weight = goal.study.setting("action_weight")
+    presses = goal.study.setting("presses_per_trial").values
+    threshold = goal.holds_from("red_first", "action_weight")
+    above = goal.points().query("action_weight >= @threshold")
+    numbers.update(
+        default_weight=weight.default, goal_lowest_weight=threshold,
+        goal_highest_failing_weight=max(w for w in weight.values if w < threshold),
+        goal_red_first_above_min=float(above.red_first.min()),
+        goal_later_progress_min=float(above.query("reading == 'progress'")
+                                      .interest_later.min()),
+        lowest_weight=weight.values[0],
+        goal_later_lowest_weight=goal.share("interest_later",
+                                            action_weight=weight.values[0])[0],
+        goal_later_lowest_weight_verdict=goal.verdict("interest_later",
+                                                      action_weight=weight.values[0]),
+        goal_later_literal=goal.share("interest_later", reading="literal")[0],
+        goal_later_weights_lowest=goal.holds_from("interest_later", "action_weight"),
+        presses_low=min(presses), presses_high=max(presses),
+        goal_green_one_press=goal.share("green_mastered", presses_per_trial=min(presses))[0],
+        goal_presses_in_run=min(presses) * goal.study.fixed["n_trials"])
+    clauses["goal_red_first_by_weight"] = goal.shares_along("red_first", "action_weight")
+    # The actor-critic.
+    weakest = critic.study.setting("action_weight").values[0]
+    fewest = critic.study.setting("presses_per_trial").values[0]
+    numbers.update(critic_weakest=weakest, critic_fewest=fewest)
+    for name, point in (("printed", {"variant": "printed_td"}),
+                        ("printed_weakest", {"variant": "printed_td", "action_weight": weakest}),
+                        ("printed_fewest", {"variant": "printed_td",
+                                            "presses_per_trial": fewest}),
+                        ("weakest", {"action_weight": weakest}),
+                        ("fewest", {"presses_per_trial": fewest})):
+        numbers[f"critic_green_{name}"] = critic.share("green_learned", **point)[0]
+    # The Q-learner on the rods.
+    qs = rods_result.study.setting("initial_q").values
+    epsilon = rods_result.study.setting("epsilon")
+    held = rods_result.holding_values("red_first", "initial_q")
+    numbers.update(
+        rods_q_lowest=min(held), rods_q_highest=max(held), rods_q_none=qs[0],
+        rods_epsilon_default=epsilon.default, rods_epsilon_largest=epsilon.values[-1],
+        rods_epsilon_largest_verdict=rods_result.verdict("red_first",
+                                                         epsilon=epsilon.values[-1]),
+        rods_blue_positive_q_min=float(rods_result.points().query("initial_q > 0")
+                                       .blue_found.min()))
+    clauses.update(
+        rods_red_first_by_q=rods_result.shares_along("red_first", "initial_q"),
+        rods_red_first_by_epsilon=rods_result.shares_along("red_first", "epsilon"),
+        rods_blue_q_none_by_epsilon=rods_result.shares_along("blue_found", "epsilon",
+                                                             initial_q=qs[0]))
+    return numbers, clauses
+
+
+def readings_numbers(found):
+    """The numbers and clauses the chapter "What the result depends on" quotes from
+    its other readings, by the names its text uses.
+
+    Args:
+      found: {study name: `ReadingsResult`}, for the three studies.
+
+    Returns:
+      (numbers, clauses), as `chapter_numbers`: per study its `describe()`; over
+      all of them `readings_summary`; for the rods, the book's run, the run without a
+      limit on moves and the run whose moves off the grid end the episode: the share
+      of episodes that end on the time limit, of moves that run into the edge, of
+      episodes that end there, the mean and the longest episode, and Figure 7's
+      story and order (`RodTopplingResult.tells_the_papers_story`, `in_paper_order`).
+    """
+    if not isinstance(found, dict) or set(found) != set(STUDIES):
+        raise _validate.ArgumentTypeError(f"found must be a dict of ReadingsResult by "
+                                          f"study name ({', '.join(STUDIES)}), got "
+                                          f"{_validate.show(found)}")
+    for name, result in found.items():
+        _validate.instance(f"found[{name!r}]", result, ReadingsResult)
+    clauses = {f"readings_{name}": result.describe() for name, result in found.items()}
+    clauses["readings_summary"] = readings_summary(list(found.values()))
+    clauses["not_measured_epsilon"] = NOT_MEASURED[("actor_critic", "epsilon")]
+    rod_runs = found["rod_toppling"]
+    book = rod_runs.run()
+    numbers = {"max_moves": book.settings["max_moves"],
+               "time_limit_share": book.time_limit_share(), "edge_share": book.edge_share(),
+               "edge_ended_share": rod_runs.run(("off_grid", "end")).edge_ended_share()}
+    for name, run in (("book", book), ("no_limit", rod_runs.run(("max_moves", None))),
+                      ("off_grid_ends", rod_runs.run(("off_grid", "end")))):
+        numbers[f"{name}_length"] = float(run.episode_length.mean())
+        numbers[f"{name}_longest"] = int(run.episode_length.max())
+        numbers[f"{name}_order"] = run.red_before_blue_begins()
+        numbers[f"{name}_story"] = float(run.tells_the_papers_story().mean())
+    return numbers, clauses
