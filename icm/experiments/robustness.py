@@ -1051,8 +1051,8 @@ def chapter_numbers(goal, critic, rods_result):
 
     Returns:
       (numbers, clauses): two dicts, {name: a number or a word} and {name: a clause in
-      Markdown}. Each study's `summary()` is there too, its keys prefixed with "goal_",
-      "critic_" and "rods_".
+      Markdown}. Each study's `summary()` is there too, its keys prefixed with the study
+      (``goal_``, ``critic_``, ``rods_``).
     """
     chapter_claims(goal, critic, rods_result)  # checks the arguments
     numbers, clauses = {}, {}
