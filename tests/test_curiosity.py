@@ -319,3 +319,14 @@ def test_a_coin_claims_hold_here_and_fail_when_they_should():
     wrong = [name for name, held in curiosity.coin_claims(swapped).items() if not held]
     assert wrong == ["error_pays_the_coin", "novelty_blind"], wrong
     refused(lambda: curiosity.coin_claims({}), "paid", "{}", "type")
+
+
+def test_red_first_in_words(comparison):
+    lowest = min(comparison.numbers(s, d)["red_first"]
+                 for (s, d, noisy) in comparison.results if not noisy)
+    text = comparison.describe_red_first()
+    assert text == ("in every seed" if lowest == 1 else f"in at least {lowest:.1%} of the seeds")
+    every = curiosity.SignalComparison(comparison.settings, {
+        key: result for key, result in comparison.results.items()
+        if key[:2] == ("novelty", "region")})
+    assert every.describe_red_first() == "in every seed"
