@@ -154,7 +154,7 @@ def test_the_vendored_scripts_are_the_locked_packages():
         version = lock[f"node_modules/{package}"]["version"]
         assert f"`{package}` | {version}" in readme, package
     # What the book says the browser runs is what is vendored.
-    assert lock["node_modules/@mujoco/mujoco"]["version"] == viewer.BROWSER_MUJOCO_VERSION
+    assert lock["node_modules/@mujoco/mujoco"]["version"] == viewer.BROWSER_MUJOCO
     text = (vendor / "mujoco" / "mujoco-wasm.js").read_text()
     wasm = gzip.decompress(base64.b64decode(re.search(r'icmMujocoWasm = "([^"]+)"', text).group(1)))
     assert wasm[:4] == b"\0asm"

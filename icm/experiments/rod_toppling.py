@@ -3,6 +3,7 @@ sections 2.2, 3.3 and 4.2, Figure 7); with other intrinsic rewards (`reward=`) a
 wobbly rod (`wobbly_rod=True`) for the chapter "Which curiosity?"."""
 
 import dataclasses
+import math
 
 import numpy as np
 
@@ -80,9 +81,12 @@ class RodTopplingResult:
     Attributes:
       settings: the arguments of the run, as a dict.
       toppled: [seed, episode], the rod that ended the episode: 0 red, 1 blue, 2 the
-        wobbly rod, -1 none (a time limit). Should the physics topple two at once, the
-        first.
+        wobbly rod, -1 none (a time limit, or with `off_grid="end"` a move off the
+        grid). Should the physics topple two at once, the first.
       episode_length: [seed, episode], moves in the episode.
+      edge_moves: [seed, episode], the episode's moves that ran into the edge of the
+        grid (a move off the grid: the hand stayed, or with `off_grid="end"` the
+        episode ended).
       prediction_error: [seed, episode, rod], the predictor's absolute errors on each
         rod (of `rod_names`) summed over the episode's moves: with the paper's reward,
         the intrinsic reward the robot was paid, split by rod.
@@ -111,6 +115,7 @@ class RodTopplingResult:
     settings: dict
     toppled: np.ndarray
     episode_length: np.ndarray
+    edge_moves: np.ndarray
     prediction_error: np.ndarray
     rod_error: np.ndarray
     rod_error_toppled: np.ndarray
@@ -176,6 +181,28 @@ class RodTopplingResult:
             raise ValueError(f"episodes must select at least one of the {self.n_episodes} "
                              f"episodes, got {episodes!r}")
         return float(np.mean(self.toppled[:, episodes] == index))
+
+    def edge_share(self):
+        """The share of all the run's moves that ran into the edge of the grid (see
+        `edge_moves`): how often the rule for a move off the grid, which the paper
+        does not give, was used."""
+        return float(self.edge_moves.sum() / self.episode_length.sum())
+
+    def _edge_ended(self):
+        """[seed, episode], True where the episode ended with a move off the grid."""
+        if self.settings.get("off_grid", rods.OFF_GRID.default) != "end":
+            return np.zeros(self.toppled.shape, dtype=bool)
+        return (self.toppled == -1) & (self.edge_moves > 0)
+
+    def edge_ended_share(self):
+        """The share of episodes that ended with a move off the grid (0 unless
+        `off_grid="end"`)."""
+        return float(self._edge_ended().mean())
+
+    def time_limit_share(self):
+        """The share of episodes that ended on the time limit, `max_moves` moves
+        without a topple (0 without a limit)."""
+        return float(((self.toppled == -1) & ~self._edge_ended()).mean())
 
     def rod_errors(self, reading="all"):
         """[seed, episode, rod], `rod_error` (reading "all") or `rod_error_toppled`
@@ -358,7 +385,8 @@ def _median_of_found(episodes):
 
 
 def _check_run_arguments(n_seeds, n_episodes, wobbly_rod, physics, start_cell, max_moves,
-                         snapshot_episodes, seed, first_run, progress, settings):
+                         snapshot_episodes, seed, first_run, progress, settings,
+                         off_grid=rods.OFF_GRID.default):
     """The run's own arguments (its learner's `settings` are checked already), checked
     and normalised, with the settings' values, as the result's `settings` dict; the
     run's memory is checked too."""
@@ -376,12 +404,19 @@ def _check_run_arguments(n_seeds, n_episodes, wobbly_rod, physics, start_cell, m
         wobbly_rod=_validate.boolean("wobbly_rod", wobbly_rod),
         physics=_validate.boolean("physics", physics),
         start_cell=rods.check_start_cell(start_cell, rods.load_topple_map()["standable"]),
-        max_moves=_validate.integer_at_least("max_moves", max_moves, 1),
+        max_moves=rods.check_max_moves(max_moves),
+        off_grid=rods.check_off_grid(off_grid),
         snapshot_episodes=episodes,
         seed=_validate.root_seed("seed", seed),
         first_run=_validate.integer("first_run", first_run, 0, _validate.MAX_SEED))
     _validate.boolean("progress", progress)
     checked = {**checked, **settings.as_dict()}
+    if checked["max_moves"] is None and checked["reward"] != "random" and \
+            np.any(np.asarray(checked["epsilon"]) == 0):
+        raise ValueError("max_moves=None (no time limit) needs epsilon > 0: a learner that "
+                         "never moves at random can walk in circles for ever, and its "
+                         "episode would never end; got epsilon "
+                         f"{_validate.show(checked['epsilon'])}")
     check_memory("run_rod_toppling", {"n_seeds": checked["n_seeds"], "n_episodes": n_episodes},
                  memory_needed(checked["n_seeds"], n_episodes, checked["reward"],
                                checked["window"], checked["wobbly_rod"], checked["physics"],
@@ -407,9 +442,9 @@ def memory_needed(n_rows, n_episodes, reward="prediction_error", window=interest
     n_rods = len(rods.rod_names(wobbly_rod))
     n_fixed, pairs = len(RODS), N_STATES * N_ACTIONS
     n_snapshots = len(MOMENTS) + n_snapshot_episodes
-    # The result, per row and episode: toppled, episode_length; prediction_error [rod];
-    # rod_error, rod_error_toppled [red and blue] ...
-    kept = 8 * n_rows * n_episodes * (2 + n_rods + 2 * n_fixed)
+    # The result, per row and episode: toppled, episode_length, edge_moves;
+    # prediction_error [rod]; rod_error, rod_error_toppled [red and blue] ...
+    kept = 8 * n_rows * n_episodes * (3 + n_rods + 2 * n_fixed)
     # ... per row and snapshot: q_table, predictions [cell, action, ...], confidence [cell].
     kept += 8 * n_rows * n_snapshots * (pairs * (1 + n_rods) + N_STATES)
     # While it is made: the masks that find the moments, per episode; the snapshots as
@@ -425,7 +460,7 @@ def memory_needed(n_rows, n_episodes, reward="prediction_error", window=interest
         learner += n_rows * 8 * pairs * (kmax + 2)
     elif reward != "prediction_error":
         learner += n_rows * 8 * pairs * ((window if reward == "learning_progress" else 1) + 1)
-    moves = n_episodes * max_moves  # at most
+    moves = n_episodes * (math.inf if max_moves is None else max_moves)  # at most
     streams = _streams.memory_bound(n_rows, moves * action_selection.DRAWS_PER_CHOICE)
     if physics:  # a simulated table per row
         tables = n_rows * PHYSICS_SCENE_BYTES
@@ -444,6 +479,7 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
                      seed=0,
                      first_run=0,
                      progress=True,
+                     off_grid=rods.OFF_GRID.default,
                      settings=None):
     """Runs the curious Q-learner on the rods, once per seed.
 
@@ -451,7 +487,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
     `LinearPredictor` of both rods' outcome per (cell, action) and a `QLearner` paid
     by that predictor's absolute errors, with its own seeds drawn from `seed`, and
     plays `n_episodes` episodes. An episode starts with the hand over `start_cell` and
-    ends when a rod topples (or after `max_moves` moves).
+    ends when a rod topples (or after `max_moves` moves, or with `off_grid="end"` at a
+    move off the grid).
 
     Args:
       n_seeds: number of independent runs (>= 1).
@@ -462,7 +499,10 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
         runs the physics: about 6 ms; the errors in `rod_error` are still measured
         against the stored topple map).
       start_cell: (column, row) where each episode starts.
-      max_moves: moves after which an episode without a topple ends (>= 1).
+      max_moves: moves after which an episode without a topple ends (>= 1), or None:
+        no time limit, the paper's "Each episode ends as soon as the robot topples one
+        of the two rods" (it needs epsilon > 0, or the random walk, so that every
+        episode ends).
       snapshot_episodes: episodes (1..n_episodes) after which to keep a snapshot, in
         addition to the `MOMENTS`.
       seed: the root seed: an integer >= 0, a `numpy.random.Generator` (one integer
@@ -472,6 +512,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
         first_run..first_run+n_seeds-1 of the root seed, so that one run of a large
         batch can be rerun alone (`n_seeds=1, first_run=i`).
       progress: show a progress bar when the run lasts over a second.
+      off_grid: what a move off the grid does, "stay" (the hand stays where it is, the
+        default) or "end" (the episode ends); see `icm.envs.rods.rules.OFF_GRID`.
       settings: the learner's settings, a `icm.learners.q_learning.QLearnerSettings`
         (or give them one by one as keyword arguments, listed below).
 
@@ -485,7 +527,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
     learner = settings
     settings = _check_run_arguments(n_seeds, n_episodes, wobbly_rod, physics, start_cell,
                                     max_moves, snapshot_episodes, seed, first_run, progress,
-                                    learner)
+                                    learner, off_grid)
+    off_grid = settings["off_grid"]
     n_seeds, n_episodes, max_moves = (settings["n_seeds"], settings["n_episodes"],
                                       settings["max_moves"])
     extra, seed, start_cell = (settings["snapshot_episodes"], settings["seed"],
@@ -500,7 +543,7 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
         env = rods.PhysicsRodTableBatch(n_seeds, start_cell, wobbly_rod, env_seeds)
         agents = [q_learning.QLearner.from_settings(N_STATES, N_ACTIONS, n_rods, learner, s)
                   for s in agent_seeds]
-        played = play_episodes(env, agents, n_episodes, max_moves, extra, progress)
+        played = play_episodes(env, agents, n_episodes, max_moves, extra, progress, off_grid)
     else:
         from icm.experiments import _rods_kernel  # here: it loads Numba
 
@@ -517,7 +560,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
             env.next_cell, env.topples, rods.cell_number(start_cell), max_moves, n_episodes,
             toppling_pairs(), extra, WELL_PREDICTED_ERROR, bar=bar, reward=learner.reward,
             window=learner.window,
-            wobbles=env.wobbles if wobbly_rod else None, env_streams=env.streams)
+            wobbles=env.wobbles if wobbly_rod else None, env_streams=env.streams,
+            off_grid=off_grid)
         if bar is not None:
             bar.close()
         played = summarize(raw, extra)
@@ -531,7 +575,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
     p_out = np.where(came[..., None, None] & standing[..., None, None],
                      _to_grid(played["predictions"]), np.nan)
     c_out = np.where(came & standing, _to_grid(played["confidence"]), np.nan)
-    return RodTopplingResult(settings, played["toppled"], played["length"], played["errors"],
+    return RodTopplingResult(settings, played["toppled"], played["length"], played["edges"],
+                             played["errors"],
                              rod_error, played["rod_error_toppled"], predicted_well,
                              played["predicted_well_toppled"], names,
                              played["snapshot_episode"], q_out, p_out, c_out)
@@ -549,14 +594,16 @@ def toppling_pairs():
     return np.array(cells), np.array(actions), np.array(which)
 
 
-def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), progress=False):
+def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), progress=False,
+                  off_grid=rods.OFF_GRID.default):
     """Plays `n_episodes` episodes of each per-agent learner of `agents` (`QLearner`s,
     one per row of `env`, a batched rod table such as the physics one), and summarises
     them (`summarize`).
 
     The rows move independently: each acts at every iteration until it has played its
     episodes, starting a new episode (hand over the start cell) as soon as its last one
-    ended with a topple or after `max_moves` moves. After each episode the compiled
+    ended with a topple, after `max_moves` moves (None: no limit), or with
+    `off_grid="end"` at a move off the grid (the hand stayed in its cell). After each episode the compiled
     `icm.experiments._rods_kernel.record_episode` keeps what the result needs, as the
     compiled loop of the tabular runs does (which gives the same numbers).
     """
@@ -567,7 +614,10 @@ def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), prog
     n_rods = agents[0].predictor.n_outputs
     raw = {"toppled": np.full((n, n_episodes), -1, dtype=np.int64),
            "length": np.zeros((n, n_episodes), dtype=np.int64),
+           "edges": np.zeros((n, n_episodes), dtype=np.int64),
            "errors": np.zeros((n, n_episodes, n_rods))}
+    limit = _rods_kernel.NO_LIMIT if rods.check_max_moves(max_moves) is None else max_moves
+    off_grid_ends = rods.check_off_grid(off_grid) == "end"
     found = np.full((n, n_states, n_actions, n_rods), n_episodes, dtype=np.int64)
     record = _rods_kernel.recorder(n, n_episodes, n_states, n_actions, n_rods,
                                    toppling_pairs(), snapshot_episodes, WELL_PREDICTED_ERROR)
@@ -580,6 +630,7 @@ def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), prog
     state = np.full(n, env.start)
     episode = np.zeros(n, dtype=np.int64)
     moves = np.zeros(n, dtype=np.int64)
+    edges = np.zeros(n, dtype=np.int64)
     error_sum = np.zeros((n, n_rods))
     active = np.arange(n)
     env.new_episodes(active)
@@ -589,20 +640,25 @@ def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), prog
         actions = np.array([agents[r].select_action(int(c)) for r, c in zip(active, cells)],
                            dtype=np.int64)
         next_cells, toppled = env.move(active, cells, actions)
-        for r, c, a, after, rod in zip(active.tolist(), cells.tolist(), actions.tolist(),
-                                       next_cells.tolist(), toppled.tolist()):
+        off = next_cells == cells  # a move off the grid: the hand stayed
+        terminal = (toppled >= 0) | (off & off_grid_ends)
+        for r, c, a, after, rod, last in zip(active.tolist(), cells.tolist(),
+                                             actions.tolist(), next_cells.tolist(),
+                                             toppled.tolist(), terminal.tolist()):
             observed = [1.0 if rod == i else 0.0 for i in range(n_rods)]
-            agents[r].learn(c, a, observed, after, 0.0 if rod >= 0 else 1.0)
+            agents[r].learn(c, a, observed, after, 0.0 if last else 1.0)
             for i, error in enumerate(agents[r].last_errors):  # in order, as the loop adds
                 error_sum[r, i] += error
         moves[active] += 1
+        edges[active] += off
         state[active] = next_cells
-        ended = (toppled >= 0) | (moves[active] >= max_moves)
+        ended = terminal | (moves[active] >= limit)
         if not ended.any():
             continue
         done, top, ep = active[ended], toppled[ended], episode[active[ended]]
         raw["toppled"][done, ep] = top
         raw["length"][done, ep] = moves[done]
+        raw["edges"][done, ep] = edges[done]
         raw["errors"][done, ep] = error_sum[done]
         hit = top >= 0
         pairs = (done[hit], cells[ended][hit], actions[ended][hit], top[hit])
@@ -616,7 +672,7 @@ def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), prog
                                           for a in range(n_actions))] for s in states]
             _rods_kernel.record_episode(row, row_episode, rod, q, predictions, last_error,
                                         found, record)
-        state[done], moves[done], error_sum[done] = env.start, 0, 0.0
+        state[done], moves[done], edges[done], error_sum[done] = env.start, 0, 0, 0.0
         episode[done] += 1
         env.new_episodes(done)
         active = active[episode[active] < n_episodes]
@@ -632,7 +688,7 @@ def summarize(raw, snapshot_episodes=()):
     """The summary of played episodes (`play_episodes`, or the compiled loop).
 
     Args:
-      raw: over [row, episode], "toppled", "length", "errors" [..., rod], and what
+      raw: over [row, episode], "toppled", "length", "edges", "errors" [..., rod], and what
         `icm.experiments._rods_kernel.record_episode` kept: "rod_error",
         "rod_error_toppled" [..., rod], "predicted_well_toppled" [row, rod], and the
         learner's snapshots [row, slot, ...] "q_snapshots", "p_snapshots",
@@ -640,7 +696,7 @@ def summarize(raw, snapshot_episodes=()):
 
     Returns:
       A dict of arrays: over [row, episode], "toppled" (0 red, 1 blue, -1 none),
-      "length" (moves), "errors" [..., rod] (the predictor's errors, summed over the
+      "length" (moves), "edges" (moves off the grid), "errors" [..., rod] (the predictor's errors, summed over the
       episode's moves), "rod_error" and "rod_error_toppled" [..., rod] (see
       `RodTopplingResult`); "predicted_well_toppled" [row, rod]; and the snapshots
       over [row, snapshot] at the `MOMENTS` and after the `snapshot_episodes`,
@@ -649,7 +705,7 @@ def summarize(raw, snapshot_episodes=()):
       whatever the slot holds: the caller masks them).
     """
     n, n_episodes = raw["toppled"].shape
-    out = {key: raw[key] for key in ("toppled", "length", "errors", "rod_error",
+    out = {key: raw[key] for key in ("toppled", "length", "edges", "errors", "rod_error",
                                      "rod_error_toppled", "predicted_well_toppled")}
     # The moments, and the learner at each of them.
     red_well = first_from_which(out["rod_error"][..., 0] < WELL_PREDICTED_ERROR)

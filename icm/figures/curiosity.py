@@ -18,6 +18,9 @@ WOBBLY_COLOUR = "#e6a817"
 """The wobbly rod's colour (as in assets/rods_wobbly.xml)."""
 BLOCK = 10
 """Episodes per point in the rod curves: shares over blocks of this many episodes."""
+MASTERED_SHARE = 0.95
+"""A marker of `signal_mastery_figure` is hollow when fewer than this share of the
+seeds master the task."""
 
 
 def _label(name):
@@ -27,8 +30,8 @@ def _label(name):
 def signal_mastery_figure(comparison):
     """When the predictor masters red and green, per signal and place of interest:
     the mean mastery trial over the seeds that master the task, with its 95% band,
-    without (left) and with (right) the noisy button. A hollow marker: fewer than 95%
-    of the seeds master the task (the share is written beside it).
+    without (left) and with (right) the noisy button. A hollow marker: fewer than
+    `MASTERED_SHARE` of the seeds master the task (the share is written beside it).
 
     Args:
       comparison: a `SignalComparison`.
@@ -50,9 +53,9 @@ def signal_mastery_figure(comparison):
                 colour = TASK_COLOURS[task]
                 right_end = max(right_end, high)
                 ax.errorbar(mean, y + offset, xerr=[[mean - low], [high - mean]], fmt="o",
-                            color=colour, mfc=colour if share >= 0.95 else "white",
+                            color=colour, mfc=colour if share >= MASTERED_SHARE else "white",
                             markersize=6, capsize=2)
-                if share < 0.95:
+                if share < MASTERED_SHARE:
                     ax.annotate(f"{share:.0%} of seeds", (high, y + offset),
                                 xytext=(4, -3), textcoords="offset points", fontsize=7,
                                 color=colour)
