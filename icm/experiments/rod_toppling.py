@@ -343,12 +343,13 @@ def initial_q_claims(default, untried_worth_nothing, untried_worth_a_surprise):
     `initial_q`, at a lower one and at a higher one.
 
     Args:
-      default, untried_worth_nothing, untried_worth_a_surprise: `RodTopplingResult`s,
-        the second with a lower `initial_q` than the first, the third a higher.
+      default, untried_worth_nothing, untried_worth_a_surprise: each a
+        `RodTopplingResult`, the second with a lower `initial_q` than the first, the
+        third a higher.
 
     Raises:
-      ValueError: if the runs are not `RodTopplingResult`s with initial Q values in
-        that order.
+      TypeError: if a run is not a `RodTopplingResult`.
+      ValueError: if the runs' initial Q values are not in that order.
     """
     runs = {"default": default, "untried_worth_nothing": untried_worth_nothing,
             "untried_worth_a_surprise": untried_worth_a_surprise}
