@@ -8,12 +8,22 @@ from icm import _validate
 from icm.envs import buttons, icub, rods
 from icm.experiments import curiosity as _curiosity
 from icm.experiments.curiosity import RewardComparison, SignalComparison
-from icm.figures._common import TASK_COLOURS, check_result, new_figure, plot_mean_band
+from icm.figures._common import (LINESTYLES, MARKERS, TASK_COLOURS, check_result, new_figure,
+                                 plot_mean_band, series_style)
 from icm.figures.icub import check_camera, check_image_size, render
 
 SIGNAL_COLOURS = {"learning_progress": "#1b9e77", "prediction_error": "#d95f02",
                   "novelty": "#7570b3", "random": "#7a7a7a"}
 """One colour per interest signal (or intrinsic reward)."""
+SIGNAL_STYLES = {"learning_progress": {"linestyle": "-", "marker": "o"},
+                 "prediction_error": {"linestyle": "--", "marker": "s"},
+                 "novelty": {"linestyle": "-.", "marker": "^"},
+                 "random": {"linestyle": ":", "marker": "D"}}
+"""And a line style and marker each, so that no two differ by colour alone."""
+
+
+def _signal_style(signal):
+    return SIGNAL_STYLES.get(signal, {"linestyle": LINESTYLES[0], "marker": MARKERS[-1]})
 WOBBLY_COLOUR = "#e6a817"
 """The wobbly rod's colour (as in assets/rods_wobbly.xml)."""
 BLOCK = 10
@@ -49,7 +59,8 @@ def signal_mastery_figure(comparison):
                 share = numbers[f"{task}_mastered"][0]
                 colour = TASK_COLOURS[task]
                 right_end = max(right_end, high)
-                ax.errorbar(mean, y + offset, xerr=[[mean - low], [high - mean]], fmt="o",
+                ax.errorbar(mean, y + offset, xerr=[[mean - low], [high - mean]],
+                            fmt=series_style(task)["marker"],
                             color=colour, mfc=colour if share >= 0.95 else "white",
                             markersize=6, capsize=2)
                 if share < 0.95:
@@ -64,8 +75,9 @@ def signal_mastery_figure(comparison):
                      f", {comparison.settings['n_seeds']} seeds", fontsize=10)
     axes[0][0].set_xlim(0, 1.3 * right_end)  # the axes share x: room for every band
     axes[0][0].invert_yaxis()  # the axes share y: once for all
-    axes[0][0].plot([], [], "o", color=TASK_COLOURS["red"], label="red task")
-    axes[0][0].plot([], [], "o", color=TASK_COLOURS["green"], label="green task")
+    for task in ("red", "green"):
+        axes[0][0].plot([], [], series_style(task)["marker"], color=TASK_COLOURS[task],
+                        label=f"{task} task")
     axes[0][0].legend(frameon=False, fontsize=8, loc="lower right")
     return fig
 
@@ -89,7 +101,7 @@ def noisy_share_figure(comparison):
         for signal in comparison.settings["signals"]:
             result = comparison.results[(signal, design, True)]
             plot_mean_band(ax, result.button_share[:, :, buttons.NOISY_BUTTON],
-                           SIGNAL_COLOURS[signal], _label(signal))
+                           SIGNAL_COLOURS[signal], _label(signal), **_signal_style(signal))
         ax.axhline(_curiosity.CHANCE_SHARE, color="black", linestyle="--", linewidth=1)
         ax.set(xlabel="trial", xlim=(1, comparison.settings["n_trials"]), ylim=(0, 1))
         ax.set_title(f"interest per {design}", fontsize=10)
@@ -125,8 +137,9 @@ def wobbly_rod_figure(comparison):
         colour = SIGNAL_COLOURS[reward]
         shares = _block_shares(result, result.rod_names.index(rods.WOBBLY))
         x = BLOCK * np.arange(shares.shape[1]) + (BLOCK + 1) / 2
-        plot_mean_band(left, shares, colour, _label(reward), x=x)
-        plot_mean_band(right, result.rod_error[:, :, 0], colour, _label(reward))
+        plot_mean_band(left, shares, colour, _label(reward), x=x, **_signal_style(reward))
+        plot_mean_band(right, result.rod_error[:, :, 0], colour, _label(reward),
+                       **_signal_style(reward))
     n = comparison.settings["n_seeds"]
     left.set(xlabel="episode", ylabel="share of episodes ending at the wobbly rod",
              ylim=(0, 1), xlim=(1, comparison.settings["n_episodes"]))
@@ -162,7 +175,8 @@ def coin_flip_figure(curves):
         values = _validate.finite_array(f"curves[{(signal, kind)!r}]", values, ndim=2)
         plot_mean_band(ax, values, SIGNAL_COLOURS.get(signal, "black"),
                        f"{_label(signal)}, {'fair coin' if kind == 'coin' else 'sure outcome'}",
-                       linestyle="-" if kind == "coin" else "--")
+                       linestyle="-" if kind == "coin" else "--",
+                       marker=_signal_style(signal)["marker"])
     ax.set(xlabel="try of the pair", ylabel="reward paid (mean over seeds)",
            xlim=(1, max(v.shape[1] for v in curves.values())))
     ax.set_ylim(bottom=0)

@@ -11,7 +11,7 @@ from icm.envs import buttons
 from icm.experiments import goal_babbling as _babbling
 from icm.experiments.goal_babbling import GoalBabblingResult
 from icm.experiments.results import check_results
-from icm.figures._common import check_result, new_figure, plot_mean_band
+from icm.figures._common import LINESTYLES, MARKERS, check_result, new_figure, plot_mean_band
 
 _MADE_BY = "icm.experiments.run_goal_babbling"
 STRATEGY_COLOURS = {"random_motor": "#7f7f7f", "random_goal": "#1f77b4",
@@ -37,10 +37,12 @@ def test_error_figure(results):
     """
     check_results("results", results, GoalBabblingResult)
     fig, ax = new_figure(width=6.8, height=3.8)
-    for label, result in results.items():
+    for i, (label, result) in enumerate(results.items()):
         plot_mean_band(ax, 100 * result.test_error,
                        STRATEGY_COLOURS.get(result.strategy, "black"),
-                       f"{label} ({result.n_seeds} seeds)", x=result.checkpoints)
+                       f"{label} ({result.n_seeds} seeds)", x=result.checkpoints,
+                       linestyle=LINESTYLES[i % len(LINESTYLES)],
+                       marker=MARKERS[1 + i % (len(MARKERS) - 1)])
     ax.set_xlabel("rollouts")
     ax.set_ylabel("test error (cm, mean over seeds)")
     ax.set_ylim(bottom=0)

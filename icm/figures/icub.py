@@ -10,7 +10,7 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import buttons, rods
-from icm.figures._common import TASK_COLOURS, new_figure
+from icm.figures._common import TASK_COLOURS, new_figure, series_style
 
 ROD_COLOURS = {"red": TASK_COLOURS["red"], "blue": "#1f5fcc"}
 
@@ -251,7 +251,8 @@ def press_trace_figure(record):
     top.legend(frameon=False, fontsize=8, loc="upper right")
     for i, name in enumerate(buttons.BOX_NAMES):
         bottom.plot(record["time"], record["lids"][:, i], color=TASK_COLOURS[name],
-                    linewidth=2, label=f"{name} lid")
+                    linewidth=2, label=f"{name} lid",
+                    linestyle=series_style(name)["linestyle"])
     bottom.axhline(np.rad2deg(buttons.BOX_OPEN_ANGLE), color="#888888", linewidth=0.8)
     bottom.text(record["time"][-1], np.rad2deg(buttons.BOX_OPEN_ANGLE), "counts as open",
                 va="bottom", ha="right", fontsize=8, color="#555555")

@@ -15,7 +15,7 @@ from icm.envs import rods
 from icm.experiments import rod_toppling as _rod_toppling
 from icm.experiments.results import check_results
 from icm.experiments.rod_toppling import RodTopplingResult
-from icm.figures._common import check_result, new_figure, plot_mean_band
+from icm.figures._common import check_result, new_figure, plot_mean_band, series_style
 
 _MADE_BY = "icm.experiments.run_rod_toppling"
 from icm.figures.icub import ROD_COLOURS
@@ -295,8 +295,10 @@ def topple_share_figure(result):
     check_result("result", result, RodTopplingResult, _MADE_BY)
     fig, (left, right) = new_figure(width=9.0, height=3.8, ncols=2)
     for i, rod in enumerate(_rod_toppling.RODS):
-        plot_mean_band(left, _shares(result, i), ROD_COLOURS[rod], f"{rod} rod toppled")
-    plot_mean_band(left, _shares(result, -1), NONE_COLOUR, "none (time limit)")
+        plot_mean_band(left, _shares(result, i), ROD_COLOURS[rod], f"{rod} rod toppled",
+                       **series_style(rod))
+    plot_mean_band(left, _shares(result, -1), NONE_COLOUR, "none (time limit)",
+                   linestyle=":", marker="x")
     left.set(xlabel="episode", ylabel="share of episodes (mean over seeds)",
              xlim=(1, result.n_episodes), ylim=(0, 1.02))
     left.set_title(f"How episodes end, {result.n_seeds} seeds, 95% band", fontsize=10)
