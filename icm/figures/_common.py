@@ -300,6 +300,14 @@ def new_figure(width=6.4, height=3.8, ncols=1, nrows=1, **kwargs):
     return fig, axes
 
 
+def legend_below(ax, ncols=2, **kwargs):
+    """A legend under `ax` (below its horizontal axis), where it covers no data; the
+    figure's constrained layout makes room for it."""
+    _validate.instance("ax", ax, matplotlib.axes.Axes, "a matplotlib Axes")
+    return ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=ncols,
+                     frameon=False, borderaxespad=0.0, **kwargs)
+
+
 LINESTYLES = ("-", "--", ":", "-.")
 """The line styles `plot_mean_band` draws a mean with."""
 

@@ -2,6 +2,8 @@
 buttons and the rods, with and without noise, and the scenes with the noisy button and
 the wobbly rod."""
 
+import textwrap
+
 import numpy as np
 
 from icm import _validate
@@ -9,7 +11,7 @@ from icm.envs import buttons, icub, rods
 from icm.experiments import curiosity as _curiosity
 from icm.experiments.curiosity import RewardComparison, SignalComparison
 from icm.figures._common import (LINESTYLES, MARKERS, TASK_COLOURS, check_result, new_figure,
-                                 plot_mean_band, series_style)
+                                 legend_below, plot_mean_band, series_style)
 from icm.figures.icub import check_camera, check_image_size, render
 
 SIGNAL_COLOURS = {"learning_progress": "#1b9e77", "prediction_error": "#d95f02",
@@ -69,7 +71,7 @@ def signal_mastery_figure(comparison):
                                 color=colour)
         ax.set_yticks(range(len(rows)))
         ax.set_yticklabels([f"{_label(s)}, per {d}" for s, d in rows], fontsize=8)
-        ax.set_xlabel("mastery trial (mean, 95% band)")
+        ax.set_xlabel("mastery trial")
         ax.grid(axis="x", alpha=0.3)
         ax.set_title(("with the noisy button" if noisy else "five buttons") +
                      f", {comparison.settings['n_seeds']} seeds", fontsize=10)
@@ -105,7 +107,7 @@ def noisy_share_figure(comparison):
         ax.axhline(_curiosity.CHANCE_SHARE, color="black", linestyle="--", linewidth=1)
         ax.set(xlabel="trial", xlim=(1, comparison.settings["n_trials"]), ylim=(0, 1))
         ax.set_title(f"interest per {design}", fontsize=10)
-    axes[0][0].set_ylabel("share of presses on the noisy button")
+    axes[0][0].set_ylabel("share of presses\non the noisy button")
     axes[0][0].legend(frameon=False, fontsize=8, loc="upper left")
     return fig
 
@@ -131,7 +133,7 @@ def wobbly_rod_figure(comparison):
                  "icm.experiments.run_reward_comparison")
     if True not in comparison.settings["wobbly"]:
         raise ValueError("comparison must hold runs with the wobbly rod (wobbly=(..., True))")
-    fig, (left, right) = new_figure(width=10.4, height=3.7, ncols=2)
+    fig, (left, right) = new_figure(width=6.7, height=7.6, nrows=2)
     for reward in comparison.settings["rewards"]:
         result = comparison.results[(reward, True)]
         colour = SIGNAL_COLOURS[reward]
@@ -141,10 +143,10 @@ def wobbly_rod_figure(comparison):
         plot_mean_band(right, result.rod_error[:, :, 0], colour, _label(reward),
                        **_signal_style(reward))
     n = comparison.settings["n_seeds"]
-    left.set(xlabel="episode", ylabel="share of episodes ending at the wobbly rod",
+    left.set(xlabel="episode", ylabel="share of episodes\nending at the wobbly rod",
              ylim=(0, 1), xlim=(1, comparison.settings["n_episodes"]))
     left.set_title(f"Where the episodes end, {n} seeds", fontsize=10)
-    left.legend(frameon=False, fontsize=8, loc="center left")
+    legend_below(left, ncols=2)
     right.axhline(_curiosity._rod_toppling.WELL_PREDICTED_ERROR, color="black",
                   linestyle="--", linewidth=1)
     right.set(xlabel="episode", ylabel="largest error left on a red pair", ylim=(0, 1.02),
@@ -254,6 +256,8 @@ def scenes_figure(camera="front"):
     for ax, image, title in [(left, press, "(a) a press of the noisy button (blue), at random"),
                              (right, fall, "(b) the wobbly rod (yellow) falls, at random")]:
         ax.imshow(image)
-        ax.set_title(title, fontsize=10)
+        ax.set_title(textwrap.fill(title, 30), fontsize=10)
         ax.axis("off")
-    return fig
+    return fig.describe("Two renderings of the simulated iCub: (a) its finger presses the "
+                        "noisy button, the blue one right of the console; (b) the wobbly "
+                        "yellow rod falls as the hand passes it.")

@@ -103,10 +103,13 @@ def coverage_figure(results, early=0.2):
             ax.scatter(goals[:, 1], goals[:, 0], marker="x", s=18, color="black",
                        linewidths=1, label="press goals")
             pressed = (result.pressed[:, :stop] >= 0).mean()
-            ax.set_title(f"{label}: first {stop} rollouts, {result.n_seeds} seeds\n"
-                         f"{touched.mean():.0%} ended on the console, {pressed:.0%} pressed "
-                         "a button", fontsize=8)
-    axes[0, 0].legend(frameon=False, fontsize=7, loc="lower left", markerscale=2)
+            ax.set_title(f"{label}:\nfirst {stop} rollouts, {result.n_seeds} seeds\n"
+                         f"{touched.mean():.0%} on the console, {pressed:.0%} pressed",
+                         fontsize=8)
+    # Under the maps, not on them: a legend there would cover the console's buttons.
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncols=3, frameon=False,
+               markerscale=3)
     return fig
 
 

@@ -3,7 +3,11 @@ press and a topple, a press's time series, and the measured topple map."""
 
 import re
 
+import textwrap
+
 import matplotlib.animation
+import textwrap
+
 import matplotlib.patches
 import mujoco
 import numpy as np
@@ -136,9 +140,11 @@ def figure1(seed=0, camera="front"):
              "(a) pressing the green button opens the green box"),
             (right, toppling_rod(camera=camera), "(b) the hand topples the red rod")]:
         ax.imshow(image)
-        ax.set_title(title, fontsize=10)
+        ax.set_title(textwrap.fill(title, 30), fontsize=10)
         ax.axis("off")
-    return fig
+    return fig.describe("The paper's Figure 1, rendered from the model: (a) the iCub's "
+                        "finger holds the lit green button down and the green box is open; "
+                        "(b) the iCub's hand moves into the red rod, which falls.")
 
 
 def cameras_figure(physics, cameras, height=240, width=320):

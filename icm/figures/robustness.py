@@ -50,8 +50,8 @@ def robustness_map(result, title=None):
     blocks = [claims[k:k + COLUMNS] for k in range(0, len(claims), COLUMNS)]
     columns = min(COLUMNS, len(claims))
     ratios = []
-    for _ in blocks:
-        ratios += [1.0] * len(pairs) + [0.07]
+    for k, _ in enumerate(blocks):
+        ratios += [1.0] * len(pairs) + [0.07] + ([0.3] if k < len(blocks) - 1 else [])
     width, row_height = 3.0 * columns + 0.85, 2.45
     height = row_height * len(pairs) * len(blocks) + 0.8 * len(blocks) + 1.3
     # Placed by hand, not with `new_figure`'s constrained layout, which costs a second
@@ -68,6 +68,8 @@ def robustness_map(result, title=None):
                 for i in range(len(pairs) + 1):
                     axes[row + i, j].set_visible(False)
                 continue
+            if row + len(pairs) + 1 < len(ratios):  # the space between two blocks
+                axes[row + len(pairs) + 1, j].set_visible(False)
             claim = block[j]
             norm = matplotlib.colors.TwoSlopeNorm(vmin=0.0, vcenter=claim.threshold, vmax=1.0)
             for i, pair in enumerate(pairs):
@@ -80,7 +82,7 @@ def robustness_map(result, title=None):
             bar.set_label("share of seeds", fontsize=10, labelpad=1)
             bar.set_ticks([0, claim.threshold, 1], labels=["0", f"{claim.threshold:g}", "1"])
             bar.ax.axvline(claim.threshold, color="black", linewidth=1)
-        row += len(pairs) + 1
+        row += len(pairs) + 2
     fig.suptitle(title or f"{study.title}, {result.n_seeds} seeds per cell\n✓ holds, ✗ fails, "
                           f"? unclear (95% interval)\noutlined: the defaults", fontsize=13,
                  y=1 - 0.08 / height, va="top")
