@@ -76,6 +76,51 @@ def test_the_repository_address_is_one_github_repository_everywhere():
     assert cited == [REPOSITORY] and set(installed) == {REPOSITORY}, (cited, installed)
 
 
+def _set_repository():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(
+        "set_repository", ROOT / "book" / "_ext" / "set_repository.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+set_repository = _set_repository()
+
+
+def test_everything_derived_from_the_address_agrees_with_config():
+    derived = set_repository.derived_addresses()
+    assert set_repository.configured() == REPOSITORY
+    for name, addresses in derived.items():
+        expected = 2 if name == "README.md" else 1  # the README: install line, citation
+        assert addresses == [REPOSITORY] * expected, (name, addresses)
+    assert len(derived) == len(NOTEBOOKS) + 2
+
+
+def test_one_command_changes_the_address_everywhere(tmp_path):
+    for path in [ROOT / "_config.yml"] + set_repository.derived_files():
+        target = tmp_path / path.relative_to(ROOT)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(path, target)
+    new = "https://github.com/a-university/icm-course"
+    changed = set_repository.set_repository(new, root=tmp_path)
+    assert len(changed) == 1 + len(set_repository.derived_files())
+    assert set_repository.configured(tmp_path) == new
+    for name, addresses in set_repository.derived_addresses(tmp_path).items():
+        assert addresses and set(addresses) == {new}, name
+    # Only the address changed, and the install cells are the new address's.
+    for path in [ROOT / "_config.yml"] + set_repository.derived_files():
+        after = (tmp_path / path.relative_to(ROOT)).read_text()
+        assert after.replace(new, REPOSITORY) == path.read_text(), path.name
+    first = nbformat.read(tmp_path / "book" / LAUNCHED.name, as_version=4).cells[0].source
+    assert first == INSTALL_CELL.replace(REPOSITORY, new)
+    with pytest.raises(ValueError, match="url must be a GitHub repository's address"):
+        set_repository.set_repository("https://gitlab.com/a/b", root=tmp_path)
+    assert "make repository URL=" in (ROOT / "README.md").read_text()
+    assert "repository:" in (ROOT / "Makefile").read_text()
+
+
 def _run_install_cell(args, env, cwd):
     return subprocess.run([sys.executable, *args, "-c", INSTALL_CELL], env=env, cwd=cwd,
                           capture_output=True, text=True, timeout=300)

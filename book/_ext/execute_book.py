@@ -113,6 +113,10 @@ KERNEL_ARGUMENTS = ["--IPKernelApp.capture_fd_output=False"]
 SKIP_TAG = "skip-execution"
 """Cells with this tag are not executed (nbclient's and so Jupyter Book's convention)."""
 FINGERPRINT_FILE = "icm-library-fingerprint"
+EXECUTED = []
+"""The notebooks `main` executed (not taken from the cache) in this process: their
+pages must be read again by Sphinx (build_book.py), whose own record of what changed
+knows only the notebooks' sources."""
 TIMES_FILE = "icm-notebook-seconds.json"
 
 
@@ -469,6 +473,7 @@ def main(argv=None):
             done += 1
             times[str(_name(path))] = round(seconds, 1)
             cache.store(path, nb, seconds)
+            EXECUTED.append(path)
             print(f"executed {_name(path)} in {seconds:.1f} s", flush=True)
     except KeyboardInterrupt:
         interrupted = True

@@ -8,7 +8,8 @@ the rows of the precomputed data whose setting equals the sliders' values. (Alta
 builds the same specifications, and the tests check ours against its Vega-Lite
 schema; the library does not import it, which would cost seconds per notebook.) The book's HTML loads Vega, Vega-Lite and vega-embed from its own
 `_static/vendor` folder (no network); in the page, each panel's view is kept in
-``window.icmPanels[id]`` (the browser test reads it).
+``window.icmPanels[id]`` and the time it was drawn in ``window.icmPanelTimes`` (the
+browser test reads both).
 """
 
 import hashlib
@@ -40,14 +41,17 @@ class StaticPanel:
       spec: the Vega-Lite specification (a dict, data included).
       title: what the panel shows.
       element_id: the id of its div in the page (a hash of the specification).
+      print_note: what it says in print instead of its sliders (the settings shown).
     """
 
-    def __init__(self, spec, title):
+    def __init__(self, spec, title, print_note=None):
         if not isinstance(spec, dict) or "$schema" not in spec:
             raise _validate.ArgumentTypeError(f"spec must be a Vega-Lite specification "
                                               f"dict, got {_validate.show(spec)}")
         self.spec = spec
         self.title = _validate.text("title", title)
+        self.print_note = _validate.text("print_note", print_note) if print_note is not None \
+            else "In print, this figure shows its default settings."
         text = json.dumps(spec, sort_keys=True, separators=(",", ":"))
         self.element_id = "icm-panel-" + hashlib.sha256(text.encode()).hexdigest()[:12]
         self._json = text
@@ -63,6 +67,7 @@ class StaticPanel:
                            f"(Vega-Lite). In Jupyter, use the live panel of icm.widgets.")
         return (f'<div class="icm-static-panel" id="{self.element_id}">'
                 f'<p class="icm-static-panel-note">{note}</p></div>\n'
+                f'<p class="icm-print-note">{html.escape(self.print_note)}</p>\n'
                 f'<script type="application/json" id="{self.element_id}-spec">{spec}'
                 f'</script>\n<script>{_EMBED % {"id": self.element_id}}</script>')
 
@@ -88,6 +93,7 @@ _EMBED = """(function () {
     }
     vegaEmbed("#" + id, spec, {actions: false, renderer: "svg"}).then(function (result) {
       (window.icmPanels = window.icmPanels || {})[id] = result.view;
+      (window.icmPanelTimes = window.icmPanelTimes || []).push(performance.now());
     }).catch(function (error) { console.error(error); });
   }
   draw();
@@ -138,6 +144,14 @@ def _controls(spec):
                                 "name": spec.setting(name).label + " "}})
         tests.append(f"datum.{name} == {name}")
     return params, " && ".join(tests)
+
+
+def _print_note(spec, params):
+    """What a printed panel says instead of its sliders: the settings it shows."""
+    shown = "; ".join(f"{spec.setting(p['name']).label} {_plain(spec.defaults[p['name']])}"
+                      for p in params)
+    return (f"Printed at its default settings ({shown}). In the HTML book, its sliders "
+            f"redraw it for the other settings, from numbers computed beforehand.")
 
 
 def _slider(name, values, default, label):
@@ -237,7 +251,8 @@ def curves_panel(grid, width="container", height=280):
             f"{n} ({'solid' if series_style(n)['linestyle'] == '-' else 'dashed'} line)"
             for n in names) + ". The sliders above it choose the setting: "
         + ", ".join(spec.setting(name).label for name in [p["name"] for p in params]) + ".")
-    return StaticPanel(_specification(rows, params, transform, body, description), title)
+    return StaticPanel(_specification(rows, params, transform, body, description), title,
+                       _print_note(spec, params))
 
 
 def sweep_rows(grid):
@@ -320,4 +335,5 @@ def sweep_panel(grid, cell=52):
         f"its number: the mean mastery gap, green minus red, in trials, and the share of "
         f"seeds that master red first. The slider above them chooses the "
         f"{spec.setting('new_task_factor').label}.")
-    return StaticPanel(_specification(rows, params, transform, body, description), title)
+    return StaticPanel(_specification(rows, params, transform, body, description), title,
+                       _print_note(spec, params))
