@@ -54,8 +54,10 @@ def _titles(built_book):
         if name in print_book.LEFT_OUT:
             continue
         page = (built_book / f"{name}.html").read_text()
-        heading = re.search(r"<h1>(.*?)<a class=\"headerlink\"", page, re.DOTALL).group(1)
-        titles[name] = html_module.unescape(re.sub(r"<[^>]+>", "", heading)).strip()
+        heading = next(h for h in re.findall(r"<h1>(.*?)</h1>", page, re.DOTALL)
+                       if 'class="headerlink"' in h)
+        heading = re.sub(r'<a class="headerlink".*', "", heading, flags=re.DOTALL)
+        titles[name] = _normal(html_module.unescape(re.sub(r"<[^>]+>", "", heading)))
     return titles
 
 

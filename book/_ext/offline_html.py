@@ -9,6 +9,9 @@
    static panel (`icm.figures.static_panels`: an element of class `icm-static-panel`),
    deferred, so that they never delay the page's first paint; a panel waits for
    them (`static_panels._EMBED`).
+4. Loads MathJax (1.2 MB) only on the pages that show a formula. Sphinx also loads it
+   on a page whose table of contents includes a page with one (the preface, which
+   lists every chapter), where it typesets nothing.
 """
 
 VEGA_SCRIPTS = ("vendor/vega/vega.min.js", "vendor/vega/vega-lite.min.js",
@@ -43,8 +46,24 @@ def vega_where_needed(app, pagename, templatename, context, doctree):
             app.add_js_file(script, loading_method="defer")
 
 
+def mathjax_where_needed(app, pagename, templatename, context, doctree):
+    scripts = context.get("script_files")
+    body = context.get("body") or ""
+    if not scripts or 'class="math' in body:
+        return
+    mathjax = app.config.mathjax_path
+
+    def is_mathjax(script):
+        filename = str(getattr(script, "filename", script) or "")
+        inline = str((getattr(script, "attributes", {}) or {}).get("body", ""))
+        return (mathjax and filename.endswith(mathjax)) or inline.startswith("window.MathJax")
+
+    context["script_files"] = [script for script in scripts if not is_mathjax(script)]
+
+
 def setup(app):
     app.add_js_file("mathjax-v2-shim.js", priority=100)
     app.connect("html-page-context", vega_where_needed)
+    app.connect("html-page-context", mathjax_where_needed, priority=900)
     app.connect("html-page-context", dedupe_scripts, priority=900)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

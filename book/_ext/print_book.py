@@ -106,7 +106,7 @@ def print_book(html, out, chromium=None):
                                    "right": "12mm"})
             start = len(writer.pages)
             writer.append(PdfReader(io.BytesIO(pdf)))
-            writer.add_outline_item(title, start)
+            writer.add_outline_item(title=title, page_number=start)
             page.close()
         browser.close()
     if requests or errors:

@@ -90,6 +90,13 @@ _EMBED = """(function () {
     if (spec.hconcat && wide && element.clientWidth < wide) {  // a phone: one below the other
       spec.vconcat = spec.hconcat;
       delete spec.hconcat;
+      var room = element.clientWidth - (spec.usermeta.icmMargin || 0);
+      spec.vconcat.forEach(function (view) {  // and each as wide as the column allows
+        if (view.width > room) {
+          view.height = Math.round(view.height * room / view.width);
+          view.width = room;
+        }
+      });
     }
     vegaEmbed("#" + id, spec, {actions: false, renderer: "svg"}).then(function (result) {
       (window.icmPanels = window.icmPanels || {})[id] = result.view;
@@ -224,22 +231,21 @@ def curves_panel(grid, width="container", height=280):
     x = {"field": "x", "type": "quantitative", "title": first["xlabel"],
          "scale": {"domain": [int(first["x"][0]), int(first["x"][-1])]}}
     params, keep = _controls(spec)
+    # One legend for the layers (the same definition in each, or Vega-Lite warns),
+    # its swatches at full strength (_CONFIG) with each series' colour and dash.
+    legend = {"title": None, "orient": "top", "symbolType": "stroke", "columns": 2}
     band = {"mark": {"type": "area", "opacity": 0.2},
             "encoding": {"x": x, "y": {"field": "low", "type": "quantitative",
                                        "scale": {"domain": [0, top * 1.02], "nice": False},
                                        "title": group["ylabel"]},
-                         "y2": {"field": "high"}, "color": {**colour, "legend": None}}}
+                         "y2": {"field": "high"}, "color": {**colour, "legend": legend}}}
     tooltip = [{"field": "series", "type": "nominal"},
                {"field": "x", "type": "quantitative", "title": first["xlabel"]}] + \
         [{"field": f, "type": "quantitative", "format": ".3f"} for f in ("mean", "low", "high")]
     line = {"mark": {"type": "line", "strokeWidth": 2},
             "encoding": {"x": x, "y": {"field": "mean", "type": "quantitative"},
-                         "color": {**colour, "legend": {"title": None, "orient": "top",
-                                                        "symbolType": "stroke",
-                                                        "columns": 2}},
-                         "strokeDash": {**dash, "legend": {"title": None, "orient": "top",
-                                                           "symbolType": "stroke",
-                                                           "columns": 2}},
+                         "color": {**colour, "legend": legend},
+                         "strokeDash": {**dash, "legend": legend},
                          "tooltip": tooltip}}
     title = f"{spec.title}, {spec.fixed['n_seeds']} seeds per setting, 95% bands"
     body = {"title": _lines(title), "width": width, "height": height,
@@ -326,7 +332,8 @@ def sweep_panel(grid, cell=52):
     # else one below the other (the page's script reads usermeta.icmMinWidth).
     wide = 2 * (cell * len(spec.sliders["epsilon"]) + 170) + 20
     body = {"title": _lines(title), "hconcat": heatmaps,
-            "resolve": {"scale": {"color": "independent"}}, "usermeta": {"icmMinWidth": wide}}
+            "resolve": {"scale": {"color": "independent"}},
+            "usermeta": {"icmMinWidth": wide, "icmMargin": 180}}
     transform = [{"filter": "abs(datum.new_task_factor - new_task_factor) < 1e-6"}]
     description = (
         f"{title}. Two heatmaps over epsilon (columns: "
