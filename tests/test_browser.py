@@ -659,5 +659,10 @@ def test_a_live_view_starts_in_the_book_and_presses_a_button(built_book):
         page.keyboard.press("Enter")
         page.wait_for_function("!window.icmLive.views[0].sim.busy", timeout=60000)
         assert "opened the red box" in view.locator(".icm-live-status").inner_text()
+        # The running view, its controls and its panel, for every reader too.
+        page.add_script_tag(path=str(AXE))
+        found = page.evaluate(AXE_RUN.replace("axe.run(document,", "axe.run('.icm-live',"))
+        serious = [v for v in found if v["impact"] in SERIOUS]
         browser.close()
+    assert serious == [], serious
     assert errors == [] and requests == []
