@@ -91,6 +91,9 @@ _EMBED = """(function () {
       spec.vconcat = spec.hconcat;
       delete spec.hconcat;
       var room = element.clientWidth - (spec.usermeta.icmMargin || 0);
+      spec.config = Object.assign({}, spec.config);  // legends under the maps
+      spec.config.legend = Object.assign({}, spec.config.legend,
+                                         {orient: "bottom", gradientLength: room});
       spec.vconcat.forEach(function (view) {  // and each as wide as the column allows
         if (view.width > room) {
           view.height = Math.round(view.height * room / view.width);
@@ -176,7 +179,7 @@ def _specification(rows, params, transform, body, description):
             "transform": transform, "config": _CONFIG, **body}
 
 
-def _lines(text, width=44):
+def _lines(text, width=34):
     """`text` as lines of at most `width` characters (a Vega title does not wrap)."""
     return textwrap.wrap(text, width)
 
@@ -303,7 +306,7 @@ def sweep_panel(grid, cell=52):
     heatmaps = []
     for field, title, domain, fmt in (
             ("gap", "Mean mastery gap (green - red, trials)", [min(gaps), max(gaps)], ".1f"),
-            ("red_first", "Share of seeds mastering red first", [0, 1], ".0%")):
+            ("red_first_percent", "Seeds mastering red first (%)", [0, 100], ".0f")):
         tooltip = [{"field": "epsilon", "type": "ordinal"},
                    {"field": "window", "type": "ordinal"},
                    {"field": field, "type": "quantitative", "format": fmt}]
@@ -333,8 +336,9 @@ def sweep_panel(grid, cell=52):
     wide = 2 * (cell * len(spec.sliders["epsilon"]) + 170) + 20
     body = {"title": _lines(title), "hconcat": heatmaps,
             "resolve": {"scale": {"color": "independent"}},
-            "usermeta": {"icmMinWidth": wide, "icmMargin": 180}}
-    transform = [{"filter": "abs(datum.new_task_factor - new_task_factor) < 1e-6"}]
+            "usermeta": {"icmMinWidth": wide, "icmMargin": 90}}
+    transform = [{"filter": "abs(datum.new_task_factor - new_task_factor) < 1e-6"},
+                 {"calculate": "100 * datum.red_first", "as": "red_first_percent"}]
     description = (
         f"{title}. Two heatmaps over epsilon (columns: "
         f"{', '.join(f'{v:g}' for v in spec.sliders['epsilon'])}) and the window k (rows: "
