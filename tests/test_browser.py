@@ -106,6 +106,10 @@ def browser_pages(built_book):
                                    "e.getAttribute('src').slice(0, 80)])"),
                         "figures": page.evaluate(FIGURES),
                         "panel_text": page.evaluate(PANEL_TEXT),
+                        # Vega names the panel's container after its description.
+                        "panel_labels": page.eval_on_selector_all(
+                            ".icm-static-panel", "els => els.map(e => "
+                            "[e.getAttribute('role'), e.getAttribute('aria-label') || ''])"),
                         "caption_px": page.evaluate(CAPTION_PX),
                         "sliders": page.locator(".widget-slider").count(),
                         "expected_sliders": expected_sliders(path.read_text()),
@@ -238,6 +242,10 @@ def test_every_figure_has_alternative_text_in_words(browser_pages):
             words = re.findall(r"[A-Za-z]{2,}", alt)
             assert len(words) >= 6, (name, image["src"][:60], alt)
             assert not re.search(r"\.(png|jpe?g|svg)\b|_images/|data:image", alt), (name, alt)
+            figures += 1
+        # A static panel says what it shows (its Vega-Lite description).
+        for role, label in browser_pages[name]["laptop"]["panel_labels"]:
+            assert role and len(re.findall(r"[A-Za-z]{2,}", label)) >= 12, (name, role, label)
             figures += 1
     assert figures >= 30
 

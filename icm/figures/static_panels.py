@@ -258,7 +258,7 @@ def curves_panel(grid, width="container", height=280):
         f"{title}. A line chart of {group['ylabel']} against {first['xlabel']}, one line "
         f"and 95% band per series: " + "; ".join(
             f"{n} ({'solid' if series_style(n)['linestyle'] == '-' else 'dashed'} line)"
-            for n in names) + ". The sliders above it choose the setting: "
+            for n in names) + ". The sliders under it choose the setting: "
         + ", ".join(spec.setting(name).label for name in [p["name"] for p in params]) + ".")
     return StaticPanel(_specification(rows, params, transform, body, description), title,
                        _print_note(spec, params))
@@ -344,7 +344,7 @@ def sweep_panel(grid, cell=52):
         f"{', '.join(f'{v:g}' for v in spec.sliders['epsilon'])}) and the window k (rows: "
         f"{', '.join(f'{v:g}' for v in spec.sliders['window'])}), each cell labelled with "
         f"its number: the mean mastery gap, green minus red, in trials, and the share of "
-        f"seeds that master red first. The slider above them chooses the "
+        f"seeds that master red first. The slider under them chooses the "
         f"{spec.setting('new_task_factor').label}.")
     return StaticPanel(_specification(rows, params, transform, body, description), title,
                        _print_note(spec, params))
