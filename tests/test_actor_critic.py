@@ -296,7 +296,7 @@ def test_bad_run_arguments_raise_value_error(kwargs, message):
 def test_comparison_table_has_one_column_per_run(default_run):
     table = icm.experiments.actor_critic_table({"a": default_run, "b": default_run})
     lines = table.splitlines()
-    assert lines[0] == "| | a | b |" and lines[1] == "|---|---|---|"
+    assert lines[0] == "| measure | a | b |" and lines[1] == "|---|---|---|"
     assert lines[2] == "| seeds | 120 | 120 |"
     s = default_run.summary()
     assert f"| red first | {s['red_first']:.0%} | {s['red_first']:.0%} |" in lines
