@@ -388,9 +388,12 @@ def test_every_chapter_is_interactive_within_two_seconds(built_book, capsys):
 
 MARK_CONTROLS = """() => {
   const article = document.querySelector(".bd-article");
-  const controls = Array.from(article.querySelectorAll(
-      "a[href], button, input, select, textarea, summary, [tabindex]"))
-    .filter(e => e.getAttribute("tabindex") !== "-1" && !e.disabled &&
+  // Every control a reader could work: the natively interactive elements (even one
+  // taken out of the Tab order with tabindex="-1", which must then fail the test) and
+  // any other element put into the Tab order.
+  const native = "a[href], button, input, select, textarea, summary";
+  const controls = Array.from(article.querySelectorAll(native + ", [tabindex]"))
+    .filter(e => (e.matches(native) || e.getAttribute("tabindex") !== "-1") && !e.disabled &&
                  e.getClientRects().length > 0 && getComputedStyle(e).visibility !== "hidden");
   controls.forEach((e, i) => e.dataset.icmKey = i);
   article.setAttribute("tabindex", "-1");  // Tab goes on from the article's start
