@@ -297,7 +297,7 @@ def test_figures_draw(comparison, rewards):
                 curiosity_figures.noisy_share_figure(comparison),
                 curiosity_figures.wobbly_rod_figure(rewards),
                 curiosity_figures.coin_flip_figure(curiosity.outcome_rewards(n_seeds=5))):
-        assert fig._repr_png_()[:4] == b"\x89PNG"
+        assert fig.png()[:4] == b"\x89PNG"
 
 
 def test_moves_in_words():

@@ -241,7 +241,7 @@ def test_the_map_draws_every_pair_and_claim_with_marks_and_the_default(small):
     outlined = [p for ax in maps for p in ax.patches
                 if isinstance(p, matplotlib.patches.Rectangle) and not p.get_fill()]
     assert len(outlined) == len(maps)  # the default, once per map
-    assert fig._repr_png_()[:4] == b"\x89PNG"
+    assert fig.png()[:4] == b"\x89PNG"
 
 
 @pytest.mark.parametrize("call, name, shown, kind", [

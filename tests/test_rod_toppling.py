@@ -422,7 +422,7 @@ def test_figure7_draws_the_three_moments(default_run):
     assert [t[:3] for t in titles] == ["(a)", "(b)", "(c)"]
     episodes = default_run.snapshot_episode[0]
     assert f"episode {episodes[1]}" in titles[1] and f"episode {episodes[3]}" in titles[2]
-    assert fig._repr_png_()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert fig.png()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 def test_figure7_q_table_arrows_point_along_the_greedy_moves(default_run):
