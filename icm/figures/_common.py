@@ -282,6 +282,15 @@ def check_axes(ax):
     return ax
 
 
+def figure_and_axes(ax, **figure_kwargs):
+    """(figure, axes) to draw into: `ax` and its figure, or a new figure's axes when
+    `ax` is None (`new_figure(**figure_kwargs)`); raises for anything else."""
+    check_axes(ax)
+    if ax is None:
+        return new_figure(**figure_kwargs)
+    return ax.figure, ax
+
+
 def check_title(title):
     """Returns `title` if it is None or a string, else raises."""
     if title is not None:

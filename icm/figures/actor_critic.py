@@ -11,7 +11,7 @@ from icm import _validate
 from icm.experiments import actor_critic as _actor_critic
 from icm.experiments.actor_critic import ActorCriticResult
 from icm.experiments.results import check_results
-from icm.figures._common import (TASK_COLOURS, check_axes, check_result, check_title,
+from icm.figures._common import (TASK_COLOURS, check_result, check_title, figure_and_axes,
                                  new_figure, plot_mean_band, series_style)
 from icm.learners.actor_critic import ActorCritic
 
@@ -188,12 +188,8 @@ def figure6(result, ax=None, title=None):
       The `Figure`.
     """
     check_result("result", result, ActorCriticResult, "icm.experiments.run_actor_critic")
-    check_axes(ax)
     check_title(title)
-    if ax is None:
-        fig, ax = new_figure()
-    else:
-        fig = ax.figure
+    fig, ax = figure_and_axes(ax)
     for i, task in enumerate(_actor_critic.TASKS):
         plot_mean_band(ax, result.prediction_error[:, :, i], TASK_COLOURS[task],
                        f"only {task} lit, press it (mean)", per_seed=True,

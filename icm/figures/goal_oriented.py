@@ -5,7 +5,7 @@ import numpy as np
 from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments.goal_oriented import GoalOrientedResult
 from icm.experiments.results import check_results
-from icm.figures._common import (TASK_COLOURS, check_axes, check_result, check_title,
+from icm.figures._common import (TASK_COLOURS, check_result, check_title, figure_and_axes,
                                  new_figure, plot_mean_band,
                                  series_style)
 
@@ -24,12 +24,8 @@ def figure5(result, ax=None, title=None):
       The `Figure`.
     """
     check_result("result", result, GoalOrientedResult, _MADE_BY)
-    check_axes(ax)
     check_title(title)
-    if ax is None:
-        fig, ax = new_figure()
-    else:
-        fig = ax.figure
+    fig, ax = figure_and_axes(ax)
     for i, task in enumerate(_goal_oriented.TASKS):
         plot_mean_band(ax, result.interest[:, :, i], TASK_COLOURS[task],
                        f"open the {task} box", **series_style(task))
