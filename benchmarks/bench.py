@@ -295,6 +295,12 @@ def main(argv=None):
     print("\nThe live iCub in headless Chromium (benchmarks/live_viewer.py):")
     print("\n".join(live_viewer.report(live_viewer.measure(3 if args.quick else 5))))
 
+    import page_load  # benchmarks/page_load.py
+
+    print("\nThe built book's pages, interactive in headless Chromium, offline, best of "
+          "3 (benchmarks/page_load.py):")
+    print("\n".join(page_load.report(page_load.measure())))
+
 
 if __name__ == "__main__":
     main()

@@ -5,6 +5,7 @@ Skipped, with the reason shown, where Chromium or Playwright is missing; `.ci/ru
 installs Chromium before `make test`.
 """
 
+import importlib.util
 import json
 import pathlib
 import re
@@ -349,38 +350,25 @@ def test_the_pages_are_light_and_load_what_they_need_only(browser_pages, built_b
         assert base <= BASE_SCRIPT_BUDGET_BYTES, (page, base)
 
 
-READY_BUDGET_MS = 2000
-"""Each chapter is interactive within 2 s of being opened: its load event has run and
-its static panels are drawn (the live views, loaded on request, do not count)."""
-
-READY = """() => {
-  const navigation = performance.getEntriesByType("navigation")[0];
-  return Math.max(navigation.loadEventEnd, ...(window.icmPanelTimes || [0]));
-}"""
+def _benchmark(name):
+    """The module benchmarks/`name`.py (the benchmarks are scripts, not a package)."""
+    spec = importlib.util.spec_from_file_location(name, ROOT / "benchmarks" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
-def test_every_chapter_is_interactive_within_two_seconds(built_book, capsys):
-    # Each page opened three times, each time in a new browser context (nothing
-    # cached); the best of the three, as the machine may be busy with other work.
-    times = {}
-    with playwright_api.sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
-        for name in toc_files():
-            best = float("inf")
-            for _ in range(3):
-                context, _requests = _offline_context(browser, WIDTHS["laptop"], [])
-                page = context.new_page()
-                page.goto((built_book / f"{name}.html").as_uri(), wait_until="load")
-                page.wait_for_function(PANELS_DRAWN, timeout=30000)
-                best = min(best, page.evaluate(READY))
-                context.close()
-            times[name] = best
-        browser.close()
-    with capsys.disabled():
-        print("\ninteractive after (ms, best of 3): " + ", ".join(
-            f"{name.split('/')[-1]} {ms:.0f}" for name, ms in times.items()))
-    slow = {name: ms for name, ms in times.items() if ms > READY_BUDGET_MS}
-    assert slow == {}, slow
+def test_every_page_becomes_interactive(built_book):
+    # How soon is measured in `make bench` (benchmarks/page_load.py, against the budget
+    # of 2 s), not here: a time depends on the machine's load. Here, every page of the
+    # book must get there (its load event run, its static panels drawn), as the
+    # benchmark measures it.
+    page_load = _benchmark("page_load")
+    times = page_load.measure(built_book, repeats=1)
+    assert times is not None
+    assert set(times) == {"(blank page)"} | {name.split("/")[-1] for name in toc_files()}
+    assert all(0 < ms < float("inf") for ms in times.values()), times
+    assert len(page_load.report(times)) == len(times)
 
 
 # The keyboard: every control of a page reached with Tab, with a visible focus, and
