@@ -522,18 +522,8 @@ def static_panels(built_book):
     each choice by a click; records what the panel showed after each move."""
     record = {"panels": [], "requests": [], "errors": {}}
     with playwright_api.sync_playwright() as playwright:
-        browser = playwright.chromium.launch(
-            executable_path=CHROMIUM, args=["--no-sandbox", "--disable-gpu"])
-        context = browser.new_context(offline=True, viewport={"width": 1366, "height": 900})
-
-        def refuse_network(route):
-            if route.request.url.startswith("file:"):
-                route.continue_()
-            else:
-                record["requests"].append(route.request.url)
-                route.abort()
-
-        context.route("**/*", refuse_network)
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
+        context, record["requests"] = _offline_context(browser, WIDTHS["laptop"], [])
         for name in toc_files():
             path = built_book / f"{name}.html"
             if "icm-static-panel" not in path.read_text():
@@ -702,18 +692,8 @@ def quizzes(built_book):
     by mouse for odd ones), recording the feedback after each Check."""
     record = {"questions": [], "requests": [], "errors": {}}
     with playwright_api.sync_playwright() as playwright:
-        browser = playwright.chromium.launch(
-            executable_path=CHROMIUM, args=["--no-sandbox", "--disable-gpu"])
-        context = browser.new_context(offline=True, viewport={"width": 1366, "height": 900})
-
-        def refuse_network(route):
-            if route.request.url.startswith("file:"):
-                route.continue_()
-            else:
-                record["requests"].append(route.request.url)
-                route.abort()
-
-        context.route("**/*", refuse_network)
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
+        context, record["requests"] = _offline_context(browser, WIDTHS["laptop"], [])
         for name in toc_files():
             path = built_book / f"{name}.html"
             if "icm-quiz-choices" not in path.read_text():
