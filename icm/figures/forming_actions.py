@@ -276,8 +276,8 @@ def presses_formed_figure(study, labels, roots="tuning", ax=None):
             raise ValueError(f"labels: the study did not run {label!r} on the {roots} "
                              f"root seeds {missing}")
     check_axes(ax)
-    if ax is None:
-        fig, ax = new_figure(width=6.8, height=3.8)
+    if ax is None:  # taller than the others: the legend under the axes takes three rows
+        fig, ax = new_figure(width=6.8, height=4.4)
     else:
         fig = ax.figure
     budgets = np.array(study["budgets"])
