@@ -31,6 +31,16 @@ def test_notebooks_set_mujoco_gl_only_if_unset_and_import_icm(path):
     assert "matplotlib.use(" not in "".join(c.source for c in notebook.cells)
 
 
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
+def test_every_chapter_opens_with_its_title(path):
+    # The first cell a reader sees (after the install cell, which the book removes) is
+    # the chapter's title, as in every chapter: no code above it.
+    notebook = nbformat.read(path, as_version=4)
+    shown = [c for c in notebook.cells if "remove-cell" not in c.metadata.get("tags", [])]
+    assert shown[0].cell_type == "markdown" and shown[0].source.startswith("# "), \
+        f"{path.name} starts with a {shown[0].cell_type} cell: {shown[0].source[:60]!r}"
+
+
 def test_every_chapter_is_in_the_table_of_contents_and_exists():
     listed = set(toc_files())
     on_disk = {str(p.relative_to(ROOT).with_suffix(""))
