@@ -193,3 +193,18 @@ def test_every_order_of_the_peaks_has_its_own_words(default_run, red_peak, green
     result = dataclasses.replace(default_run, interest=interest)
     text = result.describe_peaks()
     assert word in text and f"trial {red_peak}" in text and f"trial {green_peak}" in text
+
+
+def test_the_fewest_seeds_in_words_stay_true():
+    from icm.experiments.results import in_seeds
+
+    assert in_seeds(1) == "in every seed"
+    assert in_seeds(0.965) == "in at least 96.5% of the seeds"  # 96.49999... in floats
+    assert in_seeds(0.9656) == "in at least 96.5% of the seeds"  # rounded down, not up
+    assert in_seeds(0.9996) == "in at least 99.9% of the seeds"  # never "100.0%"
+    assert in_seeds(0) == "in at least 0.0% of the seeds"
+    for bad in (1.5, -0.1, float("nan")):
+        with pytest.raises(ValueError, match="lowest"):
+            in_seeds(bad)
+    with pytest.raises(TypeError, match="lowest"):
+        in_seeds("all")

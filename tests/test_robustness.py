@@ -553,6 +553,9 @@ def test_the_chapters_numbers_come_from_its_maps(maps):
         "green_learned", variant="printed_td", presses_per_trial=1)[0]
     assert numbers["rods_q_lowest"] <= numbers["rods_q_highest"]
     assert clauses["rods_red_first_by_q"] == rods.shares_along("red_first", "initial_q")
+    lowest = float(rods.points().query("initial_q > 0").blue_found.min())
+    assert clauses["rods_blue_positive_q_in"] == (
+        "in every seed" if lowest == 1 else f"in at least {100 * lowest:.1f}% of the seeds")
     refused(lambda: robustness.chapter_numbers(goal, goal, rods), "critic", "goal_oriented",
             "value")
 

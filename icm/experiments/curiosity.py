@@ -20,6 +20,7 @@ from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments import rod_toppling as _rod_toppling
 from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments._progress import progress_bar
+from icm.experiments.results import in_seeds
 from icm.learners import goal_oriented, interest, predictors, q_learning
 from icm.stats import bootstrap_band
 
@@ -242,7 +243,7 @@ class SignalComparison:
         without the noisy button: "in every seed" or "in at least 99.0% of the seeds"."""
         lowest = min(self.numbers(s, d)["red_first"]
                      for (s, d, noisy) in self.results if not noisy)
-        return "in every seed" if lowest == 1 else f"in at least {lowest:.1%} of the seeds"
+        return in_seeds(lowest)
 
     def fastest(self):
         """(signal, interest_per) of the world without the noisy button that masters

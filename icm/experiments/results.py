@@ -1,6 +1,8 @@
 """Helpers shared by the experiments' results: checking a dict of labelled results
 (what the comparison tables and figures take), and a Markdown table of measures with
-one column per run."""
+one column per run, and the fewest seeds in which a claim held, in words."""
+
+import math
 
 from icm import _validate
 
@@ -19,6 +21,18 @@ def check_results(name, results, cls):
                                               f"label {label!r}")
         _validate.instance(f"{name}[{label!r}]", result, cls)
     return results
+
+
+def in_seeds(lowest):
+    """The fewest seeds in which something held, `lowest` a share in [0, 1], in words:
+    "in every seed" when it is 1, else "in at least 96.5% of the seeds": the share
+    rounded down to one decimal, so that the sentence stays true (and a share below 1
+    never reads as 100.0%)."""
+    lowest = _validate.real("lowest", lowest, 0.0, 1.0)
+    if lowest == 1:
+        return "in every seed"
+    shown = math.floor(1000 * lowest + 1e-9) / 10  # 1e-9: 0.965 is 964.99... in floats
+    return f"in at least {shown:.1f}% of the seeds"
 
 
 def measures_table(results, measures):

@@ -31,6 +31,7 @@ from icm.envs import buttons, rods
 from icm.experiments._progress import progress_bar
 from icm.experiments.actor_critic import run_actor_critic
 from icm.experiments.goal_oriented import TASKS, run_goal_oriented
+from icm.experiments.results import in_seeds
 from icm.experiments.rod_toppling import run_rod_toppling
 from icm.experiments.sweep import sweep
 from icm.stats import bootstrap_band, comes_first
@@ -1107,6 +1108,10 @@ def chapter_numbers(goal, critic, rods_result):
         rods_red_first_by_epsilon=rods_result.shares_along("red_first", "epsilon"),
         rods_blue_q_none_by_epsilon=rods_result.shares_along("blue_found", "epsilon",
                                                              initial_q=qs[0]))
+    # The fewest seeds, in words ("in every seed" rather than "in at least 100.0%").
+    for name in ("goal_red_first_above_min", "critic_red_first_min",
+                 "rods_red_toppled_first_min", "rods_blue_positive_q_min"):
+        clauses[name.replace("_min", "_in")] = in_seeds(numbers[name])
     return numbers, clauses
 
 
