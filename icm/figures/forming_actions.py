@@ -1,6 +1,7 @@
 """Figures of the chapter "Forming actions": test error of the three goal-babbling
-strategies, coverage of the console, where learning progress put its goals, and the
-learned presses rendered from the simulation."""
+strategies, coverage of the console, where learning progress put its goals, the
+learned presses rendered from the simulation, and, for the remedies (growing up,
+being shown), when each button was first pressed and where the finger went."""
 
 import matplotlib.patches
 import matplotlib.ticker
@@ -287,4 +288,119 @@ def presses_formed_figure(study, labels, roots="tuning", ax=None):
     ax.set_ylim(0, 1.02)
     ax.set_xlim(budgets[0], budgets[-1])
     ax.legend(frameon=False, fontsize=8, loc="upper left")
+    return fig
+
+
+REMEDY_COLOURS = {"random motor babbling": "#7f7f7f", "random goal babbling": "#1f77b4",
+                  "learning progress": "#e66101", "growing up": "#1b9e77",
+                  "shown button 2": "#c2a5cf", "shown buttons 0 and 4": "#9970ab",
+                  "shown all five": "#40004b"}
+"""One colour per condition of `icm.experiments.remedies_study` (the teacher's in
+purples, darker for more buttons shown)."""
+FIRST_PRESS_STEP = 10
+"""The first-press curves are drawn every this many rollouts."""
+
+
+def _check_remedy_labels(study, labels):
+    from icm.experiments import remedies_study
+
+    remedies_study.check_study(study)
+    if isinstance(labels, str) or not isinstance(labels, (list, tuple)) or not labels:
+        raise _validate.ArgumentTypeError(f"labels must be a non-empty list of the study's "
+                                          f"conditions, got {_validate.show(labels)}")
+    for label in labels:
+        _validate.one_of("labels[i]", label, tuple(study["runs"]))
+    return remedies_study
+
+
+def first_press_figure(study, labels):
+    """When the robot first pressed each button itself: one panel per button, the share
+    of seeds whose own rollouts (demonstrations left out) had pressed that button,
+    and no other, by each rollout; the mean over the study's seeds with its 95%
+    band, one curve per condition. A button a condition's teacher showed is drawn
+    dashed in that condition.
+
+    Args:
+      study: the study (`icm.experiments.remedies_study.load_study()`).
+      labels: the conditions to draw, a non-empty list of the study's labels.
+    """
+    import matplotlib.lines
+
+    remedies_study = _check_remedy_labels(study, labels)
+    n_rollouts = study["n_rollouts"]
+    x = np.arange(FIRST_PRESS_STEP, n_rollouts + 1, FIRST_PRESS_STEP)
+    fig, axes = new_figure(width=7.6, height=5.2, ncols=3, nrows=2, sharey=True)
+    axes = axes.ravel()
+    any_shown = False
+    for button, ax in enumerate(axes[:buttons.N_BUTTONS]):
+        for label in labels:
+            first = remedies_study.pooled(study, label)["first_press"][:, button]
+            done = ((first[:, None] > 0) & (first[:, None] <= x[None, :])).astype(float)
+            shown = button in remedies_study.shown_buttons(label)
+            any_shown |= shown
+            plot_mean_band(ax, done, REMEDY_COLOURS.get(label, "black"), label, x=x,
+                           linestyle="--" if shown else "-")
+        ax.set_title(f"button {button}", fontsize=9)
+        ax.set_xscale("log")
+        ax.set_xlim(x[0], n_rollouts)
+        ax.set_ylim(0, 1.02)
+        ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator([10, 30, 100, 300, 1000]))
+        ax.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.tick_params(labelsize=8)
+        ax.set_xlabel("rollouts (log scale)", fontsize=8)
+    for ax in axes[::3]:
+        ax.set_ylabel("share of seeds that pressed it", fontsize=8)
+    n_seeds = {len(remedies_study.pooled(study, label)["first_press"]) for label in labels}
+    handles = [matplotlib.lines.Line2D([], [], color=REMEDY_COLOURS.get(label, "black"),
+                                       linewidth=2, label=label) for label in labels]
+    if any_shown:
+        handles.append(matplotlib.lines.Line2D([], [], color="#555555", linewidth=2,
+                                               linestyle="--",
+                                               label="a button the teacher showed"))
+    axes[-1].axis("off")
+    axes[-1].legend(handles=handles, frameon=False, fontsize=7, loc="center",
+                    title=f"{' or '.join(map(str, sorted(n_seeds)))} seeds each",
+                    title_fontsize=7)
+    return fig
+
+
+def coverage_maps_figure(study, labels):
+    """Where the robot's own rollouts (demonstrations left out) ended with the finger on
+    the console or a cap, seen from above (robot at the bottom, its left on the
+    left): one row per condition, the first `remedies_study.EARLY` rollouts on the
+    left and all of them on the right; the count per square centimetre over all the
+    study's seeds, on a logarithmic colour scale shared by every map. Crosses: the
+    press goals.
+
+    Args:
+      study: the study (`icm.experiments.remedies_study.load_study()`).
+      labels: the conditions to draw, a non-empty list of the study's labels.
+    """
+    import matplotlib.colors
+
+    remedies_study = _check_remedy_labels(study, labels)
+    x_edges, y_edges = remedies_study.coverage_edges()
+    counts = [remedies_study.pooled(study, label)["coverage"] for label in labels]
+    top = max(1, max(int(c[stretch].max()) for c in counts for stretch in c))
+    norm = matplotlib.colors.LogNorm(vmin=1, vmax=top)
+    fig, axes = new_figure(width=7.6, height=1.55 * len(labels) + 0.6, ncols=2,
+                           nrows=len(labels), squeeze=False)
+    geometry = _babbling.console_geometry()
+    centre, half = geometry["console_centre"], geometry["console_half"]
+    mesh = None
+    for row, label, count in zip(axes, labels, counts):
+        for ax, stretch in zip(row, ("early", "all")):
+            _draw_console(ax, geometry)
+            mesh = ax.pcolormesh(y_edges, x_edges, np.ma.masked_less(count[stretch], 1),
+                                 norm=norm, cmap="viridis", zorder=1)
+            goals = geometry["press_goals"]
+            ax.scatter(goals[:, 1], goals[:, 0], marker="x", s=14, color="red",
+                       linewidths=0.8, zorder=2)
+            ax.set_xlim(centre[1] + 1.25 * half[1], centre[1] - 1.25 * half[1])
+            ax.set_ylim(centre[0] - 2.2 * half[0], centre[0] + 2.2 * half[0])
+            when = (f"first {remedies_study.EARLY} rollouts" if stretch == "early"
+                    else f"all {study['n_rollouts']} rollouts")
+            ax.set_title(f"{label}: {when}", fontsize=8)
+    fig.colorbar(mesh, ax=axes, shrink=0.6, label="rollouts ending there (log scale)")
     return fig
