@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: book book-students test lab bench clean check-system
+.PHONY: book book-students pdf test lab bench clean check-system repository
 
 # Before anything slow: what the system must provide besides Python packages
 # (icm/_system.py: Python 3.11+, Mesa's EGL on Linux), with the command that installs it.
@@ -32,6 +32,9 @@ book: check-system $(STAMP)  ## execute the notebooks (unless cached and the lib
 book-students: check-system $(STAMP)  ## the book without the exercises' solutions, into _build/students/_build/html
 	$(BIN)/python book/_ext/student_edition.py
 
+pdf: book  ## the book as one PDF (_build/pdf/book.pdf), printed offline by headless Chromium
+	$(BIN)/python book/_ext/print_book.py --html _build/html --out _build/pdf/book.pdf
+
 test: check-system $(STAMP)  ## unit tests, then a full book build with warnings and errors fatal
 	$(BIN)/python -m pytest
 
@@ -40,6 +43,10 @@ lab: $(STAMP)  ## open the notebooks in JupyterLab
 
 bench: $(STAMP)  ## print benchmark figures
 	$(BIN)/python benchmarks/bench.py
+
+repository:  ## make repository URL=https://github.com/OWNER/NAME: the address, everywhere
+	@test -n "$(URL)" || { echo "usage: make repository URL=https://github.com/OWNER/NAME"; exit 1; }
+	$(PYTHON) book/_ext/set_repository.py $(URL)
 
 clean:
 	rm -rf _build

@@ -78,6 +78,10 @@ class Setting:
       slider: its `Slider` on the book's panels, or None.
       swept: the values "What the result depends on" sweeps (an unpublished choice
         the results may depend on), or None.
+      others: for an unpublished setting that is not swept, the other values (other
+        readings) that "What the result depends on" measures one at a time against
+        the default, or None; an unpublished "choice" setting's other choices are
+        measured without being listed here (`other_readings`).
       per_row: whether the batched learners take one value per row (a grid of
         settings may vary it).
       name: the setting's name (filled in by `settings_class`).
@@ -95,6 +99,7 @@ class Setting:
     source: str = ""
     slider: Slider = None
     swept: tuple = None
+    others: tuple = None
     per_row: bool = True
     name: str = ""
 
@@ -111,6 +116,19 @@ class Setting:
     def published(self):
         """Whether the paper gives this setting's value."""
         return self.paper is not None
+
+    def other_readings(self):
+        """The values other than the default that "What the result depends on"
+        measures one at a time, for an unpublished setting that its maps do not sweep:
+        `others` if declared, else an unpublished choice's other choices; () for a
+        published or swept setting."""
+        if self.published or self.swept is not None:
+            return ()
+        if self.others is not None:
+            return tuple(self.others)
+        if self.kind == "choice":
+            return tuple(c for c in self.choices if c != self.default)
+        return ()
 
     def allowed(self):
         """What is allowed, in words (for messages and help)."""

@@ -29,16 +29,16 @@ import numpy as np
 from icm import _validate
 from icm.envs._assets import asset_path
 
+BROWSER_MUJOCO = "3.14.0"
+"""The version of MuJoCo's WebAssembly build that the live views run in the reader's
+browser (`@mujoco/mujoco`, vendored in book/_static/vendor; a test checks its lock
+file); Python runs the `mujoco` package installed with icm."""
 SCENES = ("buttons", "rods")
 """The scenes the viewer shows."""
 STATIC_FILES = ("icm-live.js", "icm.css", "vendor/three/three.min.js",
                 "vendor/mujoco/mujoco.js", "vendor/mujoco/mujoco-wasm.js")
 """The files of the book's `_static` folder a live view needs (the viewer loads all but
 icm.css on request)."""
-BROWSER_MUJOCO_VERSION = "3.14.0"
-"""The MuJoCo of the live views: the WebAssembly build `@mujoco/mujoco` vendored under
-book/_static/vendor (its npm lock file pins it; a test reads it there). The Python
-package runs `mujoco.__version__`: the two are compared by outcomes."""
 BOOK_ENV = "ICM_STATIC_PANELS"
 """Set to "1" while the book is built (book/_ext/execute_book.py): views are then the
 live viewer; otherwise (a Jupyter kernel, where the book's `_static` folder is not

@@ -296,7 +296,7 @@ def test_bad_run_arguments_raise_value_error(kwargs, message):
 def test_comparison_table_has_one_column_per_run(default_run):
     table = icm.experiments.actor_critic_table({"a": default_run, "b": default_run})
     lines = table.splitlines()
-    assert lines[0] == "| | a | b |" and lines[1] == "|---|---|---|"
+    assert lines[0] == "| measure | a | b |" and lines[1] == "|---|---|---|"
     assert lines[2] == "| seeds | 120 | 120 |"
     s = default_run.summary()
     assert f"| red first | {s['red_first']:.0%} | {s['red_first']:.0%} |" in lines
@@ -318,7 +318,7 @@ def test_figure6_draws_each_seed_and_the_mean_with_a_band():
         assert np.allclose(line.get_ydata(), small.prediction_error[:, :, i].mean(axis=0))
     assert len(ax.get_lines()) == 2 * 6 + 2  # a thin line per seed and task, two means
     assert len(ax.collections) == 2  # one band per task
-    assert fig._repr_png_()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert fig.png()[:8] == b"\x89PNG\r\n\x1a\n"
     grid = figures.figure6_grid({"a": small, "b": small, "c": small})
     assert len([ax for ax in grid.axes if ax.get_lines()]) == 3
     assert len(figures.practice_figure({"a": small, "b": small}).axes) == 2

@@ -189,6 +189,9 @@ def test_rod_actions(action, shown, kind):
     (lambda: icm.envs.load("rods", start_cell=(0, 0, 0)), "start_cell", "(0, 0, 0)", "type"),
     (lambda: icm.envs.load("rods", max_moves=0), "max_moves", "0", "value"),
     (lambda: icm.envs.load("rods", max_moves=2.5), "max_moves", "2.5", "type"),
+    (lambda: icm.envs.load("rods", off_grid="wrap"), "off_grid", "'wrap'", "value"),
+    (lambda: icm.envs.load("rods", physics=True, off_grid=1), "off_grid", "1", "type"),
+    (lambda: rods.leaves_grid((0, 3), 0), "cell", "(0, 3)", "value"),
     (lambda: icm.envs.load("rods", seed=-1), "seed", "-1", "value"),
     (lambda: rods.next_cell((9, 0), 0), "cell", "(9, 0)", "value"),
     (lambda: rods.check_start_cell((3, 2), rods.load_topple_map()["standable"]),
@@ -457,6 +460,11 @@ def test_statistics(call, name, shown, kind):
     ("run_rod_toppling", dict(start_cell=(2, 1)), "start_cell", "(2, 1)", "value"),
     ("run_rod_toppling", dict(first_run=-1), "first_run", "-1", "value"),
     ("run_rod_toppling", dict(initial_q=NAN), "initial_q", "nan", "value"),
+    ("run_rod_toppling", dict(max_moves=0), "max_moves", "0", "value"),
+    ("run_rod_toppling", dict(max_moves="30"), "max_moves", "'30'", "type"),
+    ("run_rod_toppling", dict(max_moves=None, epsilon=0.0), "max_moves=None", "0.0", "value"),
+    ("run_rod_toppling", dict(off_grid="wrap"), "off_grid", "'wrap'", "value"),
+    ("run_rod_toppling", dict(off_grid=None), "off_grid", "None", "type"),
 ])
 def test_run_arguments(run, kwargs, name, shown, kind):
     function = getattr(icm.experiments, run)

@@ -200,7 +200,7 @@ def test_actor_critic_batch_equals_the_per_agent_learner(case):
 def reference_rod_toppling(n_seeds, n_episodes, seed=0, epsilon=0.1, alpha=0.5, gamma=0.9,
                            predictor_lr=0.2, initial_q=0.1, max_moves=30, start_cell=(0, 0),
                            snapshot_episodes=(), reward="prediction_error", window=5,
-                           wobbly_rod=False):
+                           wobbly_rod=False, off_grid="stay"):
     """run_rod_toppling's arrays, from the per-agent QLearner and LinearPredictor on one
     RodTable per seed, each run kept whole and its moments found afterwards (the
     package's earlier implementation)."""
@@ -216,6 +216,7 @@ def reference_rod_toppling(n_seeds, n_episodes, seed=0, epsilon=0.1, alpha=0.5, 
                                               + h.shape[2:]), 1, 2)
     out = {"toppled": np.full((n_seeds, n_episodes), -1),
            "episode_length": np.zeros((n_seeds, n_episodes), dtype=np.int64),
+           "edge_moves": np.zeros((n_seeds, n_episodes), dtype=np.int64),
            "prediction_error": np.zeros((n_seeds, n_episodes, n_rods)),
            "rod_error": np.zeros((n_seeds, n_episodes, 2)),
            "rod_error_toppled": np.full((n_seeds, n_episodes, 2), np.nan),
@@ -225,7 +226,8 @@ def reference_rod_toppling(n_seeds, n_episodes, seed=0, epsilon=0.1, alpha=0.5, 
            "predictions": np.full((n_seeds, len(names)) + grid + (n_actions, n_rods), np.nan),
            "confidence": np.full((n_seeds, len(names)) + grid, np.nan)}
     for run, (env_seed, agent_seed) in enumerate(run_seeds(seed, n_seeds, 2)):
-        env = rods.RodTable(start_cell, max_moves, wobbly_rod=wobbly_rod, seed=env_seed)
+        env = rods.RodTable(start_cell, max_moves, wobbly_rod=wobbly_rod, seed=env_seed,
+                            off_grid=off_grid)
         predictor = LinearPredictor(n_actions, n_rods, lr=predictor_lr)
         agent = QLearner(n_states, n_actions, predictor, alpha, gamma, epsilon, initial_q,
                          reward=reward, window=window, seed=agent_seed)
@@ -250,6 +252,7 @@ def reference_rod_toppling(n_seeds, n_episodes, seed=0, epsilon=0.1, alpha=0.5, 
                     agent.learn(state, action, observed, next_state, step.discount)
                 episode_errors += errors
                 moves += 1
+                out["edge_moves"][run, episode] += next_state == state  # off the grid
                 if step.last():
                     break
                 state = next_state
@@ -298,7 +301,10 @@ ROD_CASES = [{}, {"epsilon": 0.0}, {"initial_q": 0.0}, {"initial_q": 1.0},
              {"reward": "learning_progress"}, {"reward": "learning_progress", "window": 3},
              {"reward": "novelty"}, {"reward": "random"}, {"wobbly_rod": True},
              {"wobbly_rod": True, "reward": "learning_progress"},
-             {"wobbly_rod": True, "reward": "random", "max_moves": 5}]
+             {"wobbly_rod": True, "reward": "random", "max_moves": 5},
+             {"max_moves": None}, {"off_grid": "end"}, {"off_grid": "end", "max_moves": None},
+             {"off_grid": "end", "reward": "learning_progress", "wobbly_rod": True},
+             {"reward": "random", "max_moves": None, "epsilon": 0.0}]
 
 
 @pytest.mark.parametrize("case", ROD_CASES, ids=lambda c: ",".join(f"{k}={v}" for k, v in c.items()) or "default")

@@ -143,3 +143,25 @@ def test_the_preface_lists_every_chapter_in_order():
     section = preface.split("## The chapters", 1)[1].split("\n## ", 1)[0]
     listed = re.findall(r"^\d+\. \{doc\}`(\w+)`", section, re.MULTILINE)
     assert listed == chapters
+
+
+@pytest.mark.book
+def test_the_references_are_labelled_as_the_text_cites_them(built_book):
+    # The text cites author-year ("Deci and Ryan, 1985"); the References page must
+    # label each entry the same way (book/_ext/bibliography.py), not "[DR85]".
+    import re
+
+    page = (built_book / "book" / "references.html").read_text()
+    labels = dict(re.findall(r'<div class="citation" id="(id\d+)"[^>]*>\s*<span class="label">'
+                             r'<span class="fn-bracket">\[</span>([^<]+)<', page))
+    assert len(labels) >= 10
+    cited = 0
+    for name in toc_files():
+        html = (built_book / f"{name}.html").read_text()
+        for anchor, text in re.findall(r'href="(?:references\.html)?#(id\d+)"[^>]*>([^<]+)</a>',
+                                       html):
+            if anchor in labels:
+                assert labels[anchor] == text, (name, anchor, labels[anchor], text)
+                cited += 1
+    assert cited >= 10
+    assert all(re.fullmatch(r"[^,]+, \d{4}[a-z]?", label) for label in labels.values()), labels

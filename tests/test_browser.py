@@ -6,8 +6,10 @@ installs Chromium before `make test`.
 """
 
 import json
+import pathlib
 import re
 import shutil
+import urllib.parse
 
 import pytest
 
@@ -35,49 +37,120 @@ def expected_sliders(html):
     return sum(1 for model in state.values() if model["state"].get("_view_name") in SLIDER_VIEWS)
 
 
+LAUNCH_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+               "--disable-background-networking", "--disable-component-update",
+               "--disable-sync"]
+AXE = ROOT / "book" / "_static" / "vendor" / "axe" / "axe.min.js"
+"""axe-core, vendored from npm (book/_static/vendor/README.md); injected by the test."""
+WIDTHS = {"laptop": 1366, "phone": 390}
+
+
+def _offline_context(browser, width, files):
+    """A browser context of `width` px that refuses the network and records every file
+    a page loads in `files` (a list the caller empties per page)."""
+    context = browser.new_context(offline=True, viewport={"width": width, "height": 800})
+    requests = []
+
+    def refuse_network(route):
+        url = route.request.url
+        if url.startswith("file:"):
+            files.append(url)
+            route.continue_()
+        elif url.startswith("data:"):
+            route.continue_()
+        else:
+            requests.append(url)
+            route.abort()
+
+    context.route("**/*", refuse_network)
+    return context, requests
+
+
+def _file_of(url):
+    return pathlib.Path(urllib.parse.unquote(urllib.parse.urlparse(url).path))
+
+
 @pytest.fixture(scope="module")
 def browser_pages(built_book):
-    """Opens every page of the book offline; returns what the browser saw per page."""
+    """Opens every page of the book offline, at laptop and phone width; returns what
+    the browser saw per page (and, at laptop width, what axe-core found)."""
     seen = {}
     with playwright_api.sync_playwright() as playwright:
-        browser = playwright.chromium.launch(
-            executable_path=CHROMIUM,
-            args=["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                  "--disable-background-networking", "--disable-component-update",
-                  "--disable-sync"])
-        context = browser.new_context(offline=True, viewport={"width": 1366, "height": 800})
-        requests = []
-
-        def refuse_network(route):
-            if route.request.url.startswith("file:"):
-                route.continue_()
-            else:
-                requests.append(route.request.url)
-                route.abort()
-
-        context.route("**/*", refuse_network)
-        for name in toc_files():
-            path = built_book / f"{name}.html"
-            page = context.new_page()
-            errors = []
-            page.on("console", lambda message: errors.append(message.text)
-                    if message.type == "error" else None)
-            page.on("pageerror", lambda error: errors.append(str(error)))
-            page.goto(path.as_uri(), wait_until="load")
-            page.wait_for_timeout(1500)  # widgets and formulas render after load
-            seen[name] = {
-                "images": page.eval_on_selector_all(
-                    "img", "els => els.map(e => [e.naturalWidth, e.getAttribute('src').slice(0, 80)])"),
-                "sliders": page.locator(".widget-slider").count(),
-                "expected_sliders": expected_sliders(path.read_text()),
-                "math": page.locator("mjx-container").count(),
-                "overflowing": page.evaluate(OVERFLOWING),
-                "errors": errors,
-            }
-            page.close()
-        seen["__requests__"] = requests
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
+        all_requests = []
+        for device, width in WIDTHS.items():
+            files = []
+            context, requests = _offline_context(browser, width, files)
+            for name in toc_files():
+                path = built_book / f"{name}.html"
+                files.clear()
+                page = context.new_page()
+                errors = []
+                page.on("console", lambda message: errors.append(message.text)
+                        if message.type == "error" else None)
+                page.on("pageerror", lambda error: errors.append(str(error)))
+                page.goto(path.as_uri(), wait_until="load")
+                page.wait_for_function(PANELS_DRAWN, timeout=30000)
+                page.wait_for_timeout(1500)  # widgets and formulas render after load
+                record = seen.setdefault(name, {}).setdefault(device, {})
+                record.update({
+                    "overflowing": page.evaluate(OVERFLOWING),
+                    "page_width": page.evaluate(
+                        "document.documentElement.scrollWidth - window.innerWidth"),
+                    "errors": list(errors),
+                })
+                if device == "laptop":
+                    record.update({
+                        "images": page.eval_on_selector_all(
+                            "img", "els => els.map(e => [e.naturalWidth, "
+                                   "e.getAttribute('src').slice(0, 80)])"),
+                        "figures": page.evaluate(FIGURES),
+                        "panel_text": page.evaluate(PANEL_TEXT),
+                        # Vega names the panel's container after its description.
+                        "panel_labels": page.eval_on_selector_all(
+                            ".icm-static-panel", "els => els.map(e => "
+                            "[e.getAttribute('role'), e.getAttribute('aria-label') || ''])"),
+                        "caption_px": page.evaluate(CAPTION_PX),
+                        "sliders": page.locator(".widget-slider").count(),
+                        "expected_sliders": expected_sliders(path.read_text()),
+                        "math": page.locator("mjx-container").count(),
+                        "files": sorted({str(_file_of(url)) for url in files}),
+                    })
+                    # axe-core last: it is not the book's, and it reads the page as it is.
+                    page.add_script_tag(path=str(AXE))
+                    record["axe"] = page.evaluate(AXE_RUN)
+                page.close()
+            all_requests += requests
+            context.close()
+        seen["__requests__"] = all_requests
         browser.close()
     return seen
+
+
+PANELS_DRAWN = """() => document.querySelectorAll('.icm-static-panel').length ==
+    Object.keys(window.icmPanels || {}).length"""
+
+AXE_RUN = """async () => {
+  // Every rule of axe-core's WCAG 2.0, 2.1 and 2.2 A and AA sets and its best practices;
+  // `preload: false`: axe does not fetch the style sheets again (file:// refuses it).
+  const result = await axe.run(document, {preload: false, resultTypes: ["violations"]});
+  return result.violations.map(v => ({id: v.id, impact: v.impact, help: v.help,
+    nodes: v.nodes.map(n => n.target.join(" ") + " :: " + n.html.slice(0, 160))}));
+}"""
+
+FIGURES = """() => Array.from(document.querySelectorAll(".bd-article img")).map(img => ({
+  src: img.getAttribute("src"), alt: img.getAttribute("alt") || "",
+  natural: img.naturalWidth, shown: img.getBoundingClientRect().width,
+  visible: img.getBoundingClientRect().width > 0}))"""
+
+PANEL_TEXT = """() => Array.from(document.querySelectorAll(".icm-static-panel svg text"))
+  .filter(t => t.textContent.trim() && t.getBoundingClientRect().width > 0)
+  .map(t => [t.textContent.slice(0, 40), parseFloat(getComputedStyle(t).fontSize)])"""
+
+CAPTION_PX = """() => {
+  const caption = document.querySelector(".bd-article figcaption p, .bd-article figcaption");
+  return caption ? parseFloat(getComputedStyle(caption).fontSize) : null;
+}"""
 
 
 OVERFLOWING = """() => {
@@ -99,14 +172,21 @@ OVERFLOWING = """() => {
 }"""
 
 
-def test_nothing_is_cut_off_at_laptop_width(browser_pages):
+@pytest.mark.parametrize("device", WIDTHS)
+def test_nothing_is_cut_off_at_laptop_or_phone_width(browser_pages, device):
+    # At 390 px (a phone) as at 1366 px: no figure, panel or table reaches past the
+    # column, and the page itself never scrolls sideways.
     for name in toc_files():
-        assert browser_pages[name]["overflowing"] == [], (name, browser_pages[name]["overflowing"])
+        seen = browser_pages[name][device]
+        assert seen["overflowing"] == [], (name, device, seen["overflowing"])
+        assert seen["page_width"] <= 0, (name, device, f"{seen['page_width']} px too wide")
 
 
-def test_every_page_loads_without_console_errors(browser_pages):
+@pytest.mark.parametrize("device", WIDTHS)
+def test_every_page_loads_without_console_errors(browser_pages, device):
     for name in toc_files():
-        assert browser_pages[name]["errors"] == [], f"{name}: {browser_pages[name]['errors']}"
+        errors = browser_pages[name][device]["errors"]
+        assert errors == [], f"{name} ({device}): {errors}"
 
 
 def test_no_page_needs_the_network(browser_pages):
@@ -116,9 +196,9 @@ def test_no_page_needs_the_network(browser_pages):
 def test_every_figure_image_loads(browser_pages):
     total = 0
     for name in toc_files():
-        broken = [src for width, src in browser_pages[name]["images"] if width == 0]
+        broken = [src for width, src in browser_pages[name]["laptop"]["images"] if width == 0]
         assert broken == [], f"{name}: images that did not load: {broken}"
-        total += len(browser_pages[name]["images"])
+        total += len(browser_pages[name]["laptop"]["images"])
     assert total >= 10
 
 
@@ -126,12 +206,291 @@ def test_no_page_has_a_dead_widget_slider(browser_pages):
     # The book's panels are static Vega-Lite figures in the HTML; an ipywidgets slider
     # there could be dragged but would never redraw anything.
     for name in toc_files():
-        assert browser_pages[name]["expected_sliders"] == 0, name
-        assert browser_pages[name]["sliders"] == 0, name
+        assert browser_pages[name]["laptop"]["expected_sliders"] == 0, name
+        assert browser_pages[name]["laptop"]["sliders"] == 0, name
 
 
 def test_formulas_are_typeset_offline(browser_pages):
-    assert sum(browser_pages[name]["math"] for name in toc_files()) >= 1
+    assert sum(browser_pages[name]["laptop"]["math"] for name in toc_files()) >= 1
+
+
+# Every reader: axe-core's checks, alternative text, readable figures, light pages.
+
+SERIOUS = ("serious", "critical")
+
+
+def test_axe_finds_no_serious_or_critical_violation_on_any_page(browser_pages, capsys):
+    serious, others = {}, {}
+    for name in toc_files():
+        for violation in browser_pages[name]["laptop"]["axe"]:
+            bucket = serious if violation["impact"] in SERIOUS else others
+            key = (violation["impact"], violation["id"])
+            bucket.setdefault(key, []).append((name, len(violation["nodes"]),
+                                               violation["nodes"][:2]))
+    with capsys.disabled():  # the rest, for the record (as the book's times are shown)
+        print("\naxe-core, the violations below serious, elements per page: " + "; ".join(
+            f"{impact} {rule}: " + ", ".join(f"{page.split('/')[-1]} {n}" for page, n, _ in where)
+            for (impact, rule), where in sorted(others.items())))
+    assert serious == {}, serious
+
+
+def test_every_figure_has_alternative_text_in_words(browser_pages):
+    figures = 0
+    for name in toc_files():
+        for image in browser_pages[name]["laptop"]["figures"]:
+            alt = image["alt"]
+            words = re.findall(r"[A-Za-z]{2,}", alt)
+            assert len(words) >= 6, (name, image["src"][:60], alt)
+            assert not re.search(r"\.(png|jpe?g|svg)\b|_images/|data:image", alt), (name, alt)
+            figures += 1
+        # A static panel says what it shows (its Vega-Lite description).
+        for role, label in browser_pages[name]["laptop"]["panel_labels"]:
+            assert role and len(re.findall(r"[A-Za-z]{2,}", label)) >= 12, (name, role, label)
+            figures += 1
+    assert figures >= 30
+
+
+def _png_measures(built_book, page, src):
+    """The measures an icm figure's PNG records (icm.figures._common.Figure.measures),
+    or None for an image that is not a PNG of the book's figures."""
+    from PIL import Image
+
+    if not src.endswith(".png") or "_images/" not in src:
+        return None
+    path = (built_book / page).parent / src
+    text = Image.open(path).text
+    return {key: float(text[key]) for key in ("icm:smallest-text-px", "icm:legend-overlaps",
+                                              "icm:text-overlaps")} if text else {}
+
+
+def test_no_text_in_a_figure_is_smaller_than_the_captions(browser_pages, built_book):
+    # At 1366 px: a figure's PNG is shown scaled to the column; its smallest text, in
+    # screen pixels there, must be at least the caption text's size; so must the text
+    # of the static panels (SVG).
+    captions = {browser_pages[n]["laptop"]["caption_px"] for n in toc_files()} - {None}
+    assert len(captions) == 1, captions
+    caption = captions.pop()
+    smallest, measured = [], 0
+    for name in toc_files():
+        seen = browser_pages[name]["laptop"]
+        for image in seen["figures"]:
+            measures = _png_measures(built_book, f"{name}.html", image["src"])
+            if measures is None:
+                continue
+            assert measures, (name, image["src"], "a PNG figure without its measures")
+            shown = measures["icm:smallest-text-px"] * min(1.0, image["shown"] / image["natural"])
+            smallest.append((round(shown, 2), name, image["src"][-20:]))
+            measured += 1
+        for text, size in seen["panel_text"]:
+            smallest.append((size, name, f"panel text {text!r}"))
+    assert measured >= 30
+    too_small = [entry for entry in smallest if entry[0] < caption - 0.01]
+    assert too_small == [], (caption, sorted(too_small)[:10])
+
+
+def test_no_legend_covers_data_and_no_text_in_a_figure_overlaps(browser_pages, built_book):
+    for name in toc_files():
+        for image in browser_pages[name]["laptop"]["figures"]:
+            measures = _png_measures(built_book, f"{name}.html", image["src"])
+            if measures:
+                assert measures["icm:legend-overlaps"] == 0, (name, image["alt"][:80])
+                assert measures["icm:text-overlaps"] == 0, (name, image["alt"][:80])
+
+
+PROGRESS = re.compile(r"\d+%\|[^|]*\|\s*\d+/\d+|\d+(\.\d+)?(it|[a-z]+)/s\]|"
+                      r"(Float|Int)ProgressModel")
+"""What a tqdm bar leaves in a page: "42%|████ | 21/50 [... 3.1seed/s]", or its widget."""
+
+
+def test_no_progress_bar_is_baked_into_the_pages(built_book):
+    for name in toc_files():
+        html = (built_book / f"{name}.html").read_text()
+        found = PROGRESS.search(html)
+        assert found is None, (name, html[max(0, found.start() - 80):found.end() + 40])
+
+
+PAGE_BUDGET_BYTES = 9_000_000
+"""What a page may load when it opens (its HTML with the panels' data and the
+animations' frames, scripts, styles, images and fonts); the live views' 4 MB load only
+when the reader starts one."""
+BASE_SCRIPT_BUDGET_BYTES = 2_000_000
+"""The scripts every page loads (the theme's, Font Awesome's 1.5 MB among them); MathJax
+(1.2 MB) comes on top only where there is a formula, Vega (0.8 MB) only where there is
+a panel, the widget manager (3.2 MB) only where a page saved widgets."""
+OPTIONAL_SCRIPTS = {"mathjax": "tex-mml-chtml.js", "vega": "vega", "widgets": "html-manager"}
+
+
+def test_the_pages_are_light_and_load_what_they_need_only(browser_pages, built_book, capsys):
+    rows = []
+    for name in toc_files():
+        seen = browser_pages[name]["laptop"]
+        files = [pathlib.Path(f) for f in seen["files"] if pathlib.Path(f).exists()]
+        total = sum(f.stat().st_size for f in files)
+        scripts = [f for f in files if f.suffix == ".js"]
+        html = (built_book / f"{name}.html").read_text()
+        needs = {"mathjax": seen["math"] > 0, "vega": "icm-static-panel" in html,
+                 "widgets": "application/vnd.jupyter.widget-state+json" in html}
+        optional = {}
+        for what, mark in OPTIONAL_SCRIPTS.items():
+            found = [f for f in scripts if mark in f.name or f.parent.name == mark]
+            assert bool(found) == needs[what], (name, what, [f.name for f in found])
+            optional[what] = sum(f.stat().st_size for f in found)
+        assert not [f for f in files if f.parent.name in ("mujoco", "three", "axe")], name
+        base = sum(f.stat().st_size for f in scripts) - sum(optional.values())
+        rows.append((name.split("/")[-1], total, base, optional))
+    with capsys.disabled():
+        print("\npage weight on opening (MB: all; scripts every page loads; MathJax, Vega): "
+              + ", ".join(f"{page} {total / 1e6:.2f}; {base / 1e6:.2f}; "
+                          f"{extra['mathjax'] / 1e6:.2f}, {extra['vega'] / 1e6:.2f}"
+                          for page, total, base, extra in rows))
+    assert all(extra["widgets"] == 0 for *_, extra in rows)  # no page saved widgets
+    for page, total, base, _ in rows:
+        assert total <= PAGE_BUDGET_BYTES, (page, total)
+        assert base <= BASE_SCRIPT_BUDGET_BYTES, (page, base)
+
+
+READY_BUDGET_MS = 2000
+"""Each chapter is interactive within 2 s of being opened: its load event has run and
+its static panels are drawn (the live views, loaded on request, do not count)."""
+
+READY = """() => {
+  const navigation = performance.getEntriesByType("navigation")[0];
+  return Math.max(navigation.loadEventEnd, ...(window.icmPanelTimes || [0]));
+}"""
+
+
+def test_every_chapter_is_interactive_within_two_seconds(built_book, capsys):
+    # Each page opened three times, each time in a new browser context (nothing
+    # cached); the best of the three, as the machine may be busy with other work.
+    times = {}
+    with playwright_api.sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
+        for name in toc_files():
+            best = float("inf")
+            for _ in range(3):
+                context, _requests = _offline_context(browser, WIDTHS["laptop"], [])
+                page = context.new_page()
+                page.goto((built_book / f"{name}.html").as_uri(), wait_until="load")
+                page.wait_for_function(PANELS_DRAWN, timeout=30000)
+                best = min(best, page.evaluate(READY))
+                context.close()
+            times[name] = best
+        browser.close()
+    with capsys.disabled():
+        print("\ninteractive after (ms, best of 3): " + ", ".join(
+            f"{name.split('/')[-1]} {ms:.0f}" for name, ms in times.items()))
+    slow = {name: ms for name, ms in times.items() if ms > READY_BUDGET_MS}
+    assert slow == {}, slow
+
+
+# The keyboard: every control of a page reached with Tab, with a visible focus, and
+# worked with keys alone.
+
+MARK_CONTROLS = """() => {
+  const article = document.querySelector(".bd-article");
+  // Every control a reader could work: the natively interactive elements (even one
+  // taken out of the Tab order with tabindex="-1", which must then fail the test) and
+  // any other element put into the Tab order.
+  const native = "a[href], button, input, select, textarea, summary";
+  const controls = Array.from(article.querySelectorAll(native + ", [tabindex]"))
+    .filter(e => (e.matches(native) || e.getAttribute("tabindex") !== "-1") && !e.disabled &&
+                 e.getClientRects().length > 0 && getComputedStyle(e).visibility !== "hidden");
+  controls.forEach((e, i) => e.dataset.icmKey = i);
+  article.setAttribute("tabindex", "-1");  // Tab goes on from the article's start
+  article.focus();
+  return controls.map(e => e.tagName.toLowerCase() + (e.type ? "[" + e.type + "]" : "") +
+                           " " + (e.getAttribute("aria-label") || e.textContent || e.name || "")
+                           .trim().slice(0, 40));
+}"""
+
+FOCUSED = """() => {
+  const e = document.activeElement;
+  if (!e || e.dataset.icmKey === undefined) { return null; }
+  const style = getComputedStyle(e);
+  const ring = (style.outlineStyle !== "none" && parseFloat(style.outlineWidth) > 0) ||
+               style.boxShadow !== "none";
+  return [parseInt(e.dataset.icmKey), ring];
+}"""
+
+
+def _pages_with_controls(built_book):
+    marks = ("<input", "<button", "<select", "<summary")
+    pages = []
+    for name in toc_files():
+        html = (built_book / f"{name}.html").read_text()
+        article = html.split('class="bd-article"', 1)[-1]
+        if any(mark in article for mark in marks) or "icm-static-panel" in html:
+            pages.append(name)
+    return pages
+
+
+def test_every_control_is_reached_with_tab_and_shows_its_focus(built_book):
+    pages = _pages_with_controls(built_book)
+    assert {"book/simulated_icub", "book/goal_oriented_interest", "book/rod_toppling"} <= \
+        set(pages)
+    with playwright_api.sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
+        context, _requests = _offline_context(browser, WIDTHS["laptop"], [])
+        for name in pages:
+            page = context.new_page()
+            page.goto((built_book / f"{name}.html").as_uri(), wait_until="load")
+            page.wait_for_function(PANELS_DRAWN, timeout=30000)
+            controls = page.evaluate(MARK_CONTROLS)
+            reached, no_ring = set(), []
+            # Radio buttons of one group are one stop for Tab (the arrows move within).
+            for _ in range(len(controls) + 5):
+                page.keyboard.press("Tab")
+                focused = page.evaluate(FOCUSED)
+                if focused is None:
+                    continue
+                reached.add(focused[0])
+                if not focused[1]:
+                    no_ring.append(controls[focused[0]])
+            radios_of_a_group = {i for i, c in enumerate(controls) if c.startswith("input[radio]")}
+            missed = [c for i, c in enumerate(controls)
+                      if i not in reached and i not in radios_of_a_group]
+            assert missed == [], (name, missed)
+            assert no_ring == [], (name, "focus not shown", no_ring)
+            page.close()
+        browser.close()
+
+
+def test_the_animations_and_the_panels_choices_work_with_the_keyboard(built_book):
+    with playwright_api.sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
+        context, _requests = _offline_context(browser, WIDTHS["laptop"], [])
+        page = context.new_page()
+        page.goto((built_book / "book" / "simulated_icub.html").as_uri(), wait_until="load")
+        player = page.locator(".animation").first
+        slider = player.locator("input[type=range]")
+        player.get_by_role("button", name="Pause").focus()
+        page.keyboard.press("Enter")
+        before = int(slider.input_value())
+        player.get_by_role("button", name="Next frame").focus()
+        page.keyboard.press("Enter")
+        assert int(slider.input_value()) == (before + 1) % (int(slider.get_attribute("max")) + 1)
+        slider.focus()
+        page.keyboard.press("End")
+        assert slider.input_value() == slider.get_attribute("max")
+        words = page.locator(".icm-anim-text").first
+        words.locator("summary").focus()
+        page.keyboard.press("Enter")
+        assert words.evaluate("d => d.open") and words.locator("li").count() > 5
+        # A panel's choice (radio buttons): the arrow keys move it.
+        page = context.new_page()
+        page.goto((built_book / "book" / "actor_critic.html").as_uri(), wait_until="load")
+        page.wait_for_function("Object.keys(window.icmPanels || {}).length > 0", timeout=30000)
+        radio = page.locator(".icm-static-panel input[type=radio]").first
+        name = radio.get_attribute("name")
+        radio.focus()
+        page.keyboard.press("ArrowRight")
+        page.wait_for_timeout(200)
+        checked = page.locator(f".icm-static-panel input[type=radio][name={name}]:checked")
+        assert checked.get_attribute("value") != radio.get_attribute("value")
+        panel_id = page.evaluate("Object.keys(window.icmPanels)[0]")
+        assert page.evaluate(f"window.icmPanels['{panel_id}'].signal('{name}')") == \
+            checked.get_attribute("value")
+        browser.close()
 
 
 # The static panels: every slider moved with the keyboard and with the mouse, and the
@@ -239,7 +598,8 @@ def static_panels(built_book):
 
 
 def test_the_static_panels_are_there(static_panels):
-    titles = [panel["spec"]["title"] for panel in static_panels["panels"]]
+    titles = [" ".join(panel["spec"]["title"]) if isinstance(panel["spec"]["title"], list)
+              else panel["spec"]["title"] for panel in static_panels["panels"]]
     for figure in ("Figure 5", "Figure 6", "Figure 7", "epsilon x window sweep"):
         assert any(figure in title for title in titles), (figure, titles)
 
@@ -301,13 +661,21 @@ def test_a_live_view_starts_in_the_book_and_presses_a_button(built_book):
         page.goto((built_book / "book" / "simulated_icub.html").as_uri(), wait_until="load")
         assert page.evaluate("typeof window.icmLive") == "undefined"
         view = page.locator(".icm-live").first
-        view.get_by_role("button", name="Start the live view").click()
+        # With the keyboard alone: Enter on the focused button.
+        view.get_by_role("button", name="Start the live view").focus()
+        page.keyboard.press("Enter")
         page.wait_for_function("window.icmLive && window.icmLive.views.length === 1 && "
                                "window.icmLive.views[0].stats.frames > 0", timeout=60000)
-        view.get_by_role("button", name="Press button 2").click()
+        view.get_by_role("button", name="Press button 2").focus()
+        page.keyboard.press("Enter")
         page.wait_for_function("!window.icmLive.views[0].sim.busy", timeout=60000)
         assert "opened the red box" in view.locator(".icm-live-status").inner_text()
+        # The running view, its controls and its panel, for every reader too.
+        page.add_script_tag(path=str(AXE))
+        found = page.evaluate(AXE_RUN.replace("axe.run(document,", "axe.run('.icm-live',"))
+        serious = [v for v in found if v["impact"] in SERIOUS]
         browser.close()
+    assert serious == [], serious
     assert errors == [] and requests == []
 
 

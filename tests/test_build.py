@@ -8,6 +8,7 @@ notebooks of its own, many of them while a CPU burner runs on every core."""
 import asyncio
 import importlib.util
 import json
+import os
 import signal
 import subprocess
 import sys
@@ -48,12 +49,12 @@ def notebook(path, *cells, tags=None):
     return path
 
 
-def run(out, *arguments, timeout=300):
+def run(out, *arguments, timeout=300, env=None):
     """Runs execute_book.py into `out`; returns (status, stdout, stderr, seconds)."""
     start = time.monotonic()
     completed = subprocess.run(
         [sys.executable, str(EXECUTE_BOOK), "--path-output", str(out)] + [str(a) for a in arguments],
-        capture_output=True, text=True, cwd=ROOT, timeout=timeout)
+        capture_output=True, text=True, cwd=ROOT, timeout=timeout, env=env)
     return completed.returncode, completed.stdout, completed.stderr, time.monotonic() - start
 
 
@@ -178,6 +179,31 @@ def test_cells_tagged_skip_execution_are_not_executed(tmp_path):
     assert executed.cells[0].execution_count is None and executed.cells[0].outputs == []
     assert executed.cells[1].execution_count == 1
     assert executed.cells[1].outputs[0]["text"] == "ran\n"
+
+
+def test_progress_goes_to_the_builders_terminal_not_into_the_cells_outputs(tmp_path):
+    # The library's bar (shown after a second), a write to the kernel's original
+    # standard error, and one straight to file descriptor 2 (as C code writes).
+    path = notebook(
+        tmp_path / "progress.ipynb",
+        "import os, sys, time\nfrom icm.experiments._progress import progress_bar\n"
+        "for _ in progress_bar(range(4), 4, 'slow loop'):\n    time.sleep(0.6)\n"
+        "sys.__stderr__.write('original stderr\\n'); sys.__stderr__.flush()\n"
+        "os.write(2, b'file descriptor 2\\n')\nprint('shown')")
+    # As outside the tests: ipykernel sends whatever reaches the process's file
+    # descriptor 2 into the cell's outputs, except under pytest (PYTEST_CURRENT_TEST).
+    env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
+    status, _, stderr, _ = run(tmp_path / "out", path, env=env)
+    assert status == 0, stderr
+    assert "slow loop" in stderr and "4/4" in stderr
+    assert "original stderr" in stderr and "file descriptor 2" in stderr
+
+    from jupyter_cache import get_cache
+
+    cache = get_cache(str(tmp_path / "out" / "_build" / ".jupyter_cache"))
+    record = cache.match_cache_notebook(nbformat.read(path, as_version=4))
+    outputs = cache.get_cache_bundle(record.pk).nb.cells[0].outputs
+    assert [(o["output_type"], o.get("text")) for o in outputs] == [("stream", "shown\n")]
 
 
 def test_kernels_talk_over_local_sockets_without_the_tcp_warning(tmp_path):

@@ -208,6 +208,23 @@ def test_the_noisy_button_costs_every_learner_a_little(comparison):
         assert noisy > plain, signal
 
 
+def test_the_chapters_claims_on_the_buttons_hold_here_and_fail_when_they_should(comparison):
+    found = comparison.claims()
+    assert set(found) == set(curiosity.SIGNAL_CLAIMS) and all(found.values()), found
+    assert comparison.fastest() == ("novelty", "region")
+    results = dict(comparison.results)
+    swapped = curiosity.SignalComparison(comparison.settings, {
+        **results, ("prediction_error", "region", True): results[("random", "region", True)],
+        ("novelty", "task", False): results[("random", "task", False)]})
+    wrong = [name for name, held in swapped.claims().items() if not held]
+    assert wrong == ["novelty_task_balanced", "region_error_trapped",
+                     "noise_costs_every_learner"], wrong
+    partial = curiosity.SignalComparison(comparison.settings, {
+        k: v for k, v in results.items() if k[2] is False})
+    with pytest.raises(ValueError, match="every signal"):
+        partial.claims()
+
+
 def test_tables_and_summary_hold_every_setting(comparison):
     summary = comparison.summary()
     assert len(comparison.results) == 16
@@ -246,6 +263,17 @@ def test_novelty_and_the_random_walk_are_not_trapped_but_slow(rewards):
         assert n["red_well"][0] < 0.6
 
 
+def test_the_chapters_claims_on_the_rods_hold_here_and_fail_when_they_should(rewards):
+    found = rewards.claims()
+    assert set(found) == set(curiosity.REWARD_CLAIMS) and all(found.values()), found
+    results = dict(rewards.results)
+    swapped = curiosity.RewardComparison(rewards.settings, {
+        **results, ("prediction_error", True): results[("novelty", True)],
+        ("learning_progress", True): results[("random", True)]})
+    wrong = [name for name, held in swapped.claims().items() if not held]
+    assert wrong == ["error_trapped", "progress_learns_anyway", "progress_not_immune"], wrong
+
+
 def test_a_coin_pays_prediction_error_and_hardly_learning_progress():
     paid = curiosity.outcome_rewards(n_seeds=100, n_tries=60, seed=SEED)
     late = slice(30, None)
@@ -269,4 +297,36 @@ def test_figures_draw(comparison, rewards):
                 curiosity_figures.noisy_share_figure(comparison),
                 curiosity_figures.wobbly_rod_figure(rewards),
                 curiosity_figures.coin_flip_figure(curiosity.outcome_rewards(n_seeds=5))):
-        assert fig._repr_png_()[:4] == b"\x89PNG"
+        assert fig.png()[:4] == b"\x89PNG"
+
+
+def test_moves_in_words():
+    assert rods.describe_moves(rods.load_wobble_map()) == \
+        "forward from cell (0, 1) or backward from cell (0, 2)"
+    assert rods.describe_moves([((3, 1), 2), ((0, 0), 3), ((4, 0), 0)]) == \
+        "right from cell (0, 0), forward from cell (4, 0) or left from cell (3, 1)"
+    refused(lambda: rods.describe_moves([]), "pairs", "none", "value")
+    refused(lambda: rods.describe_moves([((5, 0), 0)]), "cell", "(5, 0)", "value")
+
+
+def test_a_coin_claims_hold_here_and_fail_when_they_should():
+    paid = curiosity.outcome_rewards(n_seeds=50, n_tries=60, seed=SEED)
+    found = curiosity.coin_claims(paid)
+    assert set(found) == set(curiosity.COIN_CLAIMS) and all(found.values()), found
+    assert curiosity.late_tries(paid) == slice(30, None)
+    swapped = {**paid, ("novelty", "sure"): paid[("learning_progress", "sure")],
+               ("prediction_error", "sure"): paid[("prediction_error", "coin")]}
+    wrong = [name for name, held in curiosity.coin_claims(swapped).items() if not held]
+    assert wrong == ["error_pays_the_coin", "novelty_blind"], wrong
+    refused(lambda: curiosity.coin_claims({}), "paid", "{}", "type")
+
+
+def test_red_first_in_words(comparison):
+    lowest = min(comparison.numbers(s, d)["red_first"]
+                 for (s, d, noisy) in comparison.results if not noisy)
+    text = comparison.describe_red_first()
+    assert text == ("in every seed" if lowest == 1 else f"in at least {lowest:.1%} of the seeds")
+    every = curiosity.SignalComparison(comparison.settings, {
+        key: result for key, result in comparison.results.items()
+        if key[:2] == ("novelty", "region")})
+    assert every.describe_red_first() == "in every seed"

@@ -153,7 +153,7 @@ def test_comparison_table_has_one_column_per_run():
     run = icm.experiments.run_goal_oriented(n_seeds=6, n_trials=30, progress=False)
     table = icm.experiments.comparison_table({"first": run, "second": run})
     lines = table.splitlines()
-    assert lines[0] == "| | first | second |" and lines[2] == "| seeds | 6 | 6 |"
+    assert lines[0] == "| measure | first | second |" and lines[2] == "| seeds | 6 | 6 |"
     s = run.summary()
     assert f"| red mastered first | {s['red_first']:.0%} | {s['red_first']:.0%} |" in lines
     assert all(line.count("|") == 4 for line in lines)

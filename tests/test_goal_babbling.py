@@ -472,7 +472,7 @@ def test_figures_draw(small):
                    forming_actions.coverage_figure(results),
                    forming_actions.goal_choice_figure(small, n_stretches=4),
                    forming_actions.learned_presses_figure(small)):
-        assert len(figure._repr_png_()) > 10_000
+        assert len(figure.png()) > 10_000
     record = forming_actions.record_learned_press(small, seed=1, button=2)
     assert record["frame"].shape == (240, 320, 3) and record["frame"].std() > 1
     assert "| random motor | 2 | 30 |" in goal_babbling.comparison_table(results)

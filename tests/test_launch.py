@@ -35,7 +35,9 @@ import sys
 
 if importlib.util.find_spec("icm") is None:
     source = os.environ.get("ICM_SOURCE", "git+{REPOSITORY}")
-    subprocess.check_call([sys.executable, "-m", "pip", "install", "--quiet", source])'''
+    pip = [sys.executable, "-m", "pip", "install", "--quiet"]
+    subprocess.check_call(pip + ["--no-deps", source])  # icm, then what it needs:
+    subprocess.check_call([sys.executable, "-m", "icm._install"])'''
 """The exact first cell of every notebook of the book (tags: INSTALL_TAGS)."""
 NOTEBOOKS = [ROOT / f"{name}.ipynb" for name in toc_files() if (ROOT / f"{name}.ipynb").exists()]
 LAUNCHED = ROOT / "book" / "button_experiment.ipynb"
@@ -76,6 +78,51 @@ def test_the_repository_address_is_one_github_repository_everywhere():
     assert cited == [REPOSITORY] and set(installed) == {REPOSITORY}, (cited, installed)
 
 
+def _set_repository():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(
+        "set_repository", ROOT / "book" / "_ext" / "set_repository.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+set_repository = _set_repository()
+
+
+def test_everything_derived_from_the_address_agrees_with_config():
+    derived = set_repository.derived_addresses()
+    assert set_repository.configured() == REPOSITORY
+    for name, addresses in derived.items():
+        expected = 2 if name == "README.md" else 1  # the README: install line, citation
+        assert addresses == [REPOSITORY] * expected, (name, addresses)
+    assert len(derived) == len(NOTEBOOKS) + 2
+
+
+def test_one_command_changes_the_address_everywhere(tmp_path):
+    for path in [ROOT / "_config.yml"] + set_repository.derived_files():
+        target = tmp_path / path.relative_to(ROOT)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(path, target)
+    new = "https://github.com/a-university/icm-course"
+    changed = set_repository.set_repository(new, root=tmp_path)
+    assert len(changed) == 1 + len(set_repository.derived_files())
+    assert set_repository.configured(tmp_path) == new
+    for name, addresses in set_repository.derived_addresses(tmp_path).items():
+        assert addresses and set(addresses) == {new}, name
+    # Only the address changed, and the install cells are the new address's.
+    for path in [ROOT / "_config.yml"] + set_repository.derived_files():
+        after = (tmp_path / path.relative_to(ROOT)).read_text()
+        assert after.replace(new, REPOSITORY) == path.read_text(), path.name
+    first = nbformat.read(tmp_path / "book" / LAUNCHED.name, as_version=4).cells[0].source
+    assert first == INSTALL_CELL.replace(REPOSITORY, new)
+    with pytest.raises(ValueError, match="url must be a GitHub repository's address"):
+        set_repository.set_repository("https://gitlab.com/a/b", root=tmp_path)
+    assert "make repository URL=" in (ROOT / "README.md").read_text()
+    assert "repository:" in (ROOT / "Makefile").read_text()
+
+
 def _run_install_cell(args, env, cwd):
     return subprocess.run([sys.executable, *args, "-c", INSTALL_CELL], env=env, cwd=cwd,
                           capture_output=True, text=True, timeout=300)
@@ -112,6 +159,32 @@ def test_binder_reuses_the_pinned_requirements():
     pins = _requirement_lines(ROOT / "requirements.txt")
     assert "dm-control==1.0.50" in pins and "mujoco==3.17.0" in pins
     assert "jupyter-book==1.0.4.post1" in pins
+
+
+def test_binder_cannot_drift_from_the_project():
+    # Binder installs requirements.txt, then icm without its dependencies (postBuild):
+    # every dependency icm declares, and the notebooks' extra, must be pinned there, to
+    # a version its declaration allows.
+    from packaging.requirements import Requirement
+
+    pins = {Requirement(line).name.lower().replace("_", "-"): Requirement(line)
+            for line in _requirement_lines(ROOT / "requirements.txt")}
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    declared = project["dependencies"] + project["optional-dependencies"]["notebooks"]
+    for text in declared:
+        wanted = Requirement(text)
+        pin = pins.get(wanted.name.lower().replace("_", "-"))
+        assert pin is not None, f"{wanted.name} is not pinned in requirements.txt"
+        version = next(iter(pin.specifier)).version
+        assert wanted.specifier.contains(version), (text, str(pin))
+    # The system packages: those the README and `make` (icm/_system.py) ask for.
+    from icm import _system
+
+    apt = set(_requirement_lines(BINDER / "apt.txt"))
+    assert set(_system.DEBIAN_PACKAGES) <= apt
+    readme = (ROOT / "README.md").read_text()
+    listed = re.search(r"sudo apt-get install ([a-z0-9 .+-]+)\n", readme).group(1).split()
+    assert set(listed) <= apt and set(listed) == set(_system.DEBIAN_PACKAGES)
 
 
 def test_binder_python_is_the_projects_python():
@@ -155,7 +228,8 @@ for cell in nb.cells:  # a reader's Jupyter ignores the tag that the book build 
     if execute_book.SKIP_TAG in tags:
         tags.remove(execute_book.SKIP_TAG)
 nbformat.write(nb, path)
-executed, seconds = execute_book.execute(path, timeout=600)
+import threading
+executed, seconds = execute_book.execute(path, threading.Event())
 nbformat.write(executed, out)
 print(f"{seconds:.1f}")
 """
@@ -273,3 +347,100 @@ def test_a_fresh_launch_installs_icm_with_the_first_cell_and_runs_a_notebook(
 
     with capsys.disabled():  # shown in the test run's output, as the book's times are
         print("\nfresh launch: " + ", ".join(f"{k} {v:.0f} s" for k, v in times.items()))
+
+
+# --- icm's dependencies, as the install cell asks for them ---------------------------
+
+def _install_module():
+    import importlib
+
+    return importlib.import_module("icm._install")
+
+
+def test_the_install_step_asks_for_dm_control_alone_then_everything_else(capsys):
+    install = _install_module()
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    # icm's requirements as its installed metadata lists them (pip install of this
+    # checkout writes them from pyproject.toml).
+    metadata = project["dependencies"] + [
+        f'{r}; extra == "{extra}"' for extra, listed in project["optional-dependencies"].items()
+        for r in listed]
+    assert install.main(["--dry-run"], requires=metadata) == 0
+    first, second = capsys.readouterr().out.strip().splitlines()
+    assert first.endswith("--no-warn-conflicts --no-deps dm-control")
+    asked = second.split("--no-warn-conflicts ", 1)[1].split()
+    names = {install._name(r) for r in asked}
+    for text in project["dependencies"] + project["optional-dependencies"]["notebooks"]:
+        assert install._name(text) in names | {"dm-control"}, text
+    assert "labmaze" not in names and "dask" not in names
+    assert install.main(["--please"]) == 2
+
+
+def test_the_install_step_reads_extras_and_markers():
+    install = _install_module()
+    requires = ["numpy", "h5py; extra == \"hdf5\"", "myst-nb; extra == 'notebooks'",
+                "tomli; python_version < \"3.11\""]
+    assert install._plain(requires) == ["numpy", "tomli; python_version < \"3.11\""]
+    assert install._plain(requires, "notebooks") == [
+        "numpy", "myst-nb", "tomli; python_version < \"3.11\""]
+    assert [install._name(r) for r in ("dm_control>=1", "Dm.Control", "PyYAML==6")] == [
+        "dm-control", "dm-control", "pyyaml"]
+
+
+COLAB_PACKAGES = ROOT / "tests" / "data" / "colab-packages.txt"
+COLAB_PYTHON = shutil.which("python3.13")
+COLAB_NOTEBOOKS = ("button_experiment.ipynb", "simulated_icub.ipynb")
+"""A chapter without physics, and one with physics and drawing."""
+
+RUN_AS_COLAB = """\
+import pathlib, sys, time
+import nbformat
+from nbclient import NotebookClient
+path, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
+nb = nbformat.read(path, as_version=4)
+# A reader's Jupyter runs every cell, the install cell too (no tag is obeyed).
+NotebookClient(nb, timeout=1800, kernel_name="python3", skip_cells_with_tag="none",
+               resources={"metadata": {"path": str(path.parent)}}).execute()
+nbformat.write(nb, out)
+"""
+
+
+@pytest.mark.launch
+@pytest.mark.skipif(os.environ.get("ICM_COLAB_CHECK") != "1" or COLAB_PYTHON is None,
+                    reason="the Colab check runs with ICM_COLAB_CHECK=1 and python3.13 on "
+                           "the PATH (it installs about 110 packages)")
+def test_a_colab_like_python_installs_icm_and_runs_a_chapter_with_and_without_physics(
+        tmp_path, capsys):
+    env = _without_python_path() | {"PIP_DISABLE_PIP_VERSION_CHECK": "1",
+                                    "PYDEVD_DISABLE_FILE_VALIDATION": "1"}
+    env.pop("VIRTUAL_ENV", None)
+    venv = tmp_path / "colab"
+    python = venv / "bin" / "python"
+    _run([COLAB_PYTHON, "-m", "venv", venv], env=env)
+    _run([python, "-m", "pip", "install", "--quiet", "--no-deps", "-r", COLAB_PACKAGES],
+         env=env)
+    shipped = _run([python, "-m", "pip", "freeze"], env=env)
+    source = _copy_checkout(tmp_path / "clone")
+    launch = tmp_path / "launch"
+    launch.mkdir()
+    for name in COLAB_NOTEBOOKS:
+        notebook = launch / name
+        shutil.copy(ROOT / "book" / name, notebook)
+        _run([python, "-Xfrozen_modules=off", "-c", RUN_AS_COLAB, notebook,
+              tmp_path / f"executed-{name}"], env=env | {"ICM_SOURCE": str(source)}, cwd=launch)
+        executed = nbformat.read(tmp_path / f"executed-{name}", as_version=4)
+        code = [c for c in executed.cells if c.cell_type == "code"]
+        assert all(c.execution_count for c in code), name
+        assert not [o for c in code for o in c.outputs if o.output_type == "error"], name
+        stderr = [o.text for c in code for o in c.outputs
+                  if o.output_type == "stream" and o.name == "stderr"]
+        assert stderr == [], (name, stderr)
+    # Colab's own numpy, scipy, matplotlib, pandas and numba were kept.
+    after = _run([python, "-m", "pip", "freeze"], env=env)
+    for package in ("numpy", "scipy", "matplotlib", "pandas", "numba", "ipykernel"):
+        pinned = [line for line in shipped.splitlines() if line.lower().startswith(package + "==")]
+        assert pinned and pinned[0] in after.splitlines(), package
+    added = sorted(set(after.splitlines()) - set(shipped.splitlines()))
+    with capsys.disabled():
+        print("\nColab-like launch: the install cell added " + ", ".join(
+            line.split(" @ ")[0] for line in added))

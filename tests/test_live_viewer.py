@@ -150,15 +150,16 @@ def test_the_vendored_scripts_are_the_locked_packages():
     vendor = STATIC / "vendor"
     lock = json.loads((vendor / "npm" / "package-lock.json").read_text())["packages"]
     readme = (vendor / "README.md").read_text()
-    for package in ("@mujoco/mujoco", "three", "esbuild"):
+    for package in ("@mujoco/mujoco", "three", "axe-core", "esbuild"):
         version = lock[f"node_modules/{package}"]["version"]
         assert f"`{package}` | {version}" in readme, package
     # What the book says the browser runs is what is vendored.
-    assert lock["node_modules/@mujoco/mujoco"]["version"] == viewer.BROWSER_MUJOCO_VERSION
+    assert lock["node_modules/@mujoco/mujoco"]["version"] == viewer.BROWSER_MUJOCO
     text = (vendor / "mujoco" / "mujoco-wasm.js").read_text()
     wasm = gzip.decompress(base64.b64decode(re.search(r'icmMujocoWasm = "([^"]+)"', text).group(1)))
     assert wasm[:4] == b"\0asm"
-    for name in ("mujoco/LICENSE", "mujoco/LICENSES_THIRD_PARTY.md", "three/LICENSE"):
+    for name in ("mujoco/LICENSE", "mujoco/LICENSES_THIRD_PARTY.md", "three/LICENSE",
+                 "axe/LICENSE", "axe/axe.min.js"):
         assert (vendor / name).stat().st_size > 1000, name
 
 

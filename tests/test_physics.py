@@ -12,6 +12,7 @@ from dm_env import test_utils
 import icm
 from icm.envs import buttons, icub, rods
 
+from test_bad_input import refused
 from test_envs import _noisy_boxes
 
 
@@ -151,10 +152,12 @@ def test_stored_topple_map_equals_a_fresh_physics_measurement_of_every_pair():
         assert pair["disturbance"] < 1e-3  # a rod that stays up is not nudged
 
 
-def test_physics_rod_observations_equal_the_tabular_twin():
+@pytest.mark.parametrize("rules", [dict(max_moves=20), dict(max_moves=None, off_grid="end")],
+                         ids=["time limit", "no limit, off the grid ends"])
+def test_physics_rod_observations_equal_the_tabular_twin(rules):
     rng = np.random.RandomState(11)
-    physics_env = icm.envs.load("rods", physics=True, max_moves=20)
-    tabular_env = icm.envs.load("rods", physics=False, max_moves=20)
+    physics_env = icm.envs.load("rods", physics=True, **rules)
+    tabular_env = icm.envs.load("rods", physics=False, **rules)
     physics_env.reset(), tabular_env.reset()
     topples = 0
     for action in rng.randint(4, size=300):
@@ -182,11 +185,33 @@ def test_rod_table_rules():
     assert step.last() and step.discount == 0.0
 
 
+def test_rod_table_rules_other_readings():
+    # No time limit: a thousand moves off the grid, and the episode goes on.
+    env = icm.envs.load("rods", max_moves=None)
+    env.reset()
+    for _ in range(1000):
+        step = env.step(1)  # backward, off the grid
+    assert step.mid() and step.observation["hand"].tolist() == [0, 0]
+    # A move off the grid ends the episode, with no rod toppled, as a termination.
+    env = icm.envs.load("rods", off_grid="end")
+    env.reset()
+    step = env.step(3)  # right, on the grid: goes on
+    assert step.mid() and step.observation["hand"].tolist() == [1, 0]
+    step = env.step(1)  # backward, off the grid
+    assert step.last() and step.discount == 0.0
+    assert step.observation["hand"].tolist() == [1, 0]
+    assert step.observation["rods"].tolist() == [0, 0]
+    assert env.step(0).first()  # a new episode, over the start cell
+    assert [rods.leaves_grid((0, 0), a) for a in range(4)] == [False, True, True, False]
+    assert [rods.leaves_grid((4, 2), a) for a in range(4)] == [True, False, False, True]
+
+
 @pytest.mark.parametrize("kwargs, message", [
     (dict(start_cell=(2, 1)), "start_cell"),  # the red rod stands there
     (dict(start_cell=(5, 0)), "start_cell"),
     (dict(start_cell="corner"), "start_cell"),
     (dict(max_moves=0), "max_moves"),
+    (dict(off_grid="wrap"), "off_grid"),
     (dict(colour="red"), "unknown argument"),
 ])
 def test_bad_rod_arguments_raise_value_error(kwargs, message):
@@ -444,6 +469,16 @@ def test_learners_give_identical_results_on_the_noisy_physics():
         np.testing.assert_array_equal(getattr(tabular, field), getattr(physics, field))
 
 
+def test_rod_learner_gives_identical_results_on_the_physics_without_a_time_limit():
+    settings = dict(n_seeds=2, n_episodes=5, max_moves=None, off_grid="end", seed=3,
+                    progress=False)
+    tabular = icm.experiments.run_rod_toppling(**settings)
+    physics = icm.experiments.run_rod_toppling(physics=True, **settings)
+    assert tabular.edge_ended_share() > 0
+    for field in ("toppled", "episode_length", "edge_moves", "prediction_error", "q_table"):
+        np.testing.assert_array_equal(getattr(tabular, field), getattr(physics, field))
+
+
 # --- the physics thresholds, each tried on both sides ------------------------------------
 
 def _tilt_rod(physics, name, degrees, azimuth=0.0):
@@ -595,3 +630,41 @@ def test_each_press_of_the_physics_noisy_button_opens_what_its_own_draw_says():
         if not step.first():
             seen.append(tuple(step.observation["boxes"].tolist()))
     assert seen == expected
+
+
+# --- what the chapter "The simulated iCub" states -------------------------------------
+
+def test_body_dimensions_are_read_from_the_model():
+    physics = buttons.load_physics()
+    found = icub.body_dimensions(physics)
+    assert found["torso_lean"] == pytest.approx(25.0)  # euler="0 25 0" in assets/icub.xml
+    assert found["upper_arm"] == pytest.approx(0.152) and found["forearm"] == pytest.approx(0.137)
+    assert found["arm_joints"] == 7
+    # Measured another way: the elbow's and the wrist's joints, in the world.
+    data = physics.data
+    shoulder, elbow, wrist = (data.xanchor[physics.model.joint(n).id]
+                              for n in ("r_shoulder_pitch", "r_elbow", "r_wrist_pitch"))
+    assert np.linalg.norm(elbow - shoulder) == pytest.approx(found["upper_arm"], abs=0.02)
+    assert np.linalg.norm(wrist - elbow) == pytest.approx(found["forearm"], abs=1e-6)
+
+
+def test_the_twins_claims_hold_on_other_seeds_and_fail_when_they_should():
+    from icm.experiments import twins
+
+    button_check = icm.envs.compare_twins("buttons", n_steps=20, seed=4, action_seed=5)
+    rod_check = icm.envs.compare_twins("rods", n_steps=40, seed=4, action_seed=5)
+    topple_map = rods.load_topple_map()
+    run = dict(n_seeds=2, n_trials=4, seed=4, progress=False)
+    physics_run = icm.experiments.run_goal_oriented(physics=True, **run)
+    tabular_run = icm.experiments.run_goal_oriented(**run)
+    found = twins.claims(button_check, rod_check, topple_map, physics_run, tabular_run)
+    assert set(found) == set(twins.CLAIMS) and all(found.values()), found
+    other = icm.experiments.run_goal_oriented(**{**run, "seed": 5})
+    wrong = twins.claims({**button_check, "mismatches": 1}, rod_check,
+                         {**topple_map, "topples": {**topple_map["topples"],
+                                                    twins.FOREARM_PAIR: None}},
+                         physics_run, other)
+    assert [name for name, held in wrong.items() if not held] == [
+        "buttons_agree", "learner_same", "forearm_topples_red"]
+    refused(lambda: twins.claims([], rod_check, topple_map, physics_run, tabular_run),
+            "button_check", "[]", "type")

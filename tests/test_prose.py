@@ -6,8 +6,12 @@ of the grid), the paper's own words, or arithmetic the sentence shows.
 
 What is left out before looking for numbers: glue and other roles, citations, math,
 inline code, links, quotations (the paper's words), references to the paper's
-figures, sections and equations, and the statements of the exercises (whose numbers
-are the problem's parameters; their solutions and explanations are read).
+figures, sections and equations, and the statements of the exercises: a `{exercise}`
+directive block, or what lies between `{exercise-start}` and `{exercise-end}`, whose
+numbers are the problem's parameters, given to the student. Only the statement is
+skipped: the solutions (`{solution}` blocks, `{solution-start}` to `{solution-end}`)
+and the explanations of a question's answer (`{div} icm-quiz-explanation`, even inside
+an exercise) quote results, and are read like the rest of the chapter.
 """
 
 import re
@@ -31,6 +35,11 @@ _REFERENCE = re.compile(
     r"|\(([a-c])\)|\b[Ff]igure\s+\d+\([a-c]\)")
 _LIST_MARKER = re.compile(r"^\s*\d+\.\s", re.M)
 _NUMBER = re.compile(r"(?<![\w.])\d+(?:[.,]\d+)*%?(?![\w])")
+_EXERCISE_BLOCK = re.compile(r"^(?P<fence>:{3,})\{exercise\}.*?^(?P=fence)[ \t]*$", re.M | re.S)
+_EXERCISE_SPAN = re.compile(r"^```\{exercise-start\}.*?^```\{exercise-end\}[ \t]*\n```",
+                            re.M | re.S)
+_QUIZ_EXPLANATION = re.compile(
+    r"^(?P<fence>:{3,})\{div\}[ \t]*icm-quiz-explanation.*?^(?P=fence)[ \t]*$", re.M | re.S)
 
 ALLOWED = {
     # Everywhere: the model's encodings and the grid's geometry, which are not results.
@@ -48,6 +57,9 @@ ALLOWED = {
     ],
     "goal_oriented_interest": [
         "2 to k-1",  # which histories the paper's definition leaves out (a definition)
+    ],
+    "simulated_icub": [
+        "cell (2, 2)",  # a cell of the grid, named in the text (the map's hatched cell)
     ],
     "rod_toppling": [
         "cell (0, 0)", "cell (2, 2)", "(2, 2)",  # cells of the grid, named in the text
@@ -75,19 +87,23 @@ def typed_numbers(text, allowed):
     return found
 
 
-def is_exercise_statement(source):
-    """Whether a markdown cell states an exercise: its numbers are the problem's
-    parameters, given to the student (its solution and the explanation of a question,
-    which quote results, are other cells and are read)."""
-    return "{exercise-start}" in source or "{exercise}" in source
+def without_exercise_statements(text):
+    """`text` (a chapter's markdown, its cells joined in order) less the statements of
+    its exercises (see the module's docstring): the explanations of questions inside
+    an exercise are kept, and so is everything outside one."""
+    def explanations(span):
+        return "\n\n".join(m.group(0) for m in _QUIZ_EXPLANATION.finditer(span.group(0)))
+
+    text = _EXERCISE_SPAN.sub(explanations, text)
+    return _EXERCISE_BLOCK.sub(" ", text)
 
 
 def chapter_text(path):
     """The markdown of a notebook (less the exercises' statements) and the captions of
     its figures, one string."""
     nb = nbformat.read(path, as_version=4)
-    parts = [c.source for c in nb.cells
-             if c.cell_type == "markdown" and not is_exercise_statement(c.source)]
+    parts = [without_exercise_statements(
+        "\n\n".join(c.source for c in nb.cells if c.cell_type == "markdown"))]
     for cell in nb.cells:
         figure = cell.metadata.get("mystnb", {}).get("figure", {})
         if "caption" in figure:
@@ -111,3 +127,19 @@ def test_the_scanner_finds_typed_results_and_leaves_glued_ones():
             "see Figure 5 and section 4.1, and $k = 5$.\n> the paper's 50%\n")
     assert [n for n, _ in typed_numbers(text, [])] == ["97%", "200"]
     assert typed_numbers("the grid is 5 x 3", ["5 x 3"]) == []
+
+
+def test_exercise_statements_are_skipped_and_solutions_and_explanations_are_read():
+    text = "\n\n".join([
+        "Before: 11 seeds.",
+        ":::{exercise} Extend: try 12 seeds\n:label: ex-a\n\nRun 13 seeds.\n:::",
+        "After the block: 14 seeds.",
+        "```{exercise-start} Predict\n:label: ex-b\n```\n\nOf 15 seeds, how many?",
+        ":::{div} icm-quiz-explanation\n16 of them.\n:::\n\n```{exercise-end}\n```",
+        "```{solution-start} ex-b\n```\n\nThe solution: 17 seeds.\n\n```{solution-end}\n```",
+        "::::{exercise} Nested\n:::{hint}\n18\n:::\n19\n::::",
+        ":::{solution} ex-a\n20 seeds\n:::",
+    ])
+    left = without_exercise_statements(text)
+    found = [n for n, _ in typed_numbers(left, [])]
+    assert found == ["11", "14", "16", "17", "20"]

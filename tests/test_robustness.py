@@ -241,7 +241,7 @@ def test_the_map_draws_every_pair_and_claim_with_marks_and_the_default(small):
     outlined = [p for ax in maps for p in ax.patches
                 if isinstance(p, matplotlib.patches.Rectangle) and not p.get_fill()]
     assert len(outlined) == len(maps)  # the default, once per map
-    assert fig._repr_png_()[:4] == b"\x89PNG"
+    assert fig.png()[:4] == b"\x89PNG"
 
 
 @pytest.mark.parametrize("call, name, shown, kind", [
@@ -371,3 +371,201 @@ def test_the_studies_sweep_exactly_the_settings_declared_swept():
         learner = {n for n, spec in study.run_fn.settings_class.specs().items()
                    if spec.swept is not None}
         assert learner <= {s.name for s in study.settings}
+
+
+# --- the other readings of the choices the maps do not sweep ------------------------
+
+def test_every_unpublished_choice_is_swept_read_otherwise_or_said_why():
+    for name, study in robustness.STUDIES.items():
+        swept = {s.name for s in study.settings}
+        read = {r.name for r in robustness.readings(name)}
+        for setting, spec in robustness.unpublished_settings(name).items():
+            said = (name, setting) in robustness.NOT_MEASURED
+            assert (setting in swept) + (setting in read) + said == 1, (name, setting)
+    for (name, setting), reason in robustness.NOT_MEASURED.items():
+        spec = robustness.unpublished_settings(name)[setting]
+        assert reason and not spec.other_readings()
+    # The choices the issue lists are among the readings.
+    keys = {(n, r.name, r.value) for n in robustness.STUDIES for r in robustness.readings(n)}
+    for key in [("goal_oriented", "tie", "earliest"), ("goal_oriented", "short_history", "zero"),
+                ("goal_oriented", "new_task_mean", "witnessed"),
+                ("rod_toppling", "max_moves", None), ("rod_toppling", "off_grid", "end")]:
+        assert key in keys
+    for setting in ("temperature", "lr_actor", "lr_critic", "gamma"):
+        assert setting in {r.name for r in robustness.readings("actor_critic")}
+    assert "epsilon" in {r.name for r in robustness.readings("goal_oriented")}
+
+
+@pytest.fixture(scope="module")
+def goal_readings():
+    return robustness.run_readings("goal_oriented", n_seeds=40, seed=SEED, progress=False)
+
+
+def test_each_reading_is_the_run_with_that_one_setting_changed(goal_readings):
+    book = run_goal_oriented(n_seeds=40, n_trials=60, seed=SEED, progress=False)
+    np.testing.assert_array_equal(goal_readings.run().interest, book.interest)
+    other = run_goal_oriented(n_seeds=40, n_trials=60, seed=SEED, short_history="zero",
+                              progress=False)
+    np.testing.assert_array_equal(goal_readings.run(("short_history", "zero")).interest,
+                                  other.interest)
+    held = [r["interest_later"] for r in robustness.goal_oriented_claims(other)]
+    share, low, high = goal_readings.share("interest_later", ("short_history", "zero"))
+    assert share == np.mean(held)
+    assert (low, high) == robustness.share_interval(int(np.sum(held)), 40)
+    assert len(goal_readings.readings) == len(robustness.readings("goal_oriented"))
+
+
+def _fake_readings(changed_share):
+    """A ReadingsResult of the goal-oriented study with made-up claims: the book's
+    holds everything in 40 seeds; reading "zero" holds `interest_later` in
+    `changed_share` of them, every other reading as the book's."""
+    study = robustness.STUDIES["goal_oriented"]
+    found = robustness.readings(study)
+    every = {c.name: np.ones(40, dtype=bool) for c in study.claims}
+    held = {None: every, **{r.key: dict(every) for r in found}}
+    held[("short_history", "zero")] = {**every, "interest_later":
+                                       np.arange(40) < round(40 * changed_share)}
+    return robustness.ReadingsResult(study, {"n_seeds": 40, "seed": 0}, found, {}, held)
+
+
+def test_a_reading_that_changes_a_verdict_is_named_and_the_others_are_not():
+    changed = _fake_readings(0.2)
+    assert [r.key for r in changed.changes()] == [("short_history", "zero")]
+    assert changed.changed(("short_history", "zero")) == ["interest_later"]
+    text = changed.describe()
+    assert text.startswith(f"Of the {len(changed.readings)} other readings, 1 changes")
+    assert "zero" in text and "interest moves to green later\" fails (20.0%" in text
+    assert "witnessed" not in text and "earliest" not in text
+    table = changed.table()
+    assert table.count("\n") == 2 + len(changed.readings)
+    assert table.count("**") == 2 and "**20.0% ✗**" in table
+    same = _fake_readings(1.0)
+    assert same.changes() == [] and same.describe().startswith("None of the")
+    assert "**" not in same.table()
+
+
+@pytest.mark.parametrize("call, name, shown, kind", [
+    (lambda r: robustness.run_readings("bandit"), "study", "'bandit'", "value"),
+    (lambda r: robustness.run_readings("rod_toppling", n_seeds=0), "n_seeds", "0", "value"),
+    (lambda r: robustness.run_readings("rod_toppling", progress=1), "progress", "1", "type"),
+    (lambda r: r.share("red_first", ("tie", "latest")), "reading", "('tie', 'latest')",
+     "value"),
+    (lambda r: r.share("best"), "claim", "'best'", "value"),
+    (lambda r: r.run("tie"), "reading", "'tie'", "value"),
+])
+def test_bad_readings_input_raises(goal_readings, call, name, shown, kind):
+    refused(lambda: call(goal_readings), name, shown, kind)
+
+
+def test_the_rods_measure_the_moves_off_the_grid_in_both_readings():
+    stay = run_rod_toppling(n_seeds=20, n_episodes=100, seed=SEED, progress=False)
+    assert 0 < stay.edge_share() < 1 and stay.edge_ended_share() == 0
+    assert stay.time_limit_share() == np.mean(stay.toppled == -1)
+    end = run_rod_toppling(n_seeds=20, n_episodes=100, seed=SEED, off_grid="end",
+                           progress=False)
+    ended = end.toppled == -1
+    assert end.edge_moves.max() == 1  # the first move off the grid ends the episode
+    assert end.edge_ended_share() == np.mean(ended & (end.edge_moves == 1)) > 0
+    no_limit = run_rod_toppling(n_seeds=20, n_episodes=100, seed=SEED, max_moves=None,
+                                progress=False)
+    assert (no_limit.toppled >= 0).all() and no_limit.time_limit_share() == 0
+    assert no_limit.episode_length.max() > 30
+
+
+# --- the chapter's claims about its maps, on the tests' own seeds -------------------
+
+@pytest.fixture(scope="module")
+def maps():
+    return {name: robustness.run_robustness(name, n_seeds=N_SEEDS, seed=SEED, progress=False)
+            for name in robustness.STUDIES}
+
+
+def test_the_chapters_claims_about_its_maps_hold_on_our_seeds(maps):
+    found = robustness.chapter_claims(maps["goal_oriented"], maps["actor_critic"],
+                                      maps["rod_toppling"])
+    assert set(found) == set(robustness.CHAPTER_CLAIMS) and all(found.values()), found
+
+
+def _with_claim_set(result, claim, value, **where):
+    """A copy of `result` whose per-seed `claim` is `value` at the points matching
+    `where` ({setting: value})."""
+    frames = {}
+    for pair, frame in result.frames.items():
+        frame = frame.copy()
+        match = np.ones(len(frame), dtype=bool)
+        for name, wanted in where.items():
+            column = frame[name] if name in frame else result.study.setting(name).default
+            match &= np.asarray(column == wanted)
+        frame.loc[match, claim] = value
+        frames[pair] = frame
+    return robustness.RobustnessResult(result.study, result.settings, frames)
+
+
+def test_a_map_that_contradicts_the_chapter_fails_its_claims(maps):
+    goal, critic, rods = maps["goal_oriented"], maps["actor_critic"], maps["rod_toppling"]
+    broken = _with_claim_set(goal, "red_first", True, action_weight=1.0)  # red first at 1
+    found = robustness.chapter_claims(broken, critic, rods)
+    assert not found["weight_threshold"] and found["presses_not_needed"]
+    broken = _with_claim_set(rods, "blue_found", False, initial_q=1.0)
+    assert not robustness.chapter_claims(goal, critic, broken)["rods_blue_needs_drive"]
+    refused(lambda: robustness.chapter_claims(critic, goal, rods), "goal", "actor_critic",
+            "value")
+
+
+def test_holds_from_and_shares_along(maps):
+    goal = maps["goal_oriented"]
+    assert goal.holding_values("red_first", "action_weight") == [3.0, 10.0]
+    assert goal.holds_from("red_first", "action_weight") == 3.0
+    rods = maps["rod_toppling"]
+    held = rods.holding_values("red_first", "initial_q")
+    assert held and held[0] > 0 and rods.holds_from("red_first", "initial_q") is None
+    text = goal.shares_along("red_first", "action_weight", presses_per_trial=1)
+    parts = text.split(", ")
+    assert len(parts) == len(goal.study.setting("action_weight").values)
+    assert parts[-1] == f"{goal.share('red_first', presses_per_trial=1)[0]:.1%} at 10"
+
+
+def test_the_studies_table_lists_every_setting_and_claim():
+    table = robustness.studies_table()
+    assert table.count("\n") == 1 + len(robustness.STUDIES)
+    for study in robustness.STUDIES.values():
+        for item in study.settings + study.claims:
+            assert getattr(item, "label", getattr(item, "text", None)) in table
+
+
+def test_the_readings_summary_names_what_changes_a_verdict():
+    changed, same = _fake_readings(0.2), _fake_readings(1.0)
+    total = 2 * len(changed.readings)
+    text = robustness.readings_summary([changed, same])
+    assert text.startswith(f"1 of the {total} other readings changes a claim's verdict")
+    assert "read as zero" in text and text.endswith(f"the other {total - 1} change none")
+    assert robustness.readings_summary([same]).startswith("none of the")
+    refused(lambda: robustness.readings_summary([]), "results", "[]", "type")
+
+
+def test_the_chapters_numbers_come_from_its_maps(maps):
+    goal, critic, rods = maps["goal_oriented"], maps["actor_critic"], maps["rod_toppling"]
+    numbers, clauses = robustness.chapter_numbers(goal, critic, rods)
+    assert numbers["goal_lowest_weight"] == goal.holds_from("red_first", "action_weight")
+    assert numbers["goal_highest_failing_weight"] < numbers["goal_lowest_weight"]
+    assert numbers["goal_red_first"] == goal.summary()["red_first"]
+    assert numbers["critic_green_printed_fewest"] == critic.share(
+        "green_learned", variant="printed_td", presses_per_trial=1)[0]
+    assert numbers["rods_q_lowest"] <= numbers["rods_q_highest"]
+    assert clauses["rods_red_first_by_q"] == rods.shares_along("red_first", "initial_q")
+    refused(lambda: robustness.chapter_numbers(goal, goal, rods), "critic", "goal_oriented",
+            "value")
+
+
+def test_the_readings_numbers_come_from_the_runs():
+    found = {name: robustness.run_readings(name, n_seeds=10, seed=SEED, progress=False)
+             for name in robustness.STUDIES}
+    numbers, clauses = robustness.readings_numbers(found)
+    book = found["rod_toppling"].run()
+    assert numbers["edge_share"] == book.edge_share() > 0
+    assert numbers["time_limit_share"] == book.time_limit_share()
+    assert numbers["no_limit_longest"] >= numbers["book_longest"]
+    assert numbers["edge_ended_share"] > 0
+    assert clauses["readings_actor_critic"] == found["actor_critic"].describe()
+    refused(lambda: robustness.readings_numbers({"goal_oriented": found["goal_oriented"]}),
+            "found", "goal_oriented", "type")

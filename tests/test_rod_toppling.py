@@ -13,9 +13,14 @@ from icm.experiments.rod_toppling import RODS, run_rod_toppling
 from icm.learners import LinearPredictor, QLearner
 
 
+TEST_ROOT = 11
+"""The tests' root seed: not the book's (0), so that the claims are checked on other
+seeds than the ones the chapter shows."""
+
+
 @pytest.fixture(scope="module")
 def default_run():
-    return run_rod_toppling(n_seeds=120, n_episodes=300, seed=0, progress=False)
+    return run_rod_toppling(n_seeds=120, n_episodes=300, seed=TEST_ROOT, progress=False)
 
 
 # --- The linear predictor -------------------------------------------------------------
@@ -320,6 +325,45 @@ def test_the_value_of_untried_moves_decides_the_story():
     assert red_first[1.0] < 0.8 < 0.9 <= red_first[0.1]
 
 
+def test_the_chapters_claims_hold_on_the_tests_seeds(default_run):
+    claims = default_run.claims()
+    assert set(claims) == set(rod_toppling.CLAIMS)
+    assert all(claims.values()), claims
+    runs = [run_rod_toppling(n_seeds=60, n_episodes=300, initial_q=q0, seed=TEST_ROOT,
+                             progress=False) for q0 in (0.0, 1.0)]
+    claims = rod_toppling.initial_q_claims(default_run, *runs)
+    assert set(claims) == set(rod_toppling.INITIAL_Q_CLAIMS)
+    assert all(claims.values()), claims
+
+
+def test_the_chapters_claims_fail_on_runs_that_contradict_them(default_run):
+    import dataclasses
+
+    # The rods swapped: blue is toppled, and learned, first.
+    red, blue = RODS.index("red"), RODS.index("blue")
+    toppled = default_run.toppled.copy()
+    toppled[default_run.toppled == red], toppled[default_run.toppled == blue] = blue, red
+    swapped = dataclasses.replace(
+        default_run, toppled=toppled,
+        predicted_well=default_run.predicted_well[:, ::-1].copy(),
+        predicted_well_toppled=default_run.predicted_well_toppled[:, ::-1].copy())
+    claims = swapped.claims()
+    assert not any(claims.values()), claims
+    # The initial Q runs given in the wrong roles: refused; the same run thrice: no claim.
+    low = dataclasses.replace(default_run, settings={**default_run.settings, "initial_q": 0.0})
+    high = dataclasses.replace(default_run, settings={**default_run.settings, "initial_q": 1.0})
+    with pytest.raises(ValueError, match="initial_q must rise"):
+        rod_toppling.initial_q_claims(default_run, high, low)
+    with pytest.raises(TypeError, match="untried_worth_nothing"):
+        rod_toppling.initial_q_claims(default_run, "run", high)
+    assert not any(rod_toppling.initial_q_claims(default_run, low, high).values())
+    # Red never learned on every pair, but blue met as early: the robot did not stay.
+    never = default_run.predicted_well.copy()
+    never[:, red] = -1
+    unlearned = dataclasses.replace(low, predicted_well=never)
+    assert not rod_toppling.initial_q_claims(default_run, unlearned, high)["low_stays_with_red"]
+
+
 def test_summary_holds_the_numbers_the_book_quotes(default_run):
     s = default_run.summary()
     for key in ("red_well_median", "blue_well_median", "first_blue_median", "red_first",
@@ -378,7 +422,7 @@ def test_figure7_draws_the_three_moments(default_run):
     assert [t[:3] for t in titles] == ["(a)", "(b)", "(c)"]
     episodes = default_run.snapshot_episode[0]
     assert f"episode {episodes[1]}" in titles[1] and f"episode {episodes[3]}" in titles[2]
-    assert fig._repr_png_()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert fig.png()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 def test_figure7_q_table_arrows_point_along_the_greedy_moves(default_run):

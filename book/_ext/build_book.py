@@ -14,6 +14,9 @@
   executed, the last line says what to do.
 - **The build never executes a notebook itself**: every notebook's outputs come from
   the execution cache; a log that says otherwise fails the build.
+- **Pages as fresh as their outputs.** Sphinx reads a page again only when its source
+  changed; a notebook executed again (the library changed) has new outputs under the
+  same source, so after any execution every page is written anew (`--all`).
 
 Exit status: that of the first step that failed, 130 when interrupted.
 """
@@ -66,10 +69,12 @@ def build_lock(folder):
             fcntl.flock(handle, fcntl.LOCK_UN)
 
 
-def jupyter_book(output, strict):
-    """Runs `jupyter-book build`, echoing its log; returns (status, log)."""
+def jupyter_book(output, strict, everything=False):
+    """Runs `jupyter-book build` (`everything`: every page read and written again),
+    echoing its log; returns (status, log)."""
     command = [str(pathlib.Path(sys.executable).parent / "jupyter-book"), "build", str(ROOT),
-               "--keep-going", "--path-output", str(output)] + (["-W"] if strict else [])
+               "--keep-going", "--path-output", str(output)] + (["-W"] if strict else []) \
+        + (["--all"] if everything else [])
     process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE,
                                stderr=subprocess.STDOUT, text=True)
     lines = []
@@ -103,7 +108,7 @@ def main(argv=None):
                 + ["--force"] * args.force + ["--keep-going"] * args.keep_going)
             if executed:
                 return executed
-            status, log = jupyter_book(output, args.strict)
+            status, log = jupyter_book(output, args.strict, bool(execute_book.EXECUTED))
     except KeyboardInterrupt:
         print("\ninterrupted", file=sys.stderr)
         return 130

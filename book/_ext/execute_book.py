@@ -47,6 +47,12 @@ here, not inside Sphinx, gives:
 - **The book's versions of the panels**: the kernels run with `ICM_STATIC_PANELS=1`,
   so `icm.widgets` panels are drawn as their static, precomputed versions, which move
   in the HTML without a kernel (in Jupyter they are the live ipywidgets panels).
+- **Progress on the terminal, not in the page**: the kernels run with
+  `ICM_BOOK_BUILD=1`, so the library's progress bars (`icm/experiments/_progress.py`)
+  write to the kernel's original standard error, `sys.__stderr__`; and they are
+  started with ipykernel's `capture_fd_output` off, so that this standard error is the
+  terminal of whoever builds (by default ipykernel redirects it into the cell's
+  outputs). The outputs of the book's cells hold what the cells show, never progress.
 - **One BLAS thread per kernel**: two notebooks run at once on the two cores, and the
   library's matrices are small; a multithreaded BLAS then spends more time waiting for
   its threads than computing (measured: 0.2 ms against 1.5-8 ms for a band's matrix
@@ -98,12 +104,19 @@ computing."""
 DEFAULT_CPU_LIMIT = 1800
 """CPU-seconds a single cell may use (the slowest cell of the book uses about 40)."""
 LIBRARY = ("icm", "assets", "requirements.txt", "pyproject.toml")
-KERNEL_ENVIRONMENT = {"ICM_STATIC_PANELS": "1", "OPENBLAS_NUM_THREADS": "1",
-                      "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+KERNEL_ENVIRONMENT = {"ICM_STATIC_PANELS": "1", "ICM_BOOK_BUILD": "1",
+                      "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1",
+                      "MKL_NUM_THREADS": "1"}
 """Set for the kernels (which inherit this process's environment): see above."""
+KERNEL_ARGUMENTS = ["--IPKernelApp.capture_fd_output=False"]
+"""The kernels' standard error stays this process's (see "Progress on the terminal")."""
 SKIP_TAG = "skip-execution"
 """Cells with this tag are not executed (nbclient's and so Jupyter Book's convention)."""
 FINGERPRINT_FILE = "icm-library-fingerprint"
+EXECUTED = []
+"""The notebooks `main` executed (not taken from the cache) in this process: their
+pages must be read again by Sphinx (build_book.py), whose own record of what changed
+knows only the notebooks' sources."""
 TIMES_FILE = "icm-notebook-seconds.json"
 
 
@@ -279,7 +292,7 @@ def execute(path, stop, stall_seconds=DEFAULT_STALL_SECONDS, cpu_limit=DEFAULT_C
     with tempfile.TemporaryDirectory(prefix="icm-kernel-") as sockets:
         client = BookClient(nb, path, stop, stall_seconds, cpu_limit, pathlib.Path(sockets),
                             timeout=None, allow_errors=False, record_timing=False,
-                            skip_cells_with_tag=SKIP_TAG,
+                            skip_cells_with_tag=SKIP_TAG, extra_arguments=KERNEL_ARGUMENTS,
                             resources={"metadata": {"path": str(path.parent)}})
         start = time.perf_counter()
         try:
@@ -460,6 +473,7 @@ def main(argv=None):
             done += 1
             times[str(_name(path))] = round(seconds, 1)
             cache.store(path, nb, seconds)
+            EXECUTED.append(path)
             print(f"executed {_name(path)} in {seconds:.1f} s", flush=True)
     except KeyboardInterrupt:
         interrupted = True

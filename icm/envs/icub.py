@@ -216,6 +216,19 @@ def describe_arm(physics):
     return "\n".join(lines)
 
 
+def body_dimensions(physics):
+    """The robot's dimensions that the book names, read from the model: a dict with
+    "torso_lean" (the torso's fixed forward lean, degrees), "upper_arm" and "forearm"
+    (the right arm's lengths, metres: shoulder to elbow, elbow to wrist), and
+    "arm_joints" (the right arm's joints)."""
+    model = physics.model
+    w, _, y, _ = model.body("torso").quat  # a rotation about the y axis alone
+    return {"torso_lean": float(np.rad2deg(2 * np.arctan2(y, w))),
+            "upper_arm": float(np.linalg.norm(model.body("r_forearm").pos)),
+            "forearm": float(np.linalg.norm(model.body("r_hand").pos)),
+            "arm_joints": len(ARM_JOINTS)}
+
+
 class ArmPhysics(dm_mujoco.Physics):
     """A dm_control Physics of a scene with the iCub: accessors for its right arm."""
 

@@ -33,6 +33,10 @@ signal of `icm.learners.interest.SIGNAL_CLASSES` that is not here runs on the ph
 path (per-agent classes) only; `check_reward` refuses it for the tabular loop."""
 
 
+NO_LIMIT = np.iinfo(np.int64).max
+"""The time limit the loop is given for `max_moves=None`: more moves than any run."""
+
+
 def check_reward(reward):
     """`reward` if the compiled loop computes it, else a ValueError that names it and
     the ones it computes."""
@@ -57,7 +61,7 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
          epsilon, alpha, gamma, lr, next_cell, topples, start, max_moves, n_episodes,
          toppled_out, length_out, errors_out, found, record, signal, window, weights,
          history, count, wobbly, wobbles, env_draws, env_cursor, n_draws,
-         wobble_probability):
+         wobble_probability, off_grid_ends, edges, edges_out):
     """Plays every row on, move by move, until it has played its episodes or used its
     buffer of uniform numbers (`n_draws` a move, of which it uses the first three, and
     with the wobbly rod one from the environment's buffer at a move beside it, which
@@ -67,9 +71,14 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
     [row, cell, action, rod], last_error [row, cell, action], and for the reward
     signals the last `window` errors of each pair, history [row, cell, action, window],
     newest last, and its count of tries), the play's state (cell, episode, moves,
-    error_sum, cursor, env_cursor), and the record of each episode (toppled_out,
-    length_out, errors_out, found [row, cell, action, rod], and what `record_episode`
-    keeps in the tuple `record`).
+    error_sum, edges, cursor, env_cursor), and the record of each episode
+    (toppled_out, length_out, errors_out, edges_out, found [row, cell, action, rod],
+    and what `record_episode` keeps in the tuple `record`).
+
+    A move off the grid leaves the hand in its cell (`next_cell`); it is counted in
+    `edges` (and the episode's `edges_out`), and with `off_grid_ends` it ends the
+    episode, as a topple does (nothing follows it). An episode also ends after
+    `max_moves` moves (a time limit; pass a number larger than any run for none).
     """
     n, n_cells, n_actions = q.shape
     n_rods = predictions.shape[3]
@@ -143,11 +152,14 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
                     reward = 1.0 / np.sqrt(1.0 + tries)
                 else:
                     reward = 0.0
-            # Equation 3; a topple ends the episode, so nothing follows it. The random
-            # walker learns no Q: every move stays a tie.
+            off = following == c  # a move off the grid: the hand stayed
+            ends = rod >= 0 or (off_grid_ends and off)
+            # Equation 3; a topple (or with off_grid_ends a move off the grid) ends the
+            # episode, so nothing follows it. The random walker learns no Q: every move
+            # stays a tie.
             if signal != 3:
                 target = reward
-                if rod < 0:
+                if not ends:
                     best = q[r, following, 0]
                     for b in range(1, n_actions):
                         if q[r, following, b] > best:
@@ -155,11 +167,15 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
                     target += gamma[r] * 1.0 * best
                 q[r, c, a] += alpha[r] * (target - q[r, c, a])
             moves[r] += 1
+            if off:
+                edges[r] += 1
             cell[r] = following
-            if rod >= 0 or moves[r] >= max_moves:
+            if ends or moves[r] >= max_moves:
                 ep = episode[r]
                 toppled_out[r, ep] = rod
                 length_out[r, ep] = moves[r]
+                edges_out[r, ep] = edges[r]
+                edges[r] = 0
                 for i in range(n_rods):
                     errors_out[r, ep, i] = error_sum[r, i]
                     error_sum[r, i] = 0.0
@@ -281,18 +297,21 @@ def record_episode(r, ep, rod, q, predictions, last_error, found, record):
 
 def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, next_cell,
              topples, start, max_moves, n_episodes, pairs, snapshot_episodes, threshold,
-             bar=None, reward="prediction_error", window=5, wobbles=None, env_streams=None):
+             bar=None, reward="prediction_error", window=5, wobbles=None, env_streams=None,
+             off_grid="stay"):
     """Plays `n_episodes` episodes of every row (see `play`), refilling the rows'
     streams of uniform numbers whenever they run out; `bar`, a tqdm progress bar over
     all rows' episodes, is moved on between the compiled loop's runs. `reward` names
     the reward signal, `window` its slope's length; with the wobbly rod, `wobbles`
     [cell, action] marks the moves beside it and `env_streams` are the tables' own
     streams (`icm.envs.rods.RodTableBatch.streams`). `pairs`, `snapshot_episodes` and
-    `threshold` are those of `recorder`.
+    `threshold` are those of `recorder`. `max_moves` is an integer >= 1, or None for
+    no time limit; `off_grid` is "stay" or "end" (`icm.envs.rods.rules.OFF_GRIDS`).
 
     Returns:
-      A dict: "toppled", "length" [row, episode], "errors" [row, episode, rod], and the
-      arrays of `record_episode` by the names of `RECORD_FIELDS`.
+      A dict: "toppled", "length", "edges" (moves off the grid) [row, episode], "errors"
+      [row, episode, rod], and the arrays of `record_episode` by the names of
+      `RECORD_FIELDS`.
     """
     n, n_cells, n_actions = q.shape
     n_rods = predictions.shape[3]
@@ -302,7 +321,11 @@ def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, nex
     error_sum = np.zeros((n, n_rods))
     out = {"toppled": np.full((n, n_episodes), -1, dtype=np.int64),
            "length": np.zeros((n, n_episodes), dtype=np.int64),
+           "edges": np.zeros((n, n_episodes), dtype=np.int64),
            "errors": np.zeros((n, n_episodes, n_rods))}
+    edges = np.zeros(n, dtype=np.int64)
+    limit = NO_LIMIT if max_moves is None else int(max_moves)
+    off_grid_ends = one_of("off_grid", off_grid, rod_rules.OFF_GRIDS) == "end"
     found = np.full((n, n_cells, n_actions, n_rods), n_episodes, dtype=np.int64)
     record = recorder(n, n_episodes, n_cells, n_actions, n_rods, pairs, snapshot_episodes,
                       threshold)
@@ -327,10 +350,11 @@ def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, nex
             env_draws = env_streams.buffer
         finished = play(q, predictions, last_error, streams.buffer, streams.cursor, cell,
                         episode, moves, error_sum, epsilon, alpha, gamma, lr, next_cell,
-                        topples, start, max_moves, n_episodes, out["toppled"],
+                        topples, start, limit, n_episodes, out["toppled"],
                         out["length"], out["errors"], found, record, signal, window,
                         weights, history, count, wobbly, wobbles, env_draws, env_cursor,
-                        n_draws, float(rod_rules.WOBBLE_TOPPLE_PROBABILITY))
+                        n_draws, float(rod_rules.WOBBLE_TOPPLE_PROBABILITY),
+                        off_grid_ends, edges, out["edges"])
         if bar is not None:
             bar.update(int(episode.sum()) - bar.n)
         if finished:

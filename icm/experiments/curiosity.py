@@ -25,6 +25,45 @@ from icm.stats import bootstrap_band
 
 CHANCE_SHARE = 1.0 / 6.0
 """The share of presses a learner pressing at random gives each of the six buttons."""
+TRAPPED_SHARE = 0.5
+"""A learner is *trapped* by a source of noise when it spends more than this share of
+its presses on the noisy button (of its late episodes at the wobbly rod), the whole
+band of that share above it; *not trapped* when the whole band is below it."""
+EQUAL_SHARE_TOLERANCE = 0.01
+"""How far from chance a button's share of presses may be for the chapter to say that a
+learner presses every button equally."""
+SIGNAL_CLAIMS = {
+    "red_first_everywhere": "red is mastered before green in most seeds under every signal "
+                            "and place of interest, pressing at random included",
+    "random_not_slower": "pressing at random masters red and green no later than learning "
+                         "progress (its means within learning progress's bands or below)",
+    "novelty_region_fastest": "novelty per region masters green the soonest",
+    "novelty_task_balanced": "novelty per task opens red, green and nothing equally often",
+    "task_not_trapped": "with interest per task, no signal is trapped by the noisy button",
+    "region_error_trapped": "with interest per region, prediction error is trapped",
+    "region_progress_drawn_not_trapped": "with interest per region, learning progress is "
+                                         "not trapped, though it presses the noisy button "
+                                         "more than chance",
+    "region_novelty_equal": "novelty per region presses every button equally",
+    "noise_costs_every_learner": "with the noisy button, every learner masters green later",
+}
+"""The claims of the chapter "Which curiosity?" about the buttons
+(`SignalComparison.claims`)."""
+REWARD_CLAIMS = {
+    "error_trapped": "prediction error is trapped by the wobbly rod, and predicts red well "
+                     "in fewer seeds than without it",
+    "progress_learns_anyway": "learning progress predicts red and blue well in at least "
+                              "90% of the seeds with the wobbly rod",
+    "progress_not_immune": "learning progress ends most of its late episodes at the "
+                           "wobbly rod",
+    "novelty_random_not_trapped_but_slow": "novelty and the random walk are not trapped, "
+                                           "and neither predicts red well in most seeds",
+}
+"""The claims of the chapter "Which curiosity?" about the rods
+(`RewardComparison.claims`)."""
+LEARNED_SHARE = 0.9
+"""The share of seeds in which a rod must be predicted well for the chapter to say that
+a learner learns it (`REWARD_CLAIMS`)."""
 
 
 def _band(values):
@@ -103,6 +142,10 @@ def button_numbers(result):
     return out
 
 
+TASKS_AND_NOTHING = ("red", "green", "nothing")
+"""What a press of the console can do: open the red box, the green box, or nothing."""
+
+
 def _comparison_key(results, names, key):
     """`key` if it is a key of `results` (a tuple of strings and bools), else raises:
     an ArgumentTypeError for a part that is not a string or bool (a list, say), a
@@ -156,6 +199,56 @@ class SignalComparison:
                 out[prefix + name + "_high"] = high
             out[prefix + "red_first"] = numbers["red_first"]
         return out
+
+    def claims(self):
+        """{claim name: whether it holds in this comparison}, for each of
+        `SIGNAL_CLAIMS` (a comparison of every signal, both places of interest and
+        both worlds): what the chapter states in words, checked on the book's runs
+        when it is built, and by the tests on theirs."""
+        runs = set(self.results)
+        signals, designs = self.settings["signals"], self.settings["designs"]
+        needed = {(s, d, w) for s in interest.SIGNALS for d in goal_oriented.INTEREST_PER
+                  for w in (False, True)}
+        if not needed <= runs:
+            raise ValueError("the chapter's claims need every signal, both places of "
+                             "interest and both worlds: run_signal_comparison with its "
+                             "default signals, designs and noisy")
+        n = self.numbers
+        plain = [(s, d) for s in signals for d in designs]
+        progress, random = n("learning_progress", "task"), n("random", "task")
+        balanced = [n("novelty", "task")[f"{t}_presses"][0] for t in TASKS_AND_NOTHING]
+        per_region = {s: n(s, "region", True)["noisy_share"] for s in signals}
+        return {
+            "red_first_everywhere": all(n(*sd)["red_first"] > 0.5 for sd in plain),
+            "random_not_slower": all(random[f"{t}_mastery"][0] <= progress[f"{t}_mastery"][2]
+                                     for t in ("red", "green")),
+            "novelty_region_fastest": self.fastest() == ("novelty", "region"),
+            "novelty_task_balanced": max(balanced) - min(balanced) <= 1,
+            "task_not_trapped": all(n(s, "task", True)["noisy_share"][2] < TRAPPED_SHARE
+                                    for s in signals),
+            "region_error_trapped": per_region["prediction_error"][1] > TRAPPED_SHARE,
+            "region_progress_drawn_not_trapped":
+                per_region["learning_progress"][2] < TRAPPED_SHARE
+                and per_region["learning_progress"][1] > CHANCE_SHARE,
+            "region_novelty_equal": all(abs(share[0] - CHANCE_SHARE) < EQUAL_SHARE_TOLERANCE
+                                        for share in n("novelty", "region", True)
+                                        ["button_share"]),
+            "noise_costs_every_learner": all(
+                n(*sd, True)["green_mastery"][0] > n(*sd)["green_mastery"][0] for sd in plain),
+        }
+
+    def describe_red_first(self):
+        """In words, the fewest seeds in which red is mastered first, over the runs
+        without the noisy button: "in every seed" or "in at least 99.0% of the seeds"."""
+        lowest = min(self.numbers(s, d)["red_first"]
+                     for (s, d, noisy) in self.results if not noisy)
+        return "in every seed" if lowest == 1 else f"in at least {lowest:.1%} of the seeds"
+
+    def fastest(self):
+        """(signal, interest_per) of the world without the noisy button that masters
+        green the soonest (the lowest mean mastery trial)."""
+        plain = [(s, d) for (s, d, noisy) in self.results if not noisy]
+        return min(plain, key=lambda sd: self.numbers(*sd)["green_mastery"][0])
 
     def seed_summaries(self):
         """One dict per seed: each run's mastery trials (-1 if never) and, with the
@@ -310,6 +403,30 @@ class RewardComparison:
                 out[prefix + name + "_high"] = high
         return out
 
+    def claims(self):
+        """{claim name: whether it holds in this comparison}, for each of
+        `REWARD_CLAIMS` (a comparison of every reward in both worlds): what the
+        chapter states in words, checked on the book's runs when it is built, and by
+        the tests on theirs."""
+        needed = {(r, w) for r in ("prediction_error", "learning_progress", "novelty",
+                                   "random") for w in (False, True)}
+        if not needed <= set(self.results):
+            raise ValueError("the chapter's claims need the rewards prediction_error, "
+                             "learning_progress, novelty and random in both worlds")
+        n = self.numbers
+        error, progress = n("prediction_error", True), n("learning_progress", True)
+        slow = [n(r, True) for r in ("novelty", "random")]
+        return {
+            "error_trapped": error["wobbly_share_late"][1] > TRAPPED_SHARE
+            and error["red_well"][0] < n("prediction_error", False)["red_well"][0],
+            "progress_learns_anyway": progress["red_well"][0] >= LEARNED_SHARE
+            and progress["blue_well"][0] >= LEARNED_SHARE,
+            "progress_not_immune": progress["wobbly_share_late"][1] > TRAPPED_SHARE,
+            "novelty_random_not_trapped_but_slow": all(
+                m["wobbly_share_late"][2] < TRAPPED_SHARE and m["red_well"][0] < 0.5
+                for m in slow),
+        }
+
     def seed_summaries(self):
         """One dict per seed: each run's share of episodes ending at the wobbly rod
         (runs with it) and the episodes from which red and blue are predicted well."""
@@ -448,6 +565,46 @@ def outcome_rewards(rewards=("prediction_error", "learning_progress", "novelty")
             out[(reward, kind)] = paid
     return {(reward, kind): out[(reward, kind)] for reward in rewards
             for kind in ("coin", "sure")}
+
+
+COIN_CLAIMS = {
+    "error_pays_the_coin": "prediction error keeps paying for a coin and all but stops "
+                           "paying for a sure outcome (less than a hundredth of the coin's)",
+    "progress_pays_little": "learning progress pays a coin more than zero, and less than "
+                            "prediction error pays it",
+    "novelty_blind": "novelty pays a coin exactly what it pays a sure outcome",
+}
+"""The claims of the chapter "Which curiosity?" about what each reward pays for a coin
+(`coin_claims`)."""
+
+
+def late_tries(paid):
+    """The slice of the later half of the tries of `outcome_rewards`' result (the
+    tries the chapter averages over)."""
+    n_tries = next(iter(paid.values())).shape[1]
+    return slice(n_tries // 2, None)
+
+
+def coin_claims(paid):
+    """{claim name: whether it holds}, for each of `COIN_CLAIMS`, from what
+    `outcome_rewards` returned (with the rewards prediction_error, learning_progress
+    and novelty), over the later half of the tries (`late_tries`)."""
+    if not isinstance(paid, dict) or not {(r, k) for r in ("prediction_error",
+                                                          "learning_progress", "novelty")
+                                          for k in ("coin", "sure")} <= set(paid):
+        raise _validate.ArgumentTypeError(
+            f"paid must be what outcome_rewards returns for prediction_error, "
+            f"learning_progress and novelty, got {_validate.show(paid)}")
+    late = late_tries(paid)
+    mean = {key: float(values[:, late].mean()) for key, values in paid.items()}
+    return {
+        "error_pays_the_coin": mean[("prediction_error", "sure")]
+        < mean[("prediction_error", "coin")] / 100,
+        "progress_pays_little": 0 < mean[("learning_progress", "coin")]
+        < mean[("prediction_error", "coin")],
+        "novelty_blind": bool(np.array_equal(paid[("novelty", "coin")],
+                                             paid[("novelty", "sure")])),
+    }
 
 
 def outcome_rewards_memory(n_rewards, n_seeds, n_tries, window=interest.DEFAULT_WINDOW):

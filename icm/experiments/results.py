@@ -30,7 +30,9 @@ def measures_table(results, measures):
       measures: a list of (row label, function of a result giving the cell's text).
     """
     labels = list(results)
-    lines = ["| | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
+    # The first column is named too: a header cell left empty says nothing to a screen
+    # reader (axe: empty-table-header).
+    lines = ["| measure | " + " | ".join(labels) + " |", "|---|" + "---|" * len(labels)]
     for name, cell in measures:
         lines.append(f"| {name} | " + " | ".join(cell(r) for r in results.values()) + " |")
     return "\n".join(lines)

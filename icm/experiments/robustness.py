@@ -13,6 +13,12 @@ its threshold, and *fails* when the share is below it; the share is measured on 
 sample of seeds, so both are decided from the share's 95% Wilson interval
 (`share_interval`): "holds" when the whole interval is at or above the threshold,
 "fails" when it is all below, "unclear" when it straddles the threshold.
+
+The choices the paper does not make and the maps do not sweep are measured one at a
+time (`run_readings`): for each, every other reading its `Setting` declares
+(`icm._settings.Setting.other_readings`: an unpublished choice's other choices, or the
+other values it lists), run on the same seeds as the book's reading, with the same
+claims (`ReadingsResult`).
 """
 
 import dataclasses
@@ -21,7 +27,8 @@ import statistics
 import numpy as np
 
 from icm import _validate
-from icm.envs import buttons
+from icm.envs import buttons, rods
+from icm.experiments._progress import progress_bar
 from icm.experiments.actor_critic import run_actor_critic
 from icm.experiments.goal_oriented import TASKS, run_goal_oriented
 from icm.experiments.rod_toppling import run_rod_toppling
@@ -36,6 +43,9 @@ MAJORITY = 0.5
 states "on average": it must hold in at least half of the runs."""
 LEVEL = 0.95
 """Confidence level of the interval around every measured share."""
+INTERACTION_ALPHA = 0.05
+"""How often a whole map may show an interaction that is not there: the bands of
+`RobustnessResult.interaction` are at the level 1 - INTERACTION_ALPHA / (points)."""
 INTERACTION_RESAMPLES = 2000
 """Bootstrap resamples of the interaction bands (their level is high: see
 `RobustnessResult.interaction`)."""
@@ -176,8 +186,19 @@ def rod_claims(result):
     return rows
 
 
-WORLD_SETTINGS = {"presses_per_trial": buttons.PRESSES_PER_TRIAL}
-"""The settings of the worlds (not of a learner) that a study may sweep."""
+WORLD_SETTINGS = {"presses_per_trial": buttons.PRESSES_PER_TRIAL,
+                  "max_moves": rods.MAX_MOVES, "off_grid": rods.OFF_GRID}
+"""The settings of the worlds (not of a learner) that a study may sweep or read
+otherwise."""
+STUDY_WORLDS = {"goal_oriented": ("presses_per_trial",), "actor_critic": ("presses_per_trial",),
+                "rod_toppling": ("max_moves", "off_grid")}
+"""The world settings of each study's experiment (keys of `WORLD_SETTINGS`)."""
+NOT_MEASURED = {
+    ("actor_critic", "epsilon"): 'it is used only with action_selection="epsilon_greedy", '
+                                 "and the book's actor-critic picks by softmax",
+}
+"""Unpublished settings of a study that `run_readings` does not measure, with the
+reason (every other unpublished setting is swept by the maps or has other readings)."""
 
 
 def _sweep(run_fn, name):
@@ -226,6 +247,53 @@ STUDIES = {
         rod_claims),
 }
 """The three learners' studies, by name."""
+
+
+@dataclasses.dataclass(frozen=True)
+class Reading:
+    """Another reading of a choice the paper does not make.
+
+    Attributes:
+      name: the run function's argument.
+      label: what it is, in words (the setting's label).
+      default: the book's reading.
+      value: the other reading.
+      source: why the book reads it so (the setting's source).
+    """
+
+    name: str
+    label: str
+    default: object
+    value: object
+    source: str
+
+    @property
+    def key(self):
+        """(name, value): the reading's key in a `ReadingsResult`."""
+        return (self.name, self.value)
+
+
+def unpublished_settings(study):
+    """{name: Setting} of the settings of a study's learner and world that the paper
+    does not publish, in declaration order (the learner's, then the world's)."""
+    study = _check_study(study)
+    specs = {**study.run_fn.settings_class.specs(),
+             **{n: WORLD_SETTINGS[n] for n in STUDY_WORLDS[study.name]}}
+    return {name: spec for name, spec in specs.items() if not spec.published}
+
+
+def readings(study):
+    """The other readings `run_readings` measures for a study: for each unpublished
+    setting that its maps do not sweep (and that is not in `NOT_MEASURED`), each value
+    of its `Setting.other_readings()`, as `Reading` objects."""
+    study = _check_study(study)
+    out = []
+    for name, spec in unpublished_settings(study).items():
+        if (study.name, name) in NOT_MEASURED:
+            continue
+        for value in spec.other_readings():
+            out.append(Reading(name, spec.label, spec.default, value, spec.source))
+    return tuple(out)
 
 
 def share_interval(successes, n, level=LEVEL):
@@ -404,6 +472,25 @@ class RobustnessResult:
         return [v for v in setting.values if self.verdict(claim, **{setting.name: v})
                 == "holds"]
 
+    def holds_from(self, claim, setting):
+        """The value of `setting` (the others at their defaults) from which `claim`
+        holds at every larger value of the grid and at no smaller one; None when the
+        values at which it holds are not such a tail of the grid (or are none)."""
+        values = list(self.study.setting(setting).values)
+        held = self.holding_values(claim, setting)
+        for i in range(len(values)):
+            if held == values[i:]:
+                return values[i]
+        return None
+
+    def shares_along(self, claim, setting, **point):
+        """In words, the share of seeds in which `claim` held at each value of
+        `setting` (the other settings at `point`, or at their defaults), e.g. "51% at
+        1, 49% at 1.5, 97% at 3": a clause for the chapter (Markdown)."""
+        setting = self.study.setting(setting)
+        return ", ".join(f"{self.share(claim, **{**point, setting.name: v})[0]:.1%} at "
+                         f"{_show(v)}" for v in setting.values)
+
     def seed_table(self, claim, pair):
         """[seed, second setting's value, first setting's value], whether `claim`
         held in each seed at each point of the map of `pair` (a boolean array)."""
@@ -431,8 +518,8 @@ class RobustnessResult:
         alone predicts. It is 0 where the two effects add up. Its band is a
         percentile bootstrap over the seeds (`icm.stats.bootstrap_band`, the seeds
         resampled together at all points, since every point ran the same seeds), at
-        the level 1 - 0.05 / (number of points), so that the whole map, not each
-        point, is wrong less than 5% of the time.
+        the level 1 - `INTERACTION_ALPHA` / (number of points), so that the whole map,
+        not each point, is wrong less than that share of the time.
 
         Returns:
           A dict of arrays [second setting's value, first setting's value]:
@@ -447,7 +534,7 @@ class RobustnessResult:
         ia, ib = a.values.index(a.default), b.values.index(b.default)
         contrast = (held - held[:, :, [ia]] - held[:, [ib], :]
                     + held[:, [ib], :][:, :, [ia]])
-        level = 1 - 0.05 / contrast[0].size
+        level = 1 - INTERACTION_ALPHA / contrast[0].size
         mean, low, high = bootstrap_band(contrast, level=level, resamples=INTERACTION_RESAMPLES,
                                          seed=self.settings["seed"])
         self._cache[key] = {"contrast": mean, "low": low, "high": high}
@@ -503,6 +590,22 @@ class RobustnessResult:
             for v in VERDICTS:
                 out[f"{claim.name}_{v}"] = int((table[claim.name + "_verdict"] == v).sum())
         return out
+
+
+def studies_table(studies=None):
+    """A Markdown table of the studies: for each learner, the settings its maps sweep
+    and the claims they measure, with the share of seeds each needs.
+
+    Args:
+      studies: names or `Study` objects (default all of `STUDIES`).
+    """
+    studies = [_check_study(s) for s in (STUDIES if studies is None else studies)]
+    lines = ["| learner | settings swept | claims (share of seeds needed) |", "|---|---|---|"]
+    for study in studies:
+        lines.append(f"| {study.title} | {', '.join(s.label for s in study.settings)} | "
+                     + "; ".join(f"{c.text} (≥ {c.threshold:.0%})" for c in study.claims)
+                     + " |")
+    return "\n".join(lines)
 
 
 def run_robustness(study, n_seeds=200, seed=0, n_jobs=1, progress=True):
@@ -652,4 +755,394 @@ def _check_results(results):
 
 
 def _show(value):
+    if value is None:  # a setting whose None is "none at all" (max_moves: no limit)
+        return "none"
     return f"{value:g}" if isinstance(value, float) else str(value)
+
+
+@dataclasses.dataclass(frozen=True)
+class ReadingsResult:
+    """What `run_readings` measured for one study: the book's run and one run per
+    other reading, all on the same seeds.
+
+    Attributes:
+      study: the `Study`.
+      settings: the arguments of the runs (n_seeds, seed).
+      readings: the `Reading` objects measured, in order.
+      runs: {None: the book's run, (name, value): the run with that reading}, the run
+        results (e.g. `RodTopplingResult`).
+      held: {None or (name, value): {claim: bool array [seed]}}, whether each claim
+        held in each seed.
+    """
+
+    study: Study
+    settings: dict
+    readings: tuple
+    runs: dict
+    held: dict
+
+    @property
+    def n_seeds(self):
+        """Seeds per run."""
+        return self.settings["n_seeds"]
+
+    def _key(self, reading):
+        if reading is None:
+            return None
+        key = reading.key if isinstance(reading, Reading) else reading
+        if not isinstance(key, tuple) or key not in self.held:
+            raise ValueError(f"reading must be None (the book's) or one of "
+                             f"{[r.key for r in self.readings]}, got {reading!r}")
+        return key
+
+    def run(self, reading=None):
+        """The run of `reading` (a `Reading` or its (name, value) key; None: the
+        book's)."""
+        return self.runs[self._key(reading)]
+
+    def share(self, claim, reading=None):
+        """(share, low, high): the share of seeds in which `claim` held with
+        `reading` (None: the book's), and its 95% Wilson interval."""
+        claim = self.study.claim(claim).name
+        held = self.held[self._key(reading)][claim]
+        low, high = share_interval(int(held.sum()), len(held))
+        return float(held.mean()), low, high
+
+    def verdict(self, claim, reading=None):
+        """"holds", "unclear" or "fails": what `reading` says about `claim`."""
+        _, low, high = self.share(claim, reading)
+        return verdict(low, high, self.study.claim(claim).threshold)
+
+    def changed(self, reading):
+        """The claims (names) whose verdict `reading` changes from the book's."""
+        return [c.name for c in self.study.claims
+                if self.verdict(c.name, reading) != self.verdict(c.name)]
+
+    def changes(self):
+        """The readings that change the verdict of at least one claim."""
+        return [r for r in self.readings if self.changed(r)]
+
+    def table(self):
+        """A Markdown table: the book's reading, then one row per other reading, with
+        the share of seeds in which each claim held and its verdict (✓ holds, ✗
+        fails, ? unclear; in bold where it differs from the book's)."""
+        marks = {"holds": "✓", "fails": "✗", "unclear": "?"}
+        claims = self.study.claims
+        lines = ["| choice | reading | " + " | ".join(
+                     f"{c.text} (≥ {c.threshold:.0%})" for c in claims) + " |",
+                 "|---|---|" + "---|" * len(claims)]
+
+        def cells(reading):
+            out = []
+            for c in claims:
+                share, verdict_ = self.share(c.name, reading)[0], self.verdict(c.name, reading)
+                cell = f"{share:.1%} {marks[verdict_]}"
+                if reading is not None and verdict_ != self.verdict(c.name):
+                    cell = f"**{cell}**"
+                out.append(cell)
+            return out
+
+        lines.append("| the book's | all as in the book | " + " | ".join(cells(None)) + " |")
+        for r in self.readings:
+            lines.append(f"| {r.label} (book: {_show(r.default)}) | {_show(r.value)} | "
+                         + " | ".join(cells(r)) + " |")
+        return "\n".join(lines)
+
+    def describe(self):
+        """In words, which of the other readings change a claim's verdict, and how: a
+        clause for the chapter, computed from the data."""
+        changed = self.changes()
+        n = len(self.readings)
+        if not changed:
+            return (f"None of the {n} other readings changes the verdict of a claim: "
+                    f"every claim holds, fails or stays unclear as with the book's")
+        parts = []
+        for r in changed:
+            what = ", ".join(f"\"{self.study.claim(c).text}\" {self.verdict(c, r)} "
+                             f"({self.share(c, r)[0]:.1%} of the seeds; with the book's "
+                             f"{_show(r.default)}, it {self.verdict(c)}, "
+                             f"{self.share(c)[0]:.1%})" for c in self.changed(r))
+            parts.append(f"with {r.label} read as {_show(r.value)}, {what}")
+        rest = n - len(changed)
+        changes = "changes" if len(changed) == 1 else "change"
+        return (f"Of the {n} other readings, {len(changed)} {changes} a claim's verdict: "
+                + "; ".join(parts) + f". The other {rest} change none")
+
+
+def readings_summary(results):
+    """In words, over several `ReadingsResult` objects, which other readings change a
+    claim's verdict and how many change none: a clause for the chapter (Markdown).
+
+    Args:
+      results: a list of `ReadingsResult` objects.
+    """
+    if not isinstance(results, (list, tuple)) or not results:
+        raise _validate.ArgumentTypeError(f"results must be a non-empty list of "
+                                          f"ReadingsResult, got {_validate.show(results)}")
+    for i, result in enumerate(results):
+        _validate.instance(f"results[{i}]", result, ReadingsResult)
+    changed = [(result, r) for result in results for r in result.changes()]
+    total = sum(len(result.readings) for result in results)
+    if not changed:
+        return f"none of the {total} other readings changes a claim's verdict"
+    named = "; ".join(f"{r.label} read as {_show(r.value)} ({result.study.title}: "
+                      + ", ".join(f"{result.study.claim(c).text} {result.verdict(c, r)}"
+                                  for c in result.changed(r)) + ")"
+                      for result, r in changed)
+    verb = "changes" if len(changed) == 1 else "change"
+    return (f"{len(changed)} of the {total} other readings {verb} a claim's verdict: "
+            f"{named}; the other {total - len(changed)} change none")
+
+
+def run_readings(study, n_seeds=200, seed=0, progress=True):
+    """Runs a study's learner with the book's readings and with each other reading
+    (`readings`), one at a time, all on the same seeds, and measures its claims.
+
+    Args:
+      study: "goal_oriented", "actor_critic" or "rod_toppling" (see `STUDIES`), or a
+        `Study`.
+      n_seeds: seeds per run (>= 1; the book uses 200).
+      seed: the root seed (an integer >= 0, a Generator or None).
+      progress: show a progress bar over the runs.
+
+    Returns:
+      A `ReadingsResult`.
+
+    Raises:
+      ValueError: for an unknown study or a bad n_seeds or seed.
+    """
+    study = _check_study(study)
+    n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
+    seed = _validate.root_seed("seed", seed)
+    _validate.boolean("progress", progress)
+    found = readings(study)
+    runs, held = {}, {}
+    for reading in progress_bar([None] + list(found), len(found) + 1,
+                                f"other readings: {study.name}", progress, unit="run"):
+        point = {} if reading is None else {reading.name: reading.value}
+        key = None if reading is None else reading.key
+        runs[key] = study.run_fn(n_seeds=n_seeds, seed=seed, progress=False, **study.fixed,
+                                 **point)
+        rows = study.per_seed(runs[key])
+        held[key] = {c.name: np.array([row[c.name] for row in rows], dtype=bool)
+                     for c in study.claims}
+    return ReadingsResult(study, {"n_seeds": n_seeds, "seed": seed}, found, runs, held)
+
+
+CHAPTER_CLAIMS = {
+    "weight_threshold": "red first fails at every action weight below a threshold and "
+                        "holds at every weight from it",
+    "weight_above_settles_red": "above that threshold red comes first at every point of the "
+                                "map, whatever the presses and the reading",
+    "interest_needs_progress": "interest moves to green later with the progress reading "
+                               "and fails with the literal one",
+    "interest_weight_from": "interest moves to green later from some action weight on, "
+                            "and not at the lowest weight tried",
+    "interest_progress_any_presses": "with the progress reading and a weight from the "
+                                     "threshold, interest moves later for every number of "
+                                     "presses",
+    "green_needs_two_presses": "green is mastered at every point but those with the fewest "
+                               "presses per trial, where it fails",
+    "critic_red_everywhere": "the actor-critic predicts red well first at every point",
+    "printed_td_alone": "with the printed TD error and the other defaults, the actor-critic "
+                        "predicts red well first and learns green",
+    "printed_td_damage": "with the printed TD error, green fails with the weakest predictor "
+                         "and with the fewest presses, where the standard one does not fail",
+    "td_interacts": "the TD error interacts with the action weight and with the presses "
+                    "for green",
+    "rods_toppled_first_everywhere": "red toppled first fails at no point of the map",
+    "rods_small_initial_q": "red is predicted well first only for initial values between "
+                            "the smallest and the largest tried",
+    "rods_epsilon": "red predicted well first holds at an epsilon other than the default, "
+                    "and not at the largest tried",
+    "rods_blue_needs_drive": "blue is found at every point with an initial Q above zero, "
+                             "and not with no initial Q and no random moves",
+    "presses_not_needed": "red first and the interest's order hold at every number of "
+                          "presses tried",
+}
+"""The claims of the chapter "What the result depends on" about its maps
+(`chapter_claims`)."""
+
+
+def _every(result, claim, verdict_, **where):
+    """Whether `claim` has the verdict `verdict_` at every measured point of `result`
+    whose settings satisfy `where` ({setting: function of its value -> bool})."""
+    table = result.points()
+    for name, test in where.items():
+        table = table[table[name].map(test)]
+    return bool(len(table)) and bool((table[claim + "_verdict"] == verdict_).all())
+
+
+def chapter_claims(goal, critic, rods_result):
+    """{claim name: whether it holds}, for each of `CHAPTER_CLAIMS`: what the chapter
+    "What the result depends on" states in words about its three maps, checked on the
+    book's maps when it is built (and by the tests on theirs).
+
+    Args:
+      goal, critic, rods_result: the `RobustnessResult` objects of the studies
+        "goal_oriented", "actor_critic" and "rod_toppling".
+    """
+    for name, result, study in (("goal", goal, "goal_oriented"), ("critic", critic,
+                                "actor_critic"), ("rods_result", rods_result, "rod_toppling")):
+        _validate.instance(name, result, RobustnessResult)
+        if result.study.name != study:
+            raise ValueError(f"{name} must be the study {study!r}, got "
+                             f"{result.study.name!r}")
+    weights = goal.study.setting("action_weight").values
+    presses = goal.study.setting("presses_per_trial").values
+    threshold = goal.holds_from("red_first", "action_weight")
+    below = [w for w in weights if threshold is None or w < threshold]
+    interest_from = goal.holds_from("interest_later", "action_weight")
+    critic_weights = critic.study.setting("action_weight").values
+    critic_presses = critic.study.setting("presses_per_trial").values
+    qs = list(rods_result.study.setting("initial_q").values)
+    epsilons = rods_result.study.setting("epsilon").values
+    q_held = rods_result.holding_values("red_first", "initial_q")
+    epsilon_held = rods_result.holding_values("red_first", "epsilon")
+    default_epsilon = rods_result.study.setting("epsilon").default
+    return {
+        "weight_threshold": threshold is not None and bool(below) and all(
+            goal.verdict("red_first", action_weight=w) == "fails" for w in below),
+        "weight_above_settles_red": threshold is not None and _every(
+            goal, "red_first", "holds", action_weight=lambda w: w >= threshold),
+        "interest_needs_progress": goal.verdict("interest_later") == "holds"
+        and goal.verdict("interest_later", reading="literal") == "fails",
+        "interest_weight_from": interest_from is not None and interest_from > weights[0],
+        "interest_progress_any_presses": threshold is not None and _every(
+            goal, "interest_later", "holds", action_weight=lambda w: w >= threshold,
+            reading=lambda r: r == "progress"),
+        "green_needs_two_presses": _every(goal, "green_mastered", "fails",
+                                          presses_per_trial=lambda p: p == presses[0])
+        and _every(goal, "green_mastered", "holds",
+                   presses_per_trial=lambda p: p != presses[0]),
+        "critic_red_everywhere": _every(critic, "red_first", "holds"),
+        "printed_td_alone": critic.verdict("red_first", variant="printed_td") == "holds"
+        and critic.verdict("green_learned", variant="printed_td") == "holds",
+        "printed_td_damage": all(
+            critic.verdict("green_learned", variant="printed_td", **point) == "fails"
+            and critic.verdict("green_learned", **point) != "fails"
+            for point in ({"action_weight": critic_weights[0]},
+                          {"presses_per_trial": critic_presses[0]})),
+        "td_interacts": critic.interacts("green_learned", ("action_weight", "variant"))
+        and critic.interacts("green_learned", ("presses_per_trial", "variant")),
+        "rods_toppled_first_everywhere": not (rods_result.points()["red_toppled_first_verdict"]
+                                              == "fails").any(),
+        "rods_small_initial_q": bool(q_held) and q_held[0] != qs[0]
+        and q_held[-1] != qs[-1]
+        and q_held == qs[qs.index(q_held[0]):qs.index(q_held[-1]) + 1],
+        "rods_epsilon": any(e != default_epsilon for e in epsilon_held)
+        and epsilons[-1] not in epsilon_held,
+        "rods_blue_needs_drive": _every(rods_result, "blue_found", "holds",
+                                        initial_q=lambda q: q > 0)
+        and rods_result.verdict("blue_found", initial_q=qs[0], epsilon=epsilons[0])
+        == "fails" and qs[0] == 0 and epsilons[0] == 0,
+        "presses_not_needed": all(goal.verdict(c, presses_per_trial=p) == "holds"
+                                  for c in ("red_first", "interest_later") for p in presses),
+    }
+
+
+def chapter_numbers(goal, critic, rods_result):
+    """The numbers and clauses the chapter "What the result depends on" quotes from
+    its three maps, by the names its text uses.
+
+    Args:
+      goal, critic, rods_result: the `RobustnessResult` objects of the studies
+        "goal_oriented", "actor_critic" and "rod_toppling".
+
+    Returns:
+      (numbers, clauses): two dicts, {name: a number or a word} and {name: a clause in
+      Markdown}. Each study's `summary()` is there too, its keys prefixed with the study
+      (``goal_``, ``critic_``, ``rods_``).
+    """
+    chapter_claims(goal, critic, rods_result)  # checks the arguments
+    numbers, clauses = {}, {}
+    for prefix, result in (("goal_", goal), ("critic_", critic), ("rods_", rods_result)):
+        numbers.update({prefix + k: v for k, v in result.summary().items()})
+    # The goal-oriented learner.
+    weight = goal.study.setting("action_weight")
+    presses = goal.study.setting("presses_per_trial").values
+    threshold = goal.holds_from("red_first", "action_weight")
+    above = goal.points().query("action_weight >= @threshold")
+    numbers.update(
+        default_weight=weight.default, goal_lowest_weight=threshold,
+        goal_highest_failing_weight=max(w for w in weight.values if w < threshold),
+        goal_red_first_above_min=float(above.red_first.min()),
+        goal_later_progress_min=float(above.query("reading == 'progress'")
+                                      .interest_later.min()),
+        lowest_weight=weight.values[0],
+        goal_later_lowest_weight=goal.share("interest_later",
+                                            action_weight=weight.values[0])[0],
+        goal_later_lowest_weight_verdict=goal.verdict("interest_later",
+                                                      action_weight=weight.values[0]),
+        goal_later_literal=goal.share("interest_later", reading="literal")[0],
+        goal_later_weights_lowest=goal.holds_from("interest_later", "action_weight"),
+        presses_low=min(presses), presses_high=max(presses),
+        goal_green_one_press=goal.share("green_mastered", presses_per_trial=min(presses))[0],
+        goal_presses_in_run=min(presses) * goal.study.fixed["n_trials"])
+    clauses["goal_red_first_by_weight"] = goal.shares_along("red_first", "action_weight")
+    # The actor-critic.
+    weakest = critic.study.setting("action_weight").values[0]
+    fewest = critic.study.setting("presses_per_trial").values[0]
+    numbers.update(critic_weakest=weakest, critic_fewest=fewest)
+    for name, point in (("printed", {"variant": "printed_td"}),
+                        ("printed_weakest", {"variant": "printed_td", "action_weight": weakest}),
+                        ("printed_fewest", {"variant": "printed_td",
+                                            "presses_per_trial": fewest}),
+                        ("weakest", {"action_weight": weakest}),
+                        ("fewest", {"presses_per_trial": fewest})):
+        numbers[f"critic_green_{name}"] = critic.share("green_learned", **point)[0]
+    # The Q-learner on the rods.
+    qs = rods_result.study.setting("initial_q").values
+    epsilon = rods_result.study.setting("epsilon")
+    held = rods_result.holding_values("red_first", "initial_q")
+    numbers.update(
+        rods_q_lowest=min(held), rods_q_highest=max(held), rods_q_none=qs[0],
+        rods_epsilon_default=epsilon.default, rods_epsilon_largest=epsilon.values[-1],
+        rods_epsilon_largest_verdict=rods_result.verdict("red_first",
+                                                         epsilon=epsilon.values[-1]),
+        rods_blue_positive_q_min=float(rods_result.points().query("initial_q > 0")
+                                       .blue_found.min()))
+    clauses.update(
+        rods_red_first_by_q=rods_result.shares_along("red_first", "initial_q"),
+        rods_red_first_by_epsilon=rods_result.shares_along("red_first", "epsilon"),
+        rods_blue_q_none_by_epsilon=rods_result.shares_along("blue_found", "epsilon",
+                                                             initial_q=qs[0]))
+    return numbers, clauses
+
+
+def readings_numbers(found):
+    """The numbers and clauses the chapter "What the result depends on" quotes from
+    its other readings, by the names its text uses.
+
+    Args:
+      found: {study name: `ReadingsResult`}, for the three studies.
+
+    Returns:
+      (numbers, clauses), as `chapter_numbers`: per study its `describe()`; over
+      all of them `readings_summary`; for the rods, the book's run, the run without a
+      limit on moves and the run whose moves off the grid end the episode: the share
+      of episodes that end on the time limit, of moves that run into the edge, of
+      episodes that end there, the mean and the longest episode, and Figure 7's
+      story and order (`RodTopplingResult.tells_the_papers_story`, `in_paper_order`).
+    """
+    if not isinstance(found, dict) or set(found) != set(STUDIES):
+        raise _validate.ArgumentTypeError(f"found must be a dict of ReadingsResult by "
+                                          f"study name ({', '.join(STUDIES)}), got "
+                                          f"{_validate.show(found)}")
+    for name, result in found.items():
+        _validate.instance(f"found[{name!r}]", result, ReadingsResult)
+    clauses = {f"readings_{name}": result.describe() for name, result in found.items()}
+    clauses["readings_summary"] = readings_summary(list(found.values()))
+    clauses["not_measured_epsilon"] = NOT_MEASURED[("actor_critic", "epsilon")]
+    rod_runs = found["rod_toppling"]
+    book = rod_runs.run()
+    numbers = {"max_moves": book.settings["max_moves"],
+               "time_limit_share": book.time_limit_share(), "edge_share": book.edge_share(),
+               "edge_ended_share": rod_runs.run(("off_grid", "end")).edge_ended_share()}
+    for name, run in (("book", book), ("no_limit", rod_runs.run(("max_moves", None))),
+                      ("off_grid_ends", rod_runs.run(("off_grid", "end")))):
+        numbers[f"{name}_length"] = float(run.episode_length.mean())
+        numbers[f"{name}_longest"] = int(run.episode_length.max())
+        numbers[f"{name}_order"] = run.red_before_blue_begins()
+        numbers[f"{name}_story"] = float(run.tells_the_papers_story().mean())
+    return numbers, clauses

@@ -3,6 +3,7 @@ sections 2.2, 3.3 and 4.2, Figure 7); with other intrinsic rewards (`reward=`) a
 wobbly rod (`wobbly_rod=True`) for the chapter "Which curiosity?"."""
 
 import dataclasses
+import math
 
 import numpy as np
 
@@ -80,9 +81,12 @@ class RodTopplingResult:
     Attributes:
       settings: the arguments of the run, as a dict.
       toppled: [seed, episode], the rod that ended the episode: 0 red, 1 blue, 2 the
-        wobbly rod, -1 none (a time limit). Should the physics topple two at once, the
-        first.
+        wobbly rod, -1 none (a time limit, or with `off_grid="end"` a move off the
+        grid). Should the physics topple two at once, the first.
       episode_length: [seed, episode], moves in the episode.
+      edge_moves: [seed, episode], the episode's moves that ran into the edge of the
+        grid (a move off the grid: the hand stayed, or with `off_grid="end"` the
+        episode ended).
       prediction_error: [seed, episode, rod], the predictor's absolute errors on each
         rod (of `rod_names`) summed over the episode's moves: with the paper's reward,
         the intrinsic reward the robot was paid, split by rod.
@@ -111,6 +115,7 @@ class RodTopplingResult:
     settings: dict
     toppled: np.ndarray
     episode_length: np.ndarray
+    edge_moves: np.ndarray
     prediction_error: np.ndarray
     rod_error: np.ndarray
     rod_error_toppled: np.ndarray
@@ -176,6 +181,28 @@ class RodTopplingResult:
             raise ValueError(f"episodes must select at least one of the {self.n_episodes} "
                              f"episodes, got {episodes!r}")
         return float(np.mean(self.toppled[:, episodes] == index))
+
+    def edge_share(self):
+        """The share of all the run's moves that ran into the edge of the grid (see
+        `edge_moves`): how often the rule for a move off the grid, which the paper
+        does not give, was used."""
+        return float(self.edge_moves.sum() / self.episode_length.sum())
+
+    def _edge_ended(self):
+        """[seed, episode], True where the episode ended with a move off the grid."""
+        if self.settings.get("off_grid", rods.OFF_GRID.default) != "end":
+            return np.zeros(self.toppled.shape, dtype=bool)
+        return (self.toppled == -1) & (self.edge_moves > 0)
+
+    def edge_ended_share(self):
+        """The share of episodes that ended with a move off the grid (0 unless
+        `off_grid="end"`)."""
+        return float(self._edge_ended().mean())
+
+    def time_limit_share(self):
+        """The share of episodes that ended on the time limit, `max_moves` moves
+        without a topple (0 without a limit)."""
+        return float(((self.toppled == -1) & ~self._edge_ended()).mean())
 
     def rod_errors(self, reading="all"):
         """[seed, episode, rod], `rod_error` (reading "all") or `rod_error_toppled`
@@ -279,6 +306,79 @@ class RodTopplingResult:
         out["mean_episode_length"] = float(self.episode_length.mean())
         return out
 
+    def claims(self):
+        """{claim name: whether it holds in this run}, for each of `CLAIMS` (checked
+        on the book's run when it is built, and by the tests on their own seeds)."""
+        s = self.summary()
+        return {
+            "red_toppled_first": s["red_toppled_first"] > 0.5
+            and s["first_red_median"] < s["first_blue_median"],
+            "red_learned_first": s["red_first_toppled"] > 0.5
+            and s["red_well_median_toppled"] < s["blue_well_median_toppled"],
+            "red_learned_first_all": s["red_first"] > 0.5
+            and s["red_well_median"] < s["blue_well_median"],
+            "then_blue": s["blue_share_second_half"] > s["blue_share_first_10"],
+            "red_in_the_way": s["red_share_second_half"] > s["blue_share_second_half"],
+        }
+
+
+CLAIMS = {
+    "red_toppled_first": "the first topple is red's in most seeds, and the median run "
+                         "topples red first",
+    "red_learned_first": "red is predicted well (on the pairs toppled) before blue in "
+                         "most seeds, and sooner at the median",
+    "red_learned_first_all": "red is predicted well (on every pair) before blue in most "
+                             "seeds, and sooner at the median",
+    "then_blue": "blue ends a larger share of the episodes in the second half of "
+                 "training than in the first ten",
+    "red_in_the_way": "in the second half of training red is toppled more often than blue",
+}
+"""The claims about Figure 7's story over the seeds that the book states in words
+(`RodTopplingResult.claims`)."""
+
+
+def initial_q_claims(default, untried_worth_nothing, untried_worth_a_surprise):
+    """{claim name: whether it holds}, for each of `INITIAL_Q_CLAIMS`: what the value
+    of an untried move does to the story, from runs on the same seeds at the default
+    `initial_q`, at a lower one and at a higher one.
+
+    Args:
+      default, untried_worth_nothing, untried_worth_a_surprise: each a
+        `RodTopplingResult`, the second with a lower `initial_q` than the first, the
+        third a higher.
+
+    Raises:
+      TypeError: if a run is not a `RodTopplingResult`.
+      ValueError: if the runs' initial Q values are not in that order.
+    """
+    runs = {"default": default, "untried_worth_nothing": untried_worth_nothing,
+            "untried_worth_a_surprise": untried_worth_a_surprise}
+    for name, run in runs.items():
+        _validate.instance(name, run, RodTopplingResult,
+                           "a RodTopplingResult (from icm.experiments.run_rod_toppling)")
+    values = [run.settings["initial_q"] for run in runs.values()]
+    if not values[1] < values[0] < values[2]:
+        raise ValueError(f"the runs' initial_q must rise from untried_worth_nothing to "
+                         f"default to untried_worth_a_surprise, got {values[1]!r}, "
+                         f"{values[0]!r} and {values[2]!r}")
+    d, low, high = (run.summary() for run in runs.values())
+    return {
+        "low_stays_with_red": low["red_well_share"] < d["red_well_share"]
+        and low["first_blue_median"] > d["first_blue_median"],
+        "high_meets_blue_early": high["first_blue_median"] < d["first_blue_median"],
+        "high_less_red_first": high["red_first_toppled"] < d["red_first_toppled"],
+    }
+
+
+INITIAL_Q_CLAIMS = {
+    "low_stays_with_red": "with untried moves worth less, red is predicted well on all its "
+                          "pairs in fewer seeds and blue is first toppled later",
+    "high_meets_blue_early": "with untried moves worth more, blue is first toppled sooner",
+    "high_less_red_first": "with untried moves worth more, red comes first in fewer seeds",
+}
+"""The claims about the value of an untried move that the book states in words
+(`initial_q_claims`)."""
+
 
 def _median_of_found(episodes):
     found = episodes[episodes >= 1]
@@ -286,7 +386,8 @@ def _median_of_found(episodes):
 
 
 def _check_run_arguments(n_seeds, n_episodes, wobbly_rod, physics, start_cell, max_moves,
-                         snapshot_episodes, seed, first_run, progress, settings):
+                         snapshot_episodes, seed, first_run, progress, settings,
+                         off_grid=rods.OFF_GRID.default):
     """The run's own arguments (its learner's `settings` are checked already), checked
     and normalised, with the settings' values, as the result's `settings` dict; the
     run's memory is checked too."""
@@ -304,12 +405,19 @@ def _check_run_arguments(n_seeds, n_episodes, wobbly_rod, physics, start_cell, m
         wobbly_rod=_validate.boolean("wobbly_rod", wobbly_rod),
         physics=_validate.boolean("physics", physics),
         start_cell=rods.check_start_cell(start_cell, rods.load_topple_map()["standable"]),
-        max_moves=_validate.integer_at_least("max_moves", max_moves, 1),
+        max_moves=rods.check_max_moves(max_moves),
+        off_grid=rods.check_off_grid(off_grid),
         snapshot_episodes=episodes,
         seed=_validate.root_seed("seed", seed),
         first_run=_validate.integer("first_run", first_run, 0, _validate.MAX_SEED))
     _validate.boolean("progress", progress)
     checked = {**checked, **settings.as_dict()}
+    if checked["max_moves"] is None and checked["reward"] != "random" and \
+            np.any(np.asarray(checked["epsilon"]) == 0):
+        raise ValueError("max_moves=None (no time limit) needs epsilon > 0: a learner that "
+                         "never moves at random can walk in circles for ever, and its "
+                         "episode would never end; got epsilon "
+                         f"{_validate.show(checked['epsilon'])}")
     check_memory("run_rod_toppling", {"n_seeds": checked["n_seeds"], "n_episodes": n_episodes},
                  memory_needed(checked["n_seeds"], n_episodes, checked["reward"],
                                checked["window"], checked["wobbly_rod"], checked["physics"],
@@ -335,9 +443,9 @@ def memory_needed(n_rows, n_episodes, reward="prediction_error", window=interest
     n_rods = len(rods.rod_names(wobbly_rod))
     n_fixed, pairs = len(RODS), N_STATES * N_ACTIONS
     n_snapshots = len(MOMENTS) + n_snapshot_episodes
-    # The result, per row and episode: toppled, episode_length; prediction_error [rod];
-    # rod_error, rod_error_toppled [red and blue] ...
-    kept = 8 * n_rows * n_episodes * (2 + n_rods + 2 * n_fixed)
+    # The result, per row and episode: toppled, episode_length, edge_moves;
+    # prediction_error [rod]; rod_error, rod_error_toppled [red and blue] ...
+    kept = 8 * n_rows * n_episodes * (3 + n_rods + 2 * n_fixed)
     # ... per row and snapshot: q_table, predictions [cell, action, ...], confidence [cell].
     kept += 8 * n_rows * n_snapshots * (pairs * (1 + n_rods) + N_STATES)
     # While it is made: the masks that find the moments, per episode; the snapshots as
@@ -353,7 +461,7 @@ def memory_needed(n_rows, n_episodes, reward="prediction_error", window=interest
         learner += n_rows * 8 * pairs * (kmax + 2)
     elif reward != "prediction_error":
         learner += n_rows * 8 * pairs * ((window if reward == "learning_progress" else 1) + 1)
-    moves = n_episodes * max_moves  # at most
+    moves = n_episodes * (math.inf if max_moves is None else max_moves)  # at most
     streams = _streams.memory_bound(n_rows, moves * action_selection.DRAWS_PER_CHOICE)
     if physics:  # a simulated table per row
         tables = n_rows * PHYSICS_SCENE_BYTES
@@ -372,6 +480,7 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
                      seed=0,
                      first_run=0,
                      progress=True,
+                     off_grid=rods.OFF_GRID.default,
                      settings=None):
     """Runs the curious Q-learner on the rods, once per seed.
 
@@ -379,7 +488,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
     `LinearPredictor` of both rods' outcome per (cell, action) and a `QLearner` paid
     by that predictor's absolute errors, with its own seeds drawn from `seed`, and
     plays `n_episodes` episodes. An episode starts with the hand over `start_cell` and
-    ends when a rod topples (or after `max_moves` moves).
+    ends when a rod topples (or after `max_moves` moves, or with `off_grid="end"` at a
+    move off the grid).
 
     Args:
       n_seeds: number of independent runs (>= 1).
@@ -390,7 +500,10 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
         runs the physics: about 6 ms; the errors in `rod_error` are still measured
         against the stored topple map).
       start_cell: (column, row) where each episode starts.
-      max_moves: moves after which an episode without a topple ends (>= 1).
+      max_moves: moves after which an episode without a topple ends (>= 1), or None:
+        no time limit, the paper's "Each episode ends as soon as the robot topples one
+        of the two rods" (it needs epsilon > 0, or the random walk, so that every
+        episode ends).
       snapshot_episodes: episodes (1..n_episodes) after which to keep a snapshot, in
         addition to the `MOMENTS`.
       seed: the root seed: an integer >= 0, a `numpy.random.Generator` (one integer
@@ -400,6 +513,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
         first_run..first_run+n_seeds-1 of the root seed, so that one run of a large
         batch can be rerun alone (`n_seeds=1, first_run=i`).
       progress: show a progress bar when the run lasts over a second.
+      off_grid: what a move off the grid does, "stay" (the hand stays where it is, the
+        default) or "end" (the episode ends); see `icm.envs.rods.rules.OFF_GRID`.
       settings: the learner's settings, a `icm.learners.q_learning.QLearnerSettings`
         (or give them one by one as keyword arguments, listed below).
 
@@ -413,7 +528,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
     learner = settings
     settings = _check_run_arguments(n_seeds, n_episodes, wobbly_rod, physics, start_cell,
                                     max_moves, snapshot_episodes, seed, first_run, progress,
-                                    learner)
+                                    learner, off_grid)
+    off_grid = settings["off_grid"]
     n_seeds, n_episodes, max_moves = (settings["n_seeds"], settings["n_episodes"],
                                       settings["max_moves"])
     extra, seed, start_cell = (settings["snapshot_episodes"], settings["seed"],
@@ -428,7 +544,7 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
         env = rods.PhysicsRodTableBatch(n_seeds, start_cell, wobbly_rod, env_seeds)
         agents = [q_learning.QLearner.from_settings(N_STATES, N_ACTIONS, n_rods, learner, s)
                   for s in agent_seeds]
-        played = play_episodes(env, agents, n_episodes, max_moves, extra, progress)
+        played = play_episodes(env, agents, n_episodes, max_moves, extra, progress, off_grid)
     else:
         from icm.experiments import _rods_kernel  # here: it loads Numba
 
@@ -445,7 +561,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
             env.next_cell, env.topples, rods.cell_number(start_cell), max_moves, n_episodes,
             toppling_pairs(), extra, WELL_PREDICTED_ERROR, bar=bar, reward=learner.reward,
             window=learner.window,
-            wobbles=env.wobbles if wobbly_rod else None, env_streams=env.streams)
+            wobbles=env.wobbles if wobbly_rod else None, env_streams=env.streams,
+            off_grid=off_grid)
         if bar is not None:
             bar.close()
         played = summarize(raw, extra)
@@ -459,7 +576,8 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
     p_out = np.where(came[..., None, None] & standing[..., None, None],
                      _to_grid(played["predictions"]), np.nan)
     c_out = np.where(came & standing, _to_grid(played["confidence"]), np.nan)
-    return RodTopplingResult(settings, played["toppled"], played["length"], played["errors"],
+    return RodTopplingResult(settings, played["toppled"], played["length"], played["edges"],
+                             played["errors"],
                              rod_error, played["rod_error_toppled"], predicted_well,
                              played["predicted_well_toppled"], names,
                              played["snapshot_episode"], q_out, p_out, c_out)
@@ -477,14 +595,16 @@ def toppling_pairs():
     return np.array(cells), np.array(actions), np.array(which)
 
 
-def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), progress=False):
+def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), progress=False,
+                  off_grid=rods.OFF_GRID.default):
     """Plays `n_episodes` episodes of each per-agent learner of `agents` (`QLearner`s,
     one per row of `env`, a batched rod table such as the physics one), and summarises
     them (`summarize`).
 
     The rows move independently: each acts at every iteration until it has played its
     episodes, starting a new episode (hand over the start cell) as soon as its last one
-    ended with a topple or after `max_moves` moves. After each episode the compiled
+    ended with a topple, after `max_moves` moves (None: no limit), or with
+    `off_grid="end"` at a move off the grid (the hand stayed in its cell). After each episode the compiled
     `icm.experiments._rods_kernel.record_episode` keeps what the result needs, as the
     compiled loop of the tabular runs does (which gives the same numbers).
     """
@@ -495,7 +615,10 @@ def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), prog
     n_rods = agents[0].predictor.n_outputs
     raw = {"toppled": np.full((n, n_episodes), -1, dtype=np.int64),
            "length": np.zeros((n, n_episodes), dtype=np.int64),
+           "edges": np.zeros((n, n_episodes), dtype=np.int64),
            "errors": np.zeros((n, n_episodes, n_rods))}
+    limit = _rods_kernel.NO_LIMIT if rods.check_max_moves(max_moves) is None else max_moves
+    off_grid_ends = rods.check_off_grid(off_grid) == "end"
     found = np.full((n, n_states, n_actions, n_rods), n_episodes, dtype=np.int64)
     record = _rods_kernel.recorder(n, n_episodes, n_states, n_actions, n_rods,
                                    toppling_pairs(), snapshot_episodes, WELL_PREDICTED_ERROR)
@@ -508,6 +631,7 @@ def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), prog
     state = np.full(n, env.start)
     episode = np.zeros(n, dtype=np.int64)
     moves = np.zeros(n, dtype=np.int64)
+    edges = np.zeros(n, dtype=np.int64)
     error_sum = np.zeros((n, n_rods))
     active = np.arange(n)
     env.new_episodes(active)
@@ -517,20 +641,25 @@ def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), prog
         actions = np.array([agents[r].select_action(int(c)) for r, c in zip(active, cells)],
                            dtype=np.int64)
         next_cells, toppled = env.move(active, cells, actions)
-        for r, c, a, after, rod in zip(active.tolist(), cells.tolist(), actions.tolist(),
-                                       next_cells.tolist(), toppled.tolist()):
+        off = next_cells == cells  # a move off the grid: the hand stayed
+        terminal = (toppled >= 0) | (off & off_grid_ends)
+        for r, c, a, after, rod, last in zip(active.tolist(), cells.tolist(),
+                                             actions.tolist(), next_cells.tolist(),
+                                             toppled.tolist(), terminal.tolist()):
             observed = [1.0 if rod == i else 0.0 for i in range(n_rods)]
-            agents[r].learn(c, a, observed, after, 0.0 if rod >= 0 else 1.0)
+            agents[r].learn(c, a, observed, after, 0.0 if last else 1.0)
             for i, error in enumerate(agents[r].last_errors):  # in order, as the loop adds
                 error_sum[r, i] += error
         moves[active] += 1
+        edges[active] += off
         state[active] = next_cells
-        ended = (toppled >= 0) | (moves[active] >= max_moves)
+        ended = terminal | (moves[active] >= limit)
         if not ended.any():
             continue
         done, top, ep = active[ended], toppled[ended], episode[active[ended]]
         raw["toppled"][done, ep] = top
         raw["length"][done, ep] = moves[done]
+        raw["edges"][done, ep] = edges[done]
         raw["errors"][done, ep] = error_sum[done]
         hit = top >= 0
         pairs = (done[hit], cells[ended][hit], actions[ended][hit], top[hit])
@@ -544,7 +673,7 @@ def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), prog
                                           for a in range(n_actions))] for s in states]
             _rods_kernel.record_episode(row, row_episode, rod, q, predictions, last_error,
                                         found, record)
-        state[done], moves[done], error_sum[done] = env.start, 0, 0.0
+        state[done], moves[done], edges[done], error_sum[done] = env.start, 0, 0, 0.0
         episode[done] += 1
         env.new_episodes(done)
         active = active[episode[active] < n_episodes]
@@ -560,7 +689,7 @@ def summarize(raw, snapshot_episodes=()):
     """The summary of played episodes (`play_episodes`, or the compiled loop).
 
     Args:
-      raw: over [row, episode], "toppled", "length", "errors" [..., rod], and what
+      raw: over [row, episode], "toppled", "length", "edges", "errors" [..., rod], and what
         `icm.experiments._rods_kernel.record_episode` kept: "rod_error",
         "rod_error_toppled" [..., rod], "predicted_well_toppled" [row, rod], and the
         learner's snapshots [row, slot, ...] "q_snapshots", "p_snapshots",
@@ -568,7 +697,7 @@ def summarize(raw, snapshot_episodes=()):
 
     Returns:
       A dict of arrays: over [row, episode], "toppled" (0 red, 1 blue, -1 none),
-      "length" (moves), "errors" [..., rod] (the predictor's errors, summed over the
+      "length" (moves), "edges" (moves off the grid), "errors" [..., rod] (the predictor's errors, summed over the
       episode's moves), "rod_error" and "rod_error_toppled" [..., rod] (see
       `RodTopplingResult`); "predicted_well_toppled" [row, rod]; and the snapshots
       over [row, snapshot] at the `MOMENTS` and after the `snapshot_episodes`,
@@ -577,7 +706,7 @@ def summarize(raw, snapshot_episodes=()):
       whatever the slot holds: the caller masks them).
     """
     n, n_episodes = raw["toppled"].shape
-    out = {key: raw[key] for key in ("toppled", "length", "errors", "rod_error",
+    out = {key: raw[key] for key in ("toppled", "length", "edges", "errors", "rod_error",
                                      "rod_error_toppled", "predicted_well_toppled")}
     # The moments, and the learner at each of them.
     red_well = first_from_which(out["rod_error"][..., 0] < WELL_PREDICTED_ERROR)

@@ -12,7 +12,7 @@ from icm.experiments import actor_critic as _actor_critic
 from icm.experiments.actor_critic import ActorCriticResult
 from icm.experiments.results import check_results
 from icm.figures._common import (TASK_COLOURS, check_axes, check_result, check_title,
-                                 new_figure, plot_mean_band)
+                                 new_figure, plot_mean_band, series_style)
 from icm.learners.actor_critic import ActorCritic
 
 _AGENT_COLOUR = "#777777"
@@ -196,7 +196,8 @@ def figure6(result, ax=None, title=None):
         fig = ax.figure
     for i, task in enumerate(_actor_critic.TASKS):
         plot_mean_band(ax, result.prediction_error[:, :, i], TASK_COLOURS[task],
-                       f"only {task} lit, press it (mean)", per_seed=True)
+                       f"only {task} lit, press it (mean)", per_seed=True,
+                       **series_style(task))
     ax.set_xlabel("trial")
     ax.set_ylabel("prediction error (Euclidean)")
     ax.set_xlim(1, result.n_trials)
@@ -254,7 +255,7 @@ def practice_figure(results):
         presses = result.settings["presses_per_trial"]
         for i, task in enumerate(_actor_critic.TASKS):
             plot_mean_band(ax, result.practice[:, :, i] / presses, TASK_COLOURS[task],
-                           f"opened the {task} box")
+                           f"opened the {task} box", **series_style(task))
         ax.axhline(0.2, color="#999999", linestyle=":", linewidth=1, label="chance (1 in 5)")
         ax.set(xlim=(1, result.n_trials), ylim=(0, 1), ylabel="share of presses")
         ax.set_title(title, fontsize=11, loc="left")

@@ -141,21 +141,28 @@ def figure2():
     interesting it is. Steps 2-4 repeat for every action; then the actor acts, and the
     predictor and interest module learn from what happened.
     """
-    fig, ax = new_figure(width=7.5, height=4.2)
+    fig, ax = new_figure(width=6.7, height=4.6)
     ax.set_xlim(0, 1.6)
-    ax.set_ylim(0, 1)
+    ax.set_ylim(-0.22, 1)
     ax.axis("off")
     env, actor, predictor, interest = (0.25, 0.5), (0.8, 0.5), (1.35, 0.8), (1.35, 0.2)
     _box(ax, env, "Environment", "#dde7f3")
     _box(ax, actor, "Actor", "#f3e6d0")
     _box(ax, predictor, "Predictor", "#e2f0d9")
     _box(ax, interest, "Interest", "#f6dcdc")
-    _arrow(ax, (0.41, 0.55), (0.64, 0.55), "1  observation", (0, 0.05))
-    _arrow(ax, (0.64, 0.44), (0.41, 0.44), "action", (0, -0.05))
+    # The labels of the two short arrows sit above and below the boxes, clear of them.
+    _arrow(ax, (0.41, 0.55), (0.64, 0.55), "1  observation", (0, 0.13))
+    _arrow(ax, (0.64, 0.44), (0.41, 0.44), "action", (0, -0.13))
     _arrow(ax, (0.9, 0.6), (1.19, 0.78), "2  context, action?", (-0.06, 0.06))
     _arrow(ax, (1.35, 0.71), (1.35, 0.29), "3  predicted effect\n= task", (0.0, 0.0))
     _arrow(ax, (1.19, 0.22), (0.9, 0.4), "4  interest of task", (-0.05, -0.06))
-    ax.text(0.8, 0.05, "2-3-4 repeat for each of the 5 buttons; the actor then picks\n"
-            "an action epsilon-greedily on interest and executes it",
+    ax.text(0.8, -0.2, "2-3-4 repeat for each of the 5 buttons; the actor\nthen picks "
+            "an action epsilon-greedily on interest\nand executes it",
             ha="center", va="bottom", fontsize=8.5, style="italic")
-    return fig
+    return fig.describe(
+        "The paper's Figure 2 as a diagram of four boxes: Environment, Actor, Predictor "
+        "and Interest. Arrows: (1) the environment's observation goes to the actor; (2) "
+        "the actor asks the predictor about a context and action; (3) the predicted "
+        "effect, a task, goes to the interest module; (4) the interest of that task "
+        "goes back to the actor, which sends its action to the environment. Steps 2 to 4 "
+        "repeat for each of the 5 buttons before the actor picks one epsilon-greedily.")

@@ -2,22 +2,37 @@
 buttons and the rods, with and without noise, and the scenes with the noisy button and
 the wobbly rod."""
 
+import textwrap
+
 import numpy as np
 
 from icm import _validate
 from icm.envs import buttons, icub, rods
 from icm.experiments import curiosity as _curiosity
 from icm.experiments.curiosity import RewardComparison, SignalComparison
-from icm.figures._common import TASK_COLOURS, check_result, new_figure, plot_mean_band
+from icm.figures._common import (LINESTYLES, MARKERS, TASK_COLOURS, check_result, new_figure,
+                                 legend_below, plot_mean_band, series_style)
 from icm.figures.icub import check_camera, check_image_size, render
 
 SIGNAL_COLOURS = {"learning_progress": "#1b9e77", "prediction_error": "#d95f02",
                   "novelty": "#7570b3", "random": "#7a7a7a"}
 """One colour per interest signal (or intrinsic reward)."""
+SIGNAL_STYLES = {"learning_progress": {"linestyle": "-", "marker": "o"},
+                 "prediction_error": {"linestyle": "--", "marker": "s"},
+                 "novelty": {"linestyle": "-.", "marker": "^"},
+                 "random": {"linestyle": ":", "marker": "D"}}
+"""And a line style and marker each, so that no two differ by colour alone."""
+
+
+def _signal_style(signal):
+    return SIGNAL_STYLES.get(signal, {"linestyle": LINESTYLES[0], "marker": MARKERS[-1]})
 WOBBLY_COLOUR = "#e6a817"
 """The wobbly rod's colour (as in assets/rods_wobbly.xml)."""
 BLOCK = 10
 """Episodes per point in the rod curves: shares over blocks of this many episodes."""
+MASTERED_SHARE = 0.95
+"""A marker of `signal_mastery_figure` is hollow when fewer than this share of the
+seeds master the task."""
 
 
 def _label(name):
@@ -27,8 +42,8 @@ def _label(name):
 def signal_mastery_figure(comparison):
     """When the predictor masters red and green, per signal and place of interest:
     the mean mastery trial over the seeds that master the task, with its 95% band,
-    without (left) and with (right) the noisy button. A hollow marker: fewer than 95%
-    of the seeds master the task (the share is written beside it).
+    without (left) and with (right) the noisy button. A hollow marker: fewer than
+    `MASTERED_SHARE` of the seeds master the task (the share is written beside it).
 
     Args:
       comparison: a `SignalComparison`.
@@ -49,23 +64,25 @@ def signal_mastery_figure(comparison):
                 share = numbers[f"{task}_mastered"][0]
                 colour = TASK_COLOURS[task]
                 right_end = max(right_end, high)
-                ax.errorbar(mean, y + offset, xerr=[[mean - low], [high - mean]], fmt="o",
-                            color=colour, mfc=colour if share >= 0.95 else "white",
+                ax.errorbar(mean, y + offset, xerr=[[mean - low], [high - mean]],
+                            fmt=series_style(task)["marker"],
+                            color=colour, mfc=colour if share >= MASTERED_SHARE else "white",
                             markersize=6, capsize=2)
-                if share < 0.95:
+                if share < MASTERED_SHARE:
                     ax.annotate(f"{share:.0%} of seeds", (high, y + offset),
                                 xytext=(4, -3), textcoords="offset points", fontsize=7,
                                 color=colour)
         ax.set_yticks(range(len(rows)))
         ax.set_yticklabels([f"{_label(s)}, per {d}" for s, d in rows], fontsize=8)
-        ax.set_xlabel("mastery trial (mean, 95% band)")
+        ax.set_xlabel("mastery trial")
         ax.grid(axis="x", alpha=0.3)
         ax.set_title(("with the noisy button" if noisy else "five buttons") +
                      f", {comparison.settings['n_seeds']} seeds", fontsize=10)
     axes[0][0].set_xlim(0, 1.3 * right_end)  # the axes share x: room for every band
     axes[0][0].invert_yaxis()  # the axes share y: once for all
-    axes[0][0].plot([], [], "o", color=TASK_COLOURS["red"], label="red task")
-    axes[0][0].plot([], [], "o", color=TASK_COLOURS["green"], label="green task")
+    for task in ("red", "green"):
+        axes[0][0].plot([], [], series_style(task)["marker"], color=TASK_COLOURS[task],
+                        label=f"{task} task")
     axes[0][0].legend(frameon=False, fontsize=8, loc="lower right")
     return fig
 
@@ -89,11 +106,11 @@ def noisy_share_figure(comparison):
         for signal in comparison.settings["signals"]:
             result = comparison.results[(signal, design, True)]
             plot_mean_band(ax, result.button_share[:, :, buttons.NOISY_BUTTON],
-                           SIGNAL_COLOURS[signal], _label(signal))
+                           SIGNAL_COLOURS[signal], _label(signal), **_signal_style(signal))
         ax.axhline(_curiosity.CHANCE_SHARE, color="black", linestyle="--", linewidth=1)
         ax.set(xlabel="trial", xlim=(1, comparison.settings["n_trials"]), ylim=(0, 1))
         ax.set_title(f"interest per {design}", fontsize=10)
-    axes[0][0].set_ylabel("share of presses on the noisy button")
+    axes[0][0].set_ylabel("share of presses\non the noisy button")
     axes[0][0].legend(frameon=False, fontsize=8, loc="upper left")
     return fig
 
@@ -119,19 +136,20 @@ def wobbly_rod_figure(comparison):
                  "icm.experiments.run_reward_comparison")
     if True not in comparison.settings["wobbly"]:
         raise ValueError("comparison must hold runs with the wobbly rod (wobbly=(..., True))")
-    fig, (left, right) = new_figure(width=10.4, height=3.7, ncols=2)
+    fig, (left, right) = new_figure(width=6.7, height=7.6, nrows=2)
     for reward in comparison.settings["rewards"]:
         result = comparison.results[(reward, True)]
         colour = SIGNAL_COLOURS[reward]
         shares = _block_shares(result, result.rod_names.index(rods.WOBBLY))
         x = BLOCK * np.arange(shares.shape[1]) + (BLOCK + 1) / 2
-        plot_mean_band(left, shares, colour, _label(reward), x=x)
-        plot_mean_band(right, result.rod_error[:, :, 0], colour, _label(reward))
+        plot_mean_band(left, shares, colour, _label(reward), x=x, **_signal_style(reward))
+        plot_mean_band(right, result.rod_error[:, :, 0], colour, _label(reward),
+                       **_signal_style(reward))
     n = comparison.settings["n_seeds"]
-    left.set(xlabel="episode", ylabel="share of episodes ending at the wobbly rod",
+    left.set(xlabel="episode", ylabel="share of episodes\nending at the wobbly rod",
              ylim=(0, 1), xlim=(1, comparison.settings["n_episodes"]))
     left.set_title(f"Where the episodes end, {n} seeds", fontsize=10)
-    left.legend(frameon=False, fontsize=8, loc="center left")
+    legend_below(left, ncols=2)
     right.axhline(_curiosity._rod_toppling.WELL_PREDICTED_ERROR, color="black",
                   linestyle="--", linewidth=1)
     right.set(xlabel="episode", ylabel="largest error left on a red pair", ylim=(0, 1.02),
@@ -162,7 +180,8 @@ def coin_flip_figure(curves):
         values = _validate.finite_array(f"curves[{(signal, kind)!r}]", values, ndim=2)
         plot_mean_band(ax, values, SIGNAL_COLOURS.get(signal, "black"),
                        f"{_label(signal)}, {'fair coin' if kind == 'coin' else 'sure outcome'}",
-                       linestyle="-" if kind == "coin" else "--")
+                       linestyle="-" if kind == "coin" else "--",
+                       marker=_signal_style(signal)["marker"])
     ax.set(xlabel="try of the pair", ylabel="reward paid (mean over seeds)",
            xlim=(1, max(v.shape[1] for v in curves.values())))
     ax.set_ylim(bottom=0)
@@ -240,6 +259,8 @@ def scenes_figure(camera="front"):
     for ax, image, title in [(left, press, "(a) a press of the noisy button (blue), at random"),
                              (right, fall, "(b) the wobbly rod (yellow) falls, at random")]:
         ax.imshow(image)
-        ax.set_title(title, fontsize=10)
+        ax.set_title(textwrap.fill(title, 30), fontsize=10)
         ax.axis("off")
-    return fig
+    return fig.describe("Two renderings of the simulated iCub: (a) its finger presses the "
+                        "noisy button, the blue one right of the console; (b) the wobbly "
+                        "yellow rod falls as the hand passes it.")

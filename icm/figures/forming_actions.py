@@ -12,7 +12,8 @@ from icm.envs import buttons
 from icm.experiments import goal_babbling as _babbling
 from icm.experiments.goal_babbling import GoalBabblingResult
 from icm.experiments.results import check_results
-from icm.figures._common import check_axes, check_result, new_figure, plot_mean_band
+from icm.figures._common import (LINESTYLES, MARKERS, check_axes, check_result, new_figure,
+                                 plot_mean_band)
 
 _MADE_BY = "icm.experiments.run_goal_babbling"
 STRATEGY_COLOURS = {"random_motor": "#7f7f7f", "random_goal": "#1f77b4",
@@ -38,10 +39,12 @@ def test_error_figure(results):
     """
     check_results("results", results, GoalBabblingResult)
     fig, ax = new_figure(width=6.8, height=3.8)
-    for label, result in results.items():
+    for i, (label, result) in enumerate(results.items()):
         plot_mean_band(ax, 100 * result.test_error,
                        STRATEGY_COLOURS.get(result.strategy, "black"),
-                       f"{label} ({result.n_seeds} seeds)", x=result.checkpoints)
+                       f"{label} ({result.n_seeds} seeds)", x=result.checkpoints,
+                       linestyle=LINESTYLES[i % len(LINESTYLES)],
+                       marker=MARKERS[1 + i % (len(MARKERS) - 1)])
     ax.set_xlabel("rollouts")
     ax.set_ylabel("test error (cm, mean over seeds)")
     ax.set_ylim(bottom=0)
@@ -102,10 +105,13 @@ def coverage_figure(results, early=0.2):
             ax.scatter(goals[:, 1], goals[:, 0], marker="x", s=18, color="black",
                        linewidths=1, label="press goals")
             pressed = (result.pressed[:, :stop] >= 0).mean()
-            ax.set_title(f"{label}: first {stop} rollouts, {result.n_seeds} seeds\n"
-                         f"{touched.mean():.0%} ended on the console, {pressed:.0%} pressed "
-                         "a button", fontsize=8)
-    axes[0, 0].legend(frameon=False, fontsize=7, loc="lower left", markerscale=2)
+            ax.set_title(f"{label}:\nfirst {stop} rollouts, {result.n_seeds} seeds\n"
+                         f"{touched.mean():.0%} on the console, {pressed:.0%} pressed",
+                         fontsize=8)
+    # Under the maps, not on them: a legend there would cover the console's buttons.
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncols=3, frameon=False,
+               markerscale=3)
     return fig
 
 

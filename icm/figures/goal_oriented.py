@@ -6,7 +6,8 @@ from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments.goal_oriented import GoalOrientedResult
 from icm.experiments.results import check_results
 from icm.figures._common import (TASK_COLOURS, check_axes, check_result, check_title,
-                                 new_figure, plot_mean_band)
+                                 new_figure, plot_mean_band,
+                                 series_style)
 
 _MADE_BY = "icm.experiments.run_goal_oriented"
 
@@ -31,7 +32,7 @@ def figure5(result, ax=None, title=None):
         fig = ax.figure
     for i, task in enumerate(_goal_oriented.TASKS):
         plot_mean_band(ax, result.interest[:, :, i], TASK_COLOURS[task],
-                       f"open the {task} box")
+                       f"open the {task} box", **series_style(task))
     ax.set_xlabel("trial")
     ax.set_ylabel("interest (mean over seeds)")
     ax.set_xlim(1, result.n_trials)
@@ -53,17 +54,20 @@ def mastery_figure(result):
     for i, task in enumerate(_goal_oriented.TASKS):
         mastered = result.mastery_trial[:, i]
         share = [np.mean((mastered >= 1) & (mastered <= t)) for t in trials]
+        style = series_style(task)
         left.step(trials, share, where="post", color=TASK_COLOURS[task], linewidth=2,
-                  label=f"{task} task")
+                  label=f"{task} task", linestyle=style["linestyle"])
         plot_mean_band(right, result.practice[:, :, i], TASK_COLOURS[task],
-                       f"presses opening the {task} box")
+                       f"presses opening the {task} box", **style)
     left.set(xlabel="trial", ylabel="share of seeds mastered", ylim=(0, 1.02),
              xlim=(1, result.n_trials))
-    left.set_title("When the predictor has learned each task", fontsize=10)
+    left.set_title("When the predictor\nhas learned each task", fontsize=10)
     right.set(xlabel="trial", ylabel="presses per trial (mean)", xlim=(1, result.n_trials))
-    right.set_title("What the agent practises", fontsize=10)
-    left.legend(frameon=False)
-    right.legend(frameon=False)
+    right.set_title("What the agent\npractises", fontsize=10)
+    # One legend for both panels (their tasks look the same), under them.
+    handles, _ = left.get_legend_handles_labels()
+    fig.legend(handles, [f"{task} task" for task in _goal_oriented.TASKS],
+               loc="outside lower center", ncols=2, frameon=False)
     return fig
 
 

@@ -1,7 +1,9 @@
 """Figures of the simulated iCub: Figure 1 rendered from the model, animations of a
 press and a topple, a press's time series, and the measured topple map."""
 
+import html as _html
 import re
+import textwrap
 
 import matplotlib.animation
 import matplotlib.patches
@@ -10,7 +12,7 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import buttons, rods
-from icm.figures._common import TASK_COLOURS, new_figure
+from icm.figures._common import TASK_COLOURS, new_figure, series_style
 
 ROD_COLOURS = {"red": TASK_COLOURS["red"], "blue": "#1f5fcc"}
 
@@ -136,9 +138,11 @@ def figure1(seed=0, camera="front"):
              "(a) pressing the green button opens the green box"),
             (right, toppling_rod(camera=camera), "(b) the hand topples the red rod")]:
         ax.imshow(image)
-        ax.set_title(title, fontsize=10)
+        ax.set_title(textwrap.fill(title, 30), fontsize=10)
         ax.axis("off")
-    return fig
+    return fig.describe("The paper's Figure 1, rendered from the model: (a) the iCub's "
+                        "finger holds the lit green button down and the green box is open; "
+                        "(b) the iCub's hand moves into the red rod, which falls.")
 
 
 def cameras_figure(physics, cameras, height=240, width=320):
@@ -251,7 +255,8 @@ def press_trace_figure(record):
     top.legend(frameon=False, fontsize=8, loc="upper right")
     for i, name in enumerate(buttons.BOX_NAMES):
         bottom.plot(record["time"], record["lids"][:, i], color=TASK_COLOURS[name],
-                    linewidth=2, label=f"{name} lid")
+                    linewidth=2, label=f"{name} lid",
+                    linestyle=series_style(name)["linestyle"])
     bottom.axhline(np.rad2deg(buttons.BOX_OPEN_ANGLE), color="#888888", linewidth=0.8)
     bottom.text(record["time"][-1], np.rad2deg(buttons.BOX_OPEN_ANGLE), "counts as open",
                 va="bottom", ha="right", fontsize=8, color="#555555")
@@ -288,7 +293,8 @@ def animation(frames, captions=None, fps=12):
     fig, ax = new_figure(width=width / 80, height=height / 80 + 0.5)
     ax.axis("off")
     image = ax.imshow(frames[0])
-    title = ax.set_title(captions[0] if captions else "", fontsize=8, family="monospace")
+    # 16 screen px at the player's 100 dpi: readable where the frames are shown.
+    title = ax.set_title(captions[0] if captions else "", fontsize=11.5, family="monospace")
 
     def draw(i):
         image.set_data(frames[i])
@@ -357,13 +363,37 @@ def topple_map_figure(topple_map=None):
     return fig
 
 
-def animation_html(frames, captions=None, fps=12):
+def animation_html(frames, captions=None, fps=12, description=None):
     """`animation(frames, captions, fps)` as an HTML player (JPEG frames embedded in the
-    page, play/pause/step buttons, no video codec or network needed).
+    page, play/pause/step buttons, no video codec or network needed), usable by every
+    reader: the frame has alternative text (`description`, by default made from the
+    first and last captions), the frame slider a name, and under the player the
+    captions of the frames are listed in words (a text alternative, folded).
 
     Matplotlib's player links its button icons (Font Awesome) from a CDN; the link is
     dropped, so that the page needs no network: the book's theme ships Font Awesome.
+    Its repetition-mode form is not made a landmark (two players on a page would be
+    two landmarks of the same name): its name moves to a fieldset.
     """
+    if description is not None:
+        description = _validate.text("description", description)
     with matplotlib.rc_context({"animation.frame_format": "jpeg"}):
         html = animation(frames, captions, fps).to_jshtml()
-    return re.sub(r"<link[^>]*font-awesome[^>]*>", "", html)
+    html = re.sub(r"<link[^>]*font-awesome[^>]*>", "", html)
+    lines = [" ".join(c.split()) for c in captions] if captions else []
+    if description is None:
+        description = (f"An animation of {len(frames)} frames of the simulated iCub"
+                       + (f", from \"{lines[0]}\" to \"{lines[-1]}\"" if lines else "") + ".")
+    alt = _html.escape(description, quote=True)
+    html = re.sub(r'<img id="(_anim_img\w+)">', rf'<img id="\1" alt="{alt}">', html)
+    html = re.sub(r'(<input id="_anim_slider\w+" type="range")',
+                  r'\1 aria-label="Frame of the animation"', html)
+    html = re.sub(r'<form title="Repetition mode" aria-label="Repetition mode" ([^>]*)>',
+                  r'<form \1><fieldset class="icm-anim-mode"><legend class="visually-hidden">'
+                  r'Repetition mode</legend>', html)
+    html = html.replace("</form>", "</fieldset></form>")
+    if lines:
+        items = "".join(f"<li>{_html.escape(line)}</li>" for line in lines)
+        html += (f'<details class="icm-anim-text"><summary>The {len(lines)} frames in '
+                 f'words</summary><ol>{items}</ol></details>')
+    return html

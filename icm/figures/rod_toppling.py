@@ -15,7 +15,8 @@ from icm.envs import rods
 from icm.experiments import rod_toppling as _rod_toppling
 from icm.experiments.results import check_results
 from icm.experiments.rod_toppling import RodTopplingResult
-from icm.figures._common import check_result, new_figure, plot_mean_band
+from icm.figures._common import (check_result, legend_below, markevery, new_figure,
+                                 plot_mean_band, series_style)
 
 _MADE_BY = "icm.experiments.run_rod_toppling"
 from icm.figures.icub import ROD_COLOURS
@@ -170,7 +171,7 @@ def draw_confidence(ax, confidence):
     for (column, row), c in _standable_cells(confidence):
         patches.append(matplotlib.patches.Rectangle((column - 0.5, row - 0.5), 1, 1))
         values.append(float(c))
-        ax.text(column, row - 0.26, f"{float(c):.2f}", ha="center", va="center", fontsize=7.5,
+        ax.text(column, row - 0.26, _short(float(c)), ha="center", va="center", fontsize=7.5,
                 color="white" if c > 0.6 else "black", zorder=6)
     collection = matplotlib.collections.PatchCollection(
         patches, cmap=CONFIDENCE_COLOURMAP, norm=matplotlib.colors.Normalize(0, 1),
@@ -178,6 +179,12 @@ def draw_confidence(ax, confidence):
     collection.set_array(np.array(values))
     ax.add_collection(collection)
     return collection
+
+
+def _short(value):
+    """A value between 0 and 1 in at most three characters: "0", ".25", "1"."""
+    text = f"{value:.2f}".rstrip("0").rstrip(".")
+    return text[1:] if text.startswith("0.") else text
 
 
 def draw_prediction_errors(ax, result, seed, episode, last_episode, reading="all"):
@@ -194,10 +201,11 @@ def draw_prediction_errors(ax, result, seed, episode, last_episode, reading="all
         colour = ROD_COLOURS[rod]
         paid = result.prediction_error[seed, :episode, i]
         hit = paid > 0
-        ax.plot(x[hit], paid[hit], "o", color=colour, markersize=3, alpha=0.8,
+        style = series_style(rod)
+        ax.plot(x[hit], paid[hit], style["marker"], color=colour, markersize=4, alpha=0.8,
                 label=f"error paid, {rod}")
-        ax.plot(x, result.rod_errors(reading)[seed, :episode, i], "-", color=colour,
-                linewidth=1.2, label=f"largest error left, {rod}")
+        ax.plot(x, result.rod_errors(reading)[seed, :episode, i], style["linestyle"],
+                color=colour, linewidth=1.4, label=f"largest error left, {rod}")
     ax.axhline(_rod_toppling.WELL_PREDICTED_ERROR, color="black", linestyle=":", linewidth=0.8)
     ax.set_xlim(0.5, last_episode + 1.5)
     ax.set_ylim(-0.03, 1.08)
@@ -245,13 +253,14 @@ def figure7(result, seed=0, reading="all", episode=None):
     snapshots = [result.snapshot(seed, name) for _, name in columns]
     last = max([s["episode"] for s in snapshots if s is not None] + [1])
 
-    fig, axes = new_figure(width=2.4 * len(columns) + 1.0, height=7.6, ncols=len(columns),
+    fig, axes = new_figure(width=2.0 * len(columns) + 0.9, height=9.4, ncols=len(columns),
                            nrows=4, squeeze=False)
     q_mappable = c_mappable = None
     for j, ((title, _), snap) in enumerate(zip(columns, snapshots)):
         episode_text = "never in this run" if snap is None else f"episode {snap['episode']}"
         # A column named after its episode needs it said once.
         heading = title if title.endswith(episode_text) else f"{title}\n{episode_text}"
+        heading = heading.replace(") ", ")\n", 1)
         axes[0, j].set_title(heading, fontsize=10)
         if snap is None:
             for ax in axes[:, j]:
@@ -264,7 +273,9 @@ def figure7(result, seed=0, reading="all", episode=None):
     for i, label in enumerate(["Q-table, greedy move", "predictor", "state confidence",
                                "prediction error"]):
         axes[i, 0].set_ylabel(label, fontsize=10)
-    axes[3, 0].legend(fontsize=7, frameon=False, loc="upper right")
+    handles, labels = axes[3, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncols=2, frameon=False,
+               fontsize=9)
     if q_mappable is not None:
         bar = fig.colorbar(q_mappable, ax=axes[0, :], shrink=0.8, pad=0.01)
         bar.set_label("Q", fontsize=8)
@@ -280,7 +291,12 @@ def figure7(result, seed=0, reading="all", episode=None):
         bar.set_label("confidence", fontsize=8)
         bar.ax.tick_params(labelsize=7)
     fig.suptitle(f"Run {seed}, red predicted well read as \"{reading}\"", fontsize=10)
-    return fig
+    moments = [f"{title.split(')')[0]}) at episode {snap['episode']}" if snap is not None
+               else f"{title.split(')')[0]}) never" for (title, _), snap in zip(columns, snapshots)]
+    return fig.describe(
+        f"Figure 7 for run {seed}: the Q-table, the predictor, the state confidence and "
+        f"the prediction errors on the 5 by 3 grid at the paper's moments, "
+        f"{', '.join(moments)}.")
 
 
 def _shares(result, value):
@@ -293,14 +309,16 @@ def topple_share_figure(result):
     share of seeds whose predictor has learned each rod by each episode (both
     readings), and the share that have toppled blue at least once."""
     check_result("result", result, RodTopplingResult, _MADE_BY)
-    fig, (left, right) = new_figure(width=9.0, height=3.8, ncols=2)
+    fig, (left, right) = new_figure(width=6.7, height=8.2, nrows=2)
     for i, rod in enumerate(_rod_toppling.RODS):
-        plot_mean_band(left, _shares(result, i), ROD_COLOURS[rod], f"{rod} rod toppled")
-    plot_mean_band(left, _shares(result, -1), NONE_COLOUR, "none (time limit)")
+        plot_mean_band(left, _shares(result, i), ROD_COLOURS[rod], f"{rod} rod toppled",
+                       **series_style(rod))
+    plot_mean_band(left, _shares(result, -1), NONE_COLOUR, "none (time limit)",
+                   linestyle=":", marker="x")
     left.set(xlabel="episode", ylabel="share of episodes (mean over seeds)",
              xlim=(1, result.n_episodes), ylim=(0, 1.02))
     left.set_title(f"How episodes end, {result.n_seeds} seeds, 95% band", fontsize=10)
-    left.legend(frameon=False, fontsize=9)
+    legend_below(left, ncols=3)
 
     episodes = np.arange(1, result.n_episodes + 1)
     for reading, style in (("all", "-"), ("toppled", "--")):
@@ -308,7 +326,9 @@ def topple_share_figure(result):
         for i, rod in enumerate(_rod_toppling.RODS):
             share = [np.mean((well[:, i] >= 1) & (well[:, i] <= e)) for e in episodes]
             right.step(episodes, share, where="post", color=ROD_COLOURS[rod], linestyle=style,
-                       linewidth=1.8, label=f"{rod} predicted well ({reading})")
+                       linewidth=1.8, label=f"{rod} predicted well ({reading})",
+                       marker=series_style(rod)["marker"], markersize=5,
+                       markevery=markevery(len(episodes), series_style(rod)["marker"]))
     first_blue = result.first_topple("blue")
     share = [np.mean((first_blue >= 1) & (first_blue <= e)) for e in episodes]
     right.step(episodes, share, where="post", color="black", linestyle=":", linewidth=1.4,
@@ -316,7 +336,7 @@ def topple_share_figure(result):
     right.set(xlabel="episode", ylabel="share of seeds", xlim=(1, result.n_episodes),
               ylim=(0, 1.02))
     right.set_title("When each rod is learned", fontsize=10)
-    right.legend(frameon=False, fontsize=8, loc="lower right")
+    legend_below(right, ncols=2)
     return fig
 
 

@@ -8,18 +8,21 @@ the rows of the precomputed data whose setting equals the sliders' values. (Alta
 builds the same specifications, and the tests check ours against its Vega-Lite
 schema; the library does not import it, which would cost seconds per notebook.) The book's HTML loads Vega, Vega-Lite and vega-embed from its own
 `_static/vendor` folder (no network); in the page, each panel's view is kept in
-``window.icmPanels[id]`` (the browser test reads it).
+``window.icmPanels[id]`` and the time it was drawn in ``window.icmPanelTimes`` (the
+browser test reads both).
 """
 
 import hashlib
 import html
 import json
 import math
+import textwrap
 
 import numpy as np
 
 from icm import _validate
 from icm.experiments import panel_data as _panel_data
+from icm.figures._common import MIN_TEXT_PX, series_style
 from icm.figures.panel_plots import SERIES_COLOURS
 
 DIGITS = 4
@@ -38,14 +41,17 @@ class StaticPanel:
       spec: the Vega-Lite specification (a dict, data included).
       title: what the panel shows.
       element_id: the id of its div in the page (a hash of the specification).
+      print_note: what it says in print instead of its sliders (the settings shown).
     """
 
-    def __init__(self, spec, title):
+    def __init__(self, spec, title, print_note=None):
         if not isinstance(spec, dict) or "$schema" not in spec:
             raise _validate.ArgumentTypeError(f"spec must be a Vega-Lite specification "
                                               f"dict, got {_validate.show(spec)}")
         self.spec = spec
         self.title = _validate.text("title", title)
+        self.print_note = _validate.text("print_note", print_note) if print_note is not None \
+            else "In print, this figure shows its default settings."
         text = json.dumps(spec, sort_keys=True, separators=(",", ":"))
         self.element_id = "icm-panel-" + hashlib.sha256(text.encode()).hexdigest()[:12]
         self._json = text
@@ -61,6 +67,7 @@ class StaticPanel:
                            f"(Vega-Lite). In Jupyter, use the live panel of icm.widgets.")
         return (f'<div class="icm-static-panel" id="{self.element_id}">'
                 f'<p class="icm-static-panel-note">{note}</p></div>\n'
+                f'<p class="icm-print-note">{html.escape(self.print_note)}</p>\n'
                 f'<script type="application/json" id="{self.element_id}-spec">{spec}'
                 f'</script>\n<script>{_EMBED % {"id": self.element_id}}</script>')
 
@@ -79,8 +86,24 @@ _EMBED = """(function () {
       return;
     }
     var spec = JSON.parse(document.getElementById(id + "-spec").textContent);
+    var element = document.getElementById(id), wide = (spec.usermeta || {}).icmMinWidth;
+    if (spec.hconcat && wide && element.clientWidth < wide) {  // a phone: one below the other
+      spec.vconcat = spec.hconcat;
+      delete spec.hconcat;
+      var room = element.clientWidth - (spec.usermeta.icmMargin || 0);
+      spec.config = Object.assign({}, spec.config);  // legends under the maps
+      spec.config.legend = Object.assign({}, spec.config.legend,
+                                         {orient: "bottom", gradientLength: room});
+      spec.vconcat.forEach(function (view) {  // and each as wide as the column allows
+        if (view.width > room) {
+          view.height = Math.round(view.height * room / view.width);
+          view.width = room;
+        }
+      });
+    }
     vegaEmbed("#" + id, spec, {actions: false, renderer: "svg"}).then(function (result) {
       (window.icmPanels = window.icmPanels || {})[id] = result.view;
+      (window.icmPanelTimes = window.icmPanelTimes || []).push(performance.now());
     }).catch(function (error) { console.error(error); });
   }
   draw();
@@ -103,9 +126,19 @@ VEGA_LITE_SCHEMA = "https://vega.github.io/schema/vega-lite/v6.json"
 DATASET = "grid"
 """Name of a static panel's dataset (the precomputed rows) in its specification."""
 
-_CONFIG = {"view": {"stroke": None}, "title": {"anchor": "start", "fontSize": 13},
-           "axis": {"labelFontSize": 11, "titleFontSize": 12},
-           "legend": {"labelFontSize": 12}}
+_CONFIG = {"view": {"stroke": None},
+           "title": {"anchor": "start", "fontSize": MIN_TEXT_PX + 1,
+                     "subtitleFontSize": MIN_TEXT_PX},
+           "axis": {"labelFontSize": MIN_TEXT_PX, "titleFontSize": MIN_TEXT_PX},
+           "legend": {"labelFontSize": MIN_TEXT_PX, "titleFontSize": MIN_TEXT_PX,
+                      "symbolOpacity": 1, "symbolStrokeWidth": 3, "symbolSize": 300,
+                      "labelLimit": 400},
+           "text": {"fontSize": MIN_TEXT_PX}}
+"""No text smaller than the book's caption text (`MIN_TEXT_PX`), and legend swatches
+drawn at full strength."""
+
+_DASHES = {"-": [1, 0], "--": [8, 4], "-.": [10, 4, 2, 4], ":": [2, 3]}
+"""Vega's stroke dash of each matplotlib line style."""
 
 
 def _controls(spec):
@@ -123,6 +156,14 @@ def _controls(spec):
     return params, " && ".join(tests)
 
 
+def _print_note(spec, params):
+    """What a printed panel says instead of its sliders: the settings it shows."""
+    shown = "; ".join(f"{spec.setting(p['name']).label} {_plain(spec.defaults[p['name']])}"
+                      for p in params)
+    return (f"Printed at its default settings ({shown}). In the HTML book, its sliders "
+            f"redraw it for the other settings, from numbers computed beforehand.")
+
+
 def _slider(name, values, default, label):
     """A parameter bound to a range input over the evenly spaced `values`, labelled in
     words (`label`, the setting's)."""
@@ -132,10 +173,15 @@ def _slider(name, values, default, label):
                      "step": _plain(step), "name": label + " "}}
 
 
-def _specification(rows, params, transform, body):
-    return {"$schema": VEGA_LITE_SCHEMA, "data": {"name": DATASET},
-            "datasets": {DATASET: rows}, "params": params, "transform": transform,
-            "config": _CONFIG, **body}
+def _specification(rows, params, transform, body, description):
+    return {"$schema": VEGA_LITE_SCHEMA, "description": description,
+            "data": {"name": DATASET}, "datasets": {DATASET: rows}, "params": params,
+            "transform": transform, "config": _CONFIG, **body}
+
+
+def _lines(text, width=34):
+    """`text` as lines of at most `width` characters (a Vega title does not wrap)."""
+    return textwrap.wrap(text, width)
 
 
 def curves_rows(grid):
@@ -154,20 +200,22 @@ def curves_rows(grid):
     return rows
 
 
-def curves_panel(grid, width=560, height=280):
+def curves_panel(grid, width="container", height=280):
     """The static version of a curves panel (Figures 5, 6 and 7): a line and a 95% band
     per series, for the setting its sliders show.
 
     Args:
       grid: a `PanelGrid` of "figure5", "figure6" or "figure7".
-      width, height: size of the plot in pixels.
+      width, height: size of the plot in pixels; the width may be "container", as
+        wide as the page's column (so that a phone shows the panel whole).
 
     Returns:
       A `StaticPanel`.
     """
     _validate.instance("grid", grid, _panel_data.PanelGrid,
                        "a PanelGrid (from icm.experiments.panel_data.precompute)")
-    width = _validate.integer("width", width, 200, 2000)
+    if width != "container":
+        width = _validate.integer("width", width, 200, 2000)
     height = _validate.integer("height", height, 100, 2000)
     spec = grid.spec
     rows = curves_rows(grid)
@@ -177,31 +225,43 @@ def curves_panel(grid, width=560, height=280):
     colour = {"field": "series", "type": "nominal",
               "scale": {"domain": names,
                         "range": [SERIES_COLOURS[n.split()[0]] for n in names]}}
+    # Each series also has its own dash, shown in the legend with its colour: no two
+    # series differ by colour alone ("red" and "red toppled" included).
+    dash = {"field": "series", "type": "nominal",
+            "scale": {"domain": names,
+                      "range": [_DASHES[series_style(n)["linestyle"]] for n in names]}}
     top = max(max(v for v in row["high"] if v is not None) for row in rows)
     x = {"field": "x", "type": "quantitative", "title": first["xlabel"],
          "scale": {"domain": [int(first["x"][0]), int(first["x"][-1])]}}
     params, keep = _controls(spec)
+    # One legend for the layers (the same definition in each, or Vega-Lite warns),
+    # its swatches at full strength (_CONFIG) with each series' colour and dash.
+    legend = {"title": None, "orient": "top", "symbolType": "stroke", "columns": 2}
     band = {"mark": {"type": "area", "opacity": 0.2},
             "encoding": {"x": x, "y": {"field": "low", "type": "quantitative",
                                        "scale": {"domain": [0, top * 1.02], "nice": False},
                                        "title": group["ylabel"]},
-                         "y2": {"field": "high"}, "color": colour}}
+                         "y2": {"field": "high"}, "color": {**colour, "legend": legend}}}
     tooltip = [{"field": "series", "type": "nominal"},
                {"field": "x", "type": "quantitative", "title": first["xlabel"]}] + \
         [{"field": f, "type": "quantitative", "format": ".3f"} for f in ("mean", "low", "high")]
     line = {"mark": {"type": "line", "strokeWidth": 2},
             "encoding": {"x": x, "y": {"field": "mean", "type": "quantitative"},
-                         "color": {**colour, "legend": {"title": None, "orient": "top",
-                                                        "symbolType": "stroke",
-                                                        "symbolStrokeWidth": 3}},
-                         "strokeDash": {"condition": {
-                             "test": "indexof(datum.series, 'toppled') >= 0",
-                             "value": [6, 3]}, "value": [1, 0]},
+                         "color": {**colour, "legend": legend},
+                         "strokeDash": {**dash, "legend": legend},
                          "tooltip": tooltip}}
     title = f"{spec.title}, {spec.fixed['n_seeds']} seeds per setting, 95% bands"
-    body = {"title": title, "width": width, "height": height, "layer": [band, line]}
+    body = {"title": _lines(title), "width": width, "height": height,
+            "autosize": {"type": "fit-x", "contains": "padding"}, "layer": [band, line]}
     transform = [{"filter": keep}, {"flatten": ["x", "mean", "low", "high"]}]
-    return StaticPanel(_specification(rows, params, transform, body), title)
+    description = (
+        f"{title}. A line chart of {group['ylabel']} against {first['xlabel']}, one line "
+        f"and 95% band per series: " + "; ".join(
+            f"{n} ({'solid' if series_style(n)['linestyle'] == '-' else 'dashed'} line)"
+            for n in names) + ". The sliders under it choose the setting: "
+        + ", ".join(spec.setting(name).label for name in [p["name"] for p in params]) + ".")
+    return StaticPanel(_specification(rows, params, transform, body, description), title,
+                       _print_note(spec, params))
 
 
 def sweep_rows(grid):
@@ -221,7 +281,7 @@ def sweep_rows(grid):
     return rows
 
 
-def sweep_panel(grid, cell=44):
+def sweep_panel(grid, cell=52):
     """The static epsilon x window sweep: for the new-task factor its slider shows, two
     heatmaps over epsilon and window, the mean mastery gap (green - red, trials) and
     the share of seeds that master red first, each cell labelled with its number.
@@ -246,7 +306,7 @@ def sweep_panel(grid, cell=44):
     heatmaps = []
     for field, title, domain, fmt in (
             ("gap", "Mean mastery gap (green - red, trials)", [min(gaps), max(gaps)], ".1f"),
-            ("red_first", "Share of seeds mastering red first", [0, 1], ".0%")):
+            ("red_first_percent", "Seeds mastering red first (%)", [0, 100], ".0f")):
         tooltip = [{"field": "epsilon", "type": "ordinal"},
                    {"field": "window", "type": "ordinal"},
                    {"field": field, "type": "quantitative", "format": fmt}]
@@ -262,16 +322,29 @@ def sweep_panel(grid, cell=44):
             "scale": {"scheme": "viridis", "domain": domain},
             "legend": {"title": None, "format": fmt}}}}
         middle = (domain[0] + domain[1]) / 2
-        text = {"mark": {"type": "text", "fontSize": 11}, "encoding": {
+        text = {"mark": {"type": "text", "fontSize": MIN_TEXT_PX}, "encoding": {
             **axes, "text": {"field": field, "type": "quantitative", "format": fmt},
             "color": {"condition": {"test": f"datum.{field} < {middle}", "value": "white"},
                       "value": "black"}}}
-        heatmaps.append({"title": title, "width": cell * len(spec.sliders["epsilon"]),
+        heatmaps.append({"title": _lines(title, 30), "width": cell * len(spec.sliders["epsilon"]),
                          "height": cell * len(spec.sliders["window"]),
                          "layer": [rect, text]})
     title = (f"The epsilon x window sweep, {spec.fixed['n_seeds']} seeds per cell, "
              f"{spec.fixed['n_trials']} trials")
-    body = {"title": title, "hconcat": heatmaps,
-            "resolve": {"scale": {"color": "independent"}}}
-    transform = [{"filter": "abs(datum.new_task_factor - new_task_factor) < 1e-6"}]
-    return StaticPanel(_specification(rows, params, transform, body), title)
+    # Side by side where the page is wide enough (about 2 x (cells + axis + legend)),
+    # else one below the other (the page's script reads usermeta.icmMinWidth).
+    wide = 2 * (cell * len(spec.sliders["epsilon"]) + 170) + 20
+    body = {"title": _lines(title), "hconcat": heatmaps,
+            "resolve": {"scale": {"color": "independent"}},
+            "usermeta": {"icmMinWidth": wide, "icmMargin": 90}}
+    transform = [{"filter": "abs(datum.new_task_factor - new_task_factor) < 1e-6"},
+                 {"calculate": "100 * datum.red_first", "as": "red_first_percent"}]
+    description = (
+        f"{title}. Two heatmaps over epsilon (columns: "
+        f"{', '.join(f'{v:g}' for v in spec.sliders['epsilon'])}) and the window k (rows: "
+        f"{', '.join(f'{v:g}' for v in spec.sliders['window'])}), each cell labelled with "
+        f"its number: the mean mastery gap, green minus red, in trials, and the share of "
+        f"seeds that master red first. The slider under them chooses the "
+        f"{spec.setting('new_task_factor').label}.")
+    return StaticPanel(_specification(rows, params, transform, body, description), title,
+                       _print_note(spec, params))

@@ -57,18 +57,22 @@ class ActorCriticSettings(Settings):
                "preference by 0.5, which makes that button e^(0.5/0.2) = 12 times likelier "
                "than an untried one: the learner repeats what surprised it, as the paper "
                "describes, yet still tries the others",
-        slider=Slider(live=(0.05, 2.0, 0.05), grid=(0.1, 0.2, 0.3, 0.4, 0.5)))
+        slider=Slider(live=(0.05, 2.0, 0.05), grid=(0.1, 0.2, 0.3, 0.4, 0.5)),
+        others=(0.1, 1.0))
     lr_actor: float = setting(
         default=0.5, label="the actor's learning rate (lrA)",
-        source="Figure 4 names lrA and gives no value: the book takes 0.5", **_RATE)
+        source="Figure 4 names lrA and gives no value: the book takes 0.5",
+        others=(0.1, 0.9), **_RATE)
     lr_critic: float = setting(
         default=0.5, label="the critic's learning rate (lrC)",
-        source="Figure 4 names lrC and gives no value: the book takes 0.5", **_RATE)
+        source="Figure 4 names lrC and gives no value: the book takes 0.5",
+        others=(0.1, 0.9), **_RATE)
     gamma: float = setting(
         default=0.5, label="discount (gamma)", kind="real", low=0.0, high=1.0,
         source="equation 2's gamma has no value in the paper: the book takes 0.5, a short "
                "horizon, since no press changes what the next one does (the console shuts "
-               "the boxes before every press)")
+               "the boxes before every press)",
+        others=(0.0, 0.9))
     reward: str = setting(
         default="intrinsic", label="where the reward comes from", kind="choice",
         choices=REWARDS, paper="intrinsic", per_row=False,

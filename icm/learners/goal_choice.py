@@ -180,8 +180,8 @@ class RegionProgress:
 
 def competence_progress(history, count):
     """SAGG-RIAC's progress of each row of `history` [rows, window] (competences,
-    newest last), of which the last `count[r]` are real: |mean of the newer half -
-    mean of the older half| over the last min(count, window); 0 with fewer than 2
+    newest last), of which the last `count[r]` are real: abs(mean of the newer half -
+    mean of the older half) over the last min(count, window); 0 with fewer than 2
     (explauto's "abs_deriv_smooth": the older half is the first n // 2)."""
     window = history.shape[1]
     n = np.minimum(count, window)
@@ -230,7 +230,7 @@ class SplittingRegionProgress:
     Each row starts from the whole box as one region. When a region holds more than
     `max_goals` goals it splits in two across one dimension (x, then y, then z, then
     x again down the tree) at the midpoint between two of its goals' coordinates
-    that maximises n_low x n_high x |interest_low - interest_high|, explauto's
+    that maximises n_low x n_high x abs(interest_low - interest_high), explauto's
     "best_interest_diff" for a region that just passed its limit: each half keeps
     the goals (and distances) that fall in it. A region's interest is measured by
     `measure` over its last `window` goals: "learning_progress", max(-slope, 0) of

@@ -36,7 +36,8 @@ EPSILON = Setting(
     high=1.0,
     source='section 3.1: the actor uses "a epsilon-greedy selection method", with no '
            'epsilon given; the book takes 0.1',
-    slider=Slider(live=(0.0, 1.0, 0.05), grid=(0.0, 0.1, 0.2, 0.3, 0.4)))
+    slider=Slider(live=(0.0, 1.0, 0.05), grid=(0.0, 0.1, 0.2, 0.3, 0.4)),
+    others=(0.0, 0.3))
 """The goal-oriented actor's epsilon."""
 
 

@@ -50,13 +50,15 @@ class QLearnerSettings(Settings):
         low_open=True, slider=_RATE_SLIDER,
         source="equation 3's alpha has no value in the paper: the book takes 0.5, a large "
                "step, since a pair's reward fades as the predictor learns it (0.8 of what "
-               "it was, each time) and the values must follow a moving target")
+               "it was, each time) and the values must follow a moving target",
+        others=(0.1, 0.9))
     gamma: float = setting(
         default=0.9, label="discount (gamma)", kind="real", low=0.0, high=1.0,
         slider=Slider(live=(0.0, 1.0, 0.05), grid=(0.1, 0.3, 0.5, 0.7, 0.9)),
         source="equation 3's gamma has no value in the paper: the book takes 0.9; a rod "
                "is 3 to 6 moves from the start cell, and 0.9^5 = 0.59, so a surprise "
-               "several moves away still pulls the hand")
+               "several moves away still pulls the hand",
+        others=(0.5, 0.99))
     initial_q: float = setting(
         default=0.1, label="value of a move never tried (initial Q)", kind="real",
         low=0.0, high=1e6,

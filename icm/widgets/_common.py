@@ -113,7 +113,7 @@ def panel(sliders, draw, per_row=2):
 
 def _png(figure):
     """The PNG of a figure (an `icm.figures.Figure`) as bytes."""
-    png = getattr(figure, "_repr_png_", None)
+    png = getattr(figure, "png", None)
     if png is None:
         raise _validate.ArgumentTypeError(f"draw must return a figure, got "
                                           f"{_validate.show(figure)}")

@@ -18,7 +18,7 @@ from icm import _validate
 from icm.envs import icub
 from icm.envs._common import check_discrete_action, check_seed, dm_control_random
 from icm.envs.rods import rules
-from icm.envs.rods.rules import (ACTIONS, DEFAULT_MAX_MOVES, DEFAULT_START_CELL,
+from icm.envs.rods.rules import (ACTIONS, DEFAULT_MAX_MOVES, DEFAULT_START_CELL, OFF_GRID,
                                      HAND_HEIGHT, N_COLUMNS, N_ROWS, ROD_NAMES, TOPPLE_TILT,
                                      WOBBLY, cell_number,
                                      check_cell, check_start_cell, next_cell, rod_names,
@@ -267,10 +267,13 @@ class PhysicsRodTable(RodEpisodes):
 
     Args:
       start_cell: (column, row) where each episode starts (default (0, 0)).
-      max_moves: moves before an episode without a topple ends (>= 1, default 30).
+      max_moves: moves before an episode without a topple ends (>= 1, default 30;
+        None: no limit).
       wobbly_rod: add the wobbly rod (default False).
       seed: None, an integer >= 0 or a `numpy.random.Generator` (the wobbly rod's
         draws; without it the rules use no randomness).
+      off_grid: what a move off the grid does: "stay" (default) or "end" (the
+        episode ends); see `icm.envs.rods.rules.OFF_GRID`.
 
     Attributes:
       physics: the `RodsPhysics`, to inspect or render.
@@ -290,8 +293,8 @@ class PhysicsRodTable(RodEpisodes):
     larger than this."""
 
     def __init__(self, start_cell=DEFAULT_START_CELL, max_moves=DEFAULT_MAX_MOVES,
-                 wobbly_rod=False, seed=None):
-        super().__init__(start_cell, max_moves, wobbly_rod)
+                 wobbly_rod=False, seed=None, off_grid=OFF_GRID.default):
+        super().__init__(start_cell, max_moves, wobbly_rod, off_grid)
         self.task = RodsTask(start_cell=self.start_cell, wobbly_rod=self.wobbly_rod,
                              random=check_seed(seed))
         self.physics = load_physics(self.wobbly_rod)
@@ -373,7 +376,7 @@ class PhysicsRodTableBatch:
         self.n_rows = _validate.integer_at_least("n_rows", n_rows, 1)
         self.start = cell_number(check_start_cell(start_cell, standable_cells()))
         seeds = range(self.n_rows) if seeds is None else seeds
-        self.tables = [PhysicsRodTable(start_cell=start_cell, max_moves=10**9,
+        self.tables = [PhysicsRodTable(start_cell=start_cell, max_moves=None,
                                        wobbly_rod=wobbly_rod, seed=seed)
                        for seed in seeds]
 

@@ -1,11 +1,13 @@
 """The rules of the rod-toppling experiment, shared by the tabular twin and the physics.
 
 The robot's right hand moves between the cells of a 5 x 3 grid over a table (actions
-forward, backward, left, right; a move off the grid leaves the hand where it is). Two
-rods stand on the table: the red one is toppled from many (cell, action) pairs, the
-blue one from few. An episode ends when a rod topples. Which pairs topple which rod is
-measured in physics (`icm.envs.rods.measure`) and stored in
-assets/rod_topple_map.json (`load_topple_map`).
+forward, backward, left, right; a move off the grid leaves the hand where it is, or
+with `off_grid="end"` ends the episode: `OFF_GRID`). Two rods stand on the table: the
+red one is toppled from many (cell, action) pairs, the blue one from few. An episode
+ends when a rod topples, or after `max_moves` moves without one (`MAX_MOVES`; None:
+no limit, the paper's words). Which pairs topple which rod is measured in physics
+(`icm.envs.rods.measure`) and stored in assets/rod_topple_map.json
+(`load_topple_map`).
 
 The wobbly rod (`wobbly_rod=True`, a chapter beyond the paper) is a third rod that
 stands off the grid, beside the line between two cells. The hand never touches it; a
@@ -24,6 +26,7 @@ import numpy as np
 from dm_env import specs
 
 from icm import _validate
+from icm._settings import Setting
 from icm.envs._assets import ASSETS, asset_path
 from icm.envs._common import check_discrete_action
 
@@ -45,8 +48,28 @@ WOBBLE_TOPPLE_PROBABILITY = 0.5
 WOBBLE_MAP_FILE = "rod_wobble_map.json"
 DEFAULT_START_CELL = (0, 0)
 """Episodes start with the hand over the cell nearest the robot on its left."""
-DEFAULT_MAX_MOVES = 30
+MAX_MOVES = Setting(
+    default=30, label="moves before an episode without a topple ends", kind="integer",
+    low=1,
+    source='the paper: "Each episode ends as soon as the robot topples one of the two '
+           'rods", with no other end. The book also ends an episode after 30 moves '
+           'without a topple (a time limit: the next episode starts over the start cell); '
+           'None is the paper\'s reading, no limit',
+    others=(None,))
+"""Moves before an episode without a topple ends (a time limit; None: no limit), a
+world setting the chapter "What the result depends on" measures in both readings."""
+DEFAULT_MAX_MOVES = MAX_MOVES.default
 """An episode without a topple ends after this many moves (a time limit)."""
+OFF_GRIDS = ("stay", "end")
+"""What a move off the grid does: "stay", the hand stays where it is (the move is
+spent); "end", the episode ends there, as when a rod topples (nothing follows it)."""
+OFF_GRID = Setting(
+    default="stay", label="a move off the grid", kind="choice", choices=OFF_GRIDS,
+    source="the paper gives the grid and the four moves, not what a move off the grid "
+           'does: the book leaves the hand where it is ("stay", as in the textbook '
+           'grid worlds); "end" ends the episode there')
+"""What a move off the grid does (`OFF_GRIDS`), a world setting the chapter "What the
+result depends on" measures in both readings."""
 TOPPLE_TILT = np.deg2rad(45.0)
 """A rod counts as toppled when it tilts further than this from upright."""
 TOPPLE_MAP_FILE = "rod_topple_map.json"
@@ -81,6 +104,25 @@ def number_cell(number):
     """The (column, row) cell of a cell number (see `cell_number`)."""
     number = _validate.integer("number", number, 0, N_CELLS - 1)
     return number % N_COLUMNS, number // N_COLUMNS
+
+
+def check_max_moves(max_moves):
+    """`max_moves` if it is None (no limit) or an integer >= 1, else raises."""
+    if max_moves is None:
+        return None
+    return _validate.integer_at_least("max_moves", max_moves, 1)
+
+
+def check_off_grid(off_grid):
+    """`off_grid` if it is one of `OFF_GRIDS`, else raises."""
+    return OFF_GRID.check(off_grid, "off_grid")
+
+
+def leaves_grid(cell, action):
+    """Whether `action` from `cell` would take the hand off the grid."""
+    cell = check_cell("cell", cell)
+    dc, dr = _MOVES[check_discrete_action(action, len(ACTIONS))]
+    return not (0 <= cell[0] + dc < N_COLUMNS and 0 <= cell[1] + dr < N_ROWS)
 
 
 def next_cell(cell, action):
@@ -158,6 +200,19 @@ def standable_cells():
     return load_topple_map()["standable"]
 
 
+def describe_moves(pairs):
+    """(cell, action) pairs in words, in cell order: e.g. "forward from cell (0, 1) or
+    backward from cell (0, 2)"."""
+    words = []
+    for cell, action in sorted(pairs, key=lambda pair: (pair[0][::-1], pair[1])):
+        column, row = check_cell("cell", cell)
+        words.append(f"{ACTIONS[check_discrete_action(action, len(ACTIONS))]} from cell "
+                     f"({column}, {row})")
+    if not words:
+        raise ValueError("pairs must hold at least one (cell, action) pair, got none")
+    return ", ".join(words[:-1]) + (" or " if len(words) > 1 else "") + words[-1]
+
+
 def topple_counts(topple_map):
     """How many (cell, action) pairs topple each rod: {"red": n, "blue": m}."""
     values = list(topple_map["topples"].values())
@@ -191,7 +246,8 @@ def transition_tables(topple_map=None):
 
 
 __all__ = ["N_COLUMNS", "N_ROWS", "N_CELLS", "ACTIONS", "ROD_NAMES", "DEFAULT_START_CELL",
-           "DEFAULT_MAX_MOVES", "TOPPLE_TILT", "TOPPLE_MAP_FILE", "HAND_HEIGHT", "WOBBLY",
+           "MAX_MOVES", "DEFAULT_MAX_MOVES", "OFF_GRIDS", "OFF_GRID", "check_max_moves",
+           "check_off_grid", "leaves_grid", "describe_moves", "TOPPLE_TILT", "TOPPLE_MAP_FILE", "HAND_HEIGHT", "WOBBLY",
            "WOBBLE_TOPPLE_PROBABILITY", "WOBBLE_MAP_FILE", "check_cell", "cell_number",
            "number_cell", "next_cell", "rod_names", "observation_spec", "action_spec",
            "load_topple_map", "load_wobble_map", "wobble_table", "standable_cells",

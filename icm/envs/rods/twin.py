@@ -8,9 +8,10 @@ import numpy as np
 from icm import _streams, _validate
 from icm.envs._common import check_discrete_action, check_seed
 from icm.envs.rods import rules
-from icm.envs.rods.rules import (ACTIONS, DEFAULT_MAX_MOVES, DEFAULT_START_CELL,
-                                     ROD_NAMES, action_spec,
-                                     cell_number, check_start_cell, load_topple_map,
+from icm.envs.rods.rules import (ACTIONS, DEFAULT_MAX_MOVES, DEFAULT_START_CELL, OFF_GRID,
+                                     ROD_NAMES, action_spec, cell_number, check_max_moves,
+                                     check_off_grid, check_start_cell, leaves_grid,
+                                     load_topple_map,
                                      load_wobble_map, next_cell, observation_spec,
                                      rod_names, standable_cells, transition_tables,
                                      wobble_table)
@@ -23,22 +24,26 @@ class RodEpisodes(dm_env.Environment):
     An episode starts with the hand over `start_cell` and both rods standing. Each
     action moves the hand to the neighbouring cell (off the grid: it stays). A move
     that topples a rod ends the episode (discount 0.0, a termination) with the rod
-    shown toppled; after `max_moves` moves without a topple the episode ends on a time
-    limit (discount 1.0). Reward is always 0.0. A step after the end of an episode
-    starts a new one.
+    shown toppled; with `off_grid="end"`, so does a move off the grid (discount 0.0,
+    no rod toppled); after `max_moves` moves without a topple the episode ends on a
+    time limit (discount 1.0; `max_moves=None`: never). Reward is always 0.0. A step
+    after the end of an episode starts a new one.
 
     With `wobbly_rod`, the scene has a third rod (see `icm.envs.rods.rules`), the
     last entry of `rods`.
 
-    Subclasses say how an episode starts (`_start`) and what a move does (`_move`,
-    returning the hand's cell and the rods' toppled flags).
+    Subclasses say how an episode starts (`_start`, putting the hand's cell in
+    `_cell`) and what a move does (`_move`, returning the hand's cell and the rods'
+    toppled flags).
     """
 
-    def __init__(self, start_cell, max_moves, wobbly_rod=False):
+    def __init__(self, start_cell, max_moves, wobbly_rod=False, off_grid=OFF_GRID.default):
         self.start_cell = check_start_cell(start_cell, standable_cells())
-        self.max_moves = _validate.integer_at_least("max_moves", max_moves, 1)
+        self.max_moves = check_max_moves(max_moves)
         self.wobbly_rod = _validate.boolean("wobbly_rod", wobbly_rod)
+        self.off_grid = check_off_grid(off_grid)
         self.rod_names = rod_names(self.wobbly_rod)
+        self._cell = self.start_cell
         self._moves = 0
         self._reset_next_step = True
 
@@ -77,13 +82,14 @@ class RodEpisodes(dm_env.Environment):
         action = check_discrete_action(action, len(ACTIONS))
         if self._reset_next_step:
             return self.reset()
+        off = leaves_grid(self._cell, action)
         cell, rods = self._move(action)
         self._moves += 1
         observation = self._observation(cell, rods)
-        if any(rods):
+        if any(rods) or (off and self.off_grid == "end"):
             self._reset_next_step = True
             return dm_env.termination(0.0, observation)
-        if self._moves >= self.max_moves:
+        if self.max_moves is not None and self._moves >= self.max_moves:
             self._reset_next_step = True
             return dm_env.truncation(0.0, observation, discount=1.0)
         return dm_env.transition(0.0, observation)
@@ -106,20 +112,23 @@ class RodTable(RodEpisodes):
     Args:
       start_cell: (column, row) where each episode starts; must be a standable cell of
         the map. Default (0, 0), the cell nearest the robot on its left.
-      max_moves: moves before an episode without a topple ends (>= 1, default 30).
+      max_moves: moves before an episode without a topple ends (>= 1, default 30;
+        None: no limit, the paper's reading).
       wobbly_rod: add the wobbly rod (default False).
       seed: None, an integer >= 0 or a `numpy.random.Generator`; draws whether a move
         beside the wobbly rod topples it (one number per such move; without the
         wobbly rod the rules use no randomness).
+      off_grid: what a move off the grid does: "stay" (default, the hand stays) or
+        "end" (the episode ends); see `icm.envs.rods.rules.OFF_GRID`.
 
     Raises:
       ValueError: for a start cell off the grid or where a rod stands, max_moves < 1,
-        or (in `step`) an action that is not 0-3.
+        an unknown off_grid, or (in `step`) an action that is not 0-3.
     """
 
     def __init__(self, start_cell=DEFAULT_START_CELL, max_moves=DEFAULT_MAX_MOVES,
-                 wobbly_rod=False, seed=None):
-        super().__init__(start_cell, max_moves, wobbly_rod)
+                 wobbly_rod=False, seed=None, off_grid=OFF_GRID.default):
+        super().__init__(start_cell, max_moves, wobbly_rod, off_grid)
         self._map = load_topple_map()
         self._wobbles = load_wobble_map() if self.wobbly_rod else set()
         self._random = check_seed(seed)

@@ -1,5 +1,6 @@
-"""Re-vendors MuJoCo's WebAssembly build and three.js from npm, from the pinned lock
-file beside this script, into book/_static/vendor/mujoco and book/_static/vendor/three.
+"""Re-vendors MuJoCo's WebAssembly build, three.js and axe-core from npm, from the pinned
+lock file beside this script, into book/_static/vendor/mujoco, book/_static/vendor/three
+and book/_static/vendor/axe.
 
     python book/_static/vendor/npm/revendor.py
 
@@ -19,7 +20,10 @@ time. Steps:
    - its `mujoco.wasm`, unchanged, gzipped and base64-encoded into a classic script
      that sets `window.icmMujocoWasm` (vendor/mujoco/mujoco-wasm.js); the viewer decodes
      it with the browser's DecompressionStream;
-3. the licences: three's LICENSE; @mujoco/mujoco ships none (its package.json says
+3. axe-core (the accessibility checker that tests/test_browser.py runs on every page of
+   the built book; no page loads it): its `axe.min.js` as published, with its LICENSE
+   and LICENSE-3RD-PARTY.txt (vendor/axe/);
+4. the licences: three's LICENSE; @mujoco/mujoco ships none (its package.json says
    Apache-2.0), so MuJoCo's own LICENSE and LICENSES_THIRD_PARTY.md are copied from the
    `mujoco` Python package installed here (the same project and licence).
 
@@ -84,7 +88,12 @@ def main():
             f"window.icmMujocoWasm = \"{base64.b64encode(wasm).decode()}\";\n")
         for name, path in mujoco_licences().items():
             shutil.copy(path, mujoco / name)
-    for path in sorted((VENDOR / "three").iterdir()) + sorted((VENDOR / "mujoco").iterdir()):
+        axe = VENDOR / "axe"
+        axe.mkdir(exist_ok=True)
+        for name in ("axe.min.js", "LICENSE", "LICENSE-3RD-PARTY.txt"):
+            shutil.copy(modules / "axe-core" / name, axe / name)
+    for path in sorted(p for name in ("three", "mujoco", "axe")
+                       for p in (VENDOR / name).iterdir()):
         print(f"{path.relative_to(VENDOR)}: {path.stat().st_size:,} bytes")
 
 

@@ -1,0 +1,98 @@
+"""The book as a PDF (`make pdf`, book/_ext/print_book.py): printed offline by headless
+Chromium from the book the tests build, with every chapter, every figure and text
+that can be extracted."""
+
+import html as html_module
+import importlib.util
+import re
+import shutil
+
+import pytest
+
+from conftest import ROOT, toc_files
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+PRINT_BOOK = ROOT / "book" / "_ext" / "print_book.py"
+
+
+def _module():
+    spec = importlib.util.spec_from_file_location("print_book", PRINT_BOOK)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+print_book = _module()
+
+
+def test_without_a_built_book_it_says_what_to_do(tmp_path, capsys):
+    assert print_book.main(["--html", str(tmp_path / "nothing"), "--out",
+                            str(tmp_path / "book.pdf")]) == 1
+    assert "run `make book` first" in capsys.readouterr().err
+    assert not (tmp_path / "book.pdf").exists()
+
+
+def test_make_pdf_prints_the_built_book():
+    makefile = (ROOT / "Makefile").read_text()
+    assert re.search(r"^pdf: book\b", makefile, re.MULTILINE)
+    assert "book/_ext/print_book.py --html _build/html --out _build/pdf/book.pdf" in makefile
+
+
+@pytest.fixture(scope="module")
+def book_pdf(built_book, tmp_path_factory):
+    if CHROMIUM is None:
+        pytest.skip("Chromium is not installed (Debian: apt-get install chromium)")
+    out = tmp_path_factory.mktemp("pdf") / "book.pdf"
+    pages = print_book.print_book(built_book, out, CHROMIUM)
+    return out, pages
+
+
+def _titles(built_book):
+    """Each printed page's title (its first heading), in order."""
+    titles = {}
+    for name in toc_files():
+        if name in print_book.LEFT_OUT:
+            continue
+        page = (built_book / f"{name}.html").read_text()
+        heading = next(h for h in re.findall(r"<h1>(.*?)</h1>", page, re.DOTALL)
+                       if 'class="headerlink"' in h)
+        heading = re.sub(r'<a class="headerlink".*', "", heading, flags=re.DOTALL)
+        titles[name] = _normal(html_module.unescape(re.sub(r"<[^>]+>", "", heading)))
+    return titles
+
+
+def _normal(text):
+    return re.sub(r"\s+", " ", text).strip()
+
+
+@pytest.mark.book
+def test_the_pdf_holds_every_chapter_figure_and_its_text(book_pdf, built_book, capsys):
+    from pypdf import PdfReader
+
+    path, pages = book_pdf
+    reader = PdfReader(path)
+    assert len(reader.pages) == pages
+    text = _normal(" ".join(page.extract_text() for page in reader.pages))
+    titles = _titles(built_book)
+    # Every chapter, in order, a bookmark each; its title in the text.
+    assert [item.title for item in reader.outline] == list(titles.values())
+    for title in titles.values():
+        assert _normal(title) in text, title
+    # Every figure: the PNGs and JPEGs of the pages as images of the PDF, and the
+    # static panels (drawn as vectors) by their printed notes.
+    figures = sum(len(re.findall(r'<img [^>]*src="\.\./_images/', (built_book / f"{n}.html")
+                                 .read_text())) for n in titles)
+    images = sum(len(page.images) for page in reader.pages)
+    assert figures >= 30 and images >= figures, (images, figures)
+    notes = sum((built_book / f"{n}.html").read_text().count('class="icm-print-note"')
+                for n in titles)
+    assert notes >= 4 and text.count("Printed at its default settings") == notes
+    # Text a reader can search and copy: the chapters' words.
+    assert len(text.split()) > 8000
+    assert "interest" in text and "Q-learning" in text
+    # A book, not a poster: about as many pages as the chapters need.
+    assert 8 * len(titles) <= len(reader.pages) <= 40 * len(titles), len(reader.pages)
+    with capsys.disabled():
+        print(f"\nthe PDF: {len(reader.pages)} pages, {images} images, "
+              f"{path.stat().st_size / 1e6:.1f} MB")
+
