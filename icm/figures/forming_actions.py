@@ -303,8 +303,16 @@ REMEDY_COLOURS = {"random motor babbling": "#7f7f7f", "random goal babbling": "#
                   "shown all five": "#40004b"}
 """One colour per condition of `icm.experiments.remedies_study` (the teacher's in
 purples, darker for more buttons shown)."""
-FIRST_PRESS_STEP = 10
-"""The first-press curves are drawn every this many rollouts."""
+REMEDY_STYLES = {"random motor babbling": (":", "x"), "random goal babbling": ("-.", "^"),
+                 "learning progress": ("-", "o"), "growing up": ("--", "s"),
+                 "shown button 2": ("--", "D"), "shown buttons 0 and 4": ("-.", "v"),
+                 "shown all five": (":", "P")}
+"""Per condition, the line style and marker of its curves, so that no two conditions
+drawn together (the strategies with the growing arm; learning progress with each
+amount of teaching) differ by colour alone."""
+FIRST_PRESS_POINTS = 41
+"""The first-press curves are drawn at this many rollouts, evenly spaced on the
+logarithmic scale from 10 to the budget."""
 
 
 def _check_remedy_labels(study, labels):
@@ -319,12 +327,17 @@ def _check_remedy_labels(study, labels):
     return remedies_study
 
 
+def _median_word(median):
+    return "never (median)" if np.isnan(median) else f"{median:.0f}"
+
+
 def first_press_figure(study, labels):
     """When the robot first pressed each button itself: one panel per button, the share
     of seeds whose own rollouts (demonstrations left out) had pressed that button,
-    and no other, by each rollout; the mean over the study's seeds with its 95%
-    band, one curve per condition. A button a condition's teacher showed is drawn
-    dashed in that condition.
+    and no other, by each rollout (logarithmic scale); the mean over the study's seeds
+    with its 95% band, one curve per condition, each with its colour, line style and
+    marker (`REMEDY_STYLES`). A button a condition's teacher showed has open markers
+    in that condition.
 
     Args:
       study: the study (`icm.experiments.remedies_study.load_study()`).
@@ -334,41 +347,55 @@ def first_press_figure(study, labels):
 
     remedies_study = _check_remedy_labels(study, labels)
     n_rollouts = study["n_rollouts"]
-    x = np.arange(FIRST_PRESS_STEP, n_rollouts + 1, FIRST_PRESS_STEP)
-    fig, axes = new_figure(width=7.6, height=5.2, ncols=3, nrows=2, sharey=True)
+    x = np.unique(np.round(np.geomspace(10, n_rollouts, FIRST_PRESS_POINTS)))
+    fig, axes = new_figure(width=7.6, height=5.6, ncols=3, nrows=2, sharey=True)
     axes = axes.ravel()
     any_shown = False
+    firsts = {label: remedies_study.pooled(study, label)["first_press"] for label in labels}
     for button, ax in enumerate(axes[:buttons.N_BUTTONS]):
         for label in labels:
-            first = remedies_study.pooled(study, label)["first_press"][:, button]
+            first = firsts[label][:, button]
             done = ((first[:, None] > 0) & (first[:, None] <= x[None, :])).astype(float)
             shown = button in remedies_study.shown_buttons(label)
             any_shown |= shown
+            linestyle, marker = REMEDY_STYLES.get(label, ("-", None))
             plot_mean_band(ax, done, REMEDY_COLOURS.get(label, "black"), label, x=x,
-                           linestyle="--" if shown else "-")
-        ax.set_title(f"button {button}", fontsize=9)
+                           linestyle=linestyle, marker=marker)
+            if shown:
+                ax.get_lines()[-1].set_markerfacecolor("white")
+        ax.set_title(f"button {button}")
         ax.set_xscale("log")
         ax.set_xlim(x[0], n_rollouts)
         ax.set_ylim(0, 1.02)
-        ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator([10, 30, 100, 300, 1000]))
+        ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator([10, 100, 1000]))
         ax.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
         ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
-        ax.tick_params(labelsize=8)
-        ax.set_xlabel("rollouts (log scale)", fontsize=8)
-    for ax in axes[::3]:
-        ax.set_ylabel("share of seeds that pressed it", fontsize=8)
-    n_seeds = {len(remedies_study.pooled(study, label)["first_press"]) for label in labels}
-    handles = [matplotlib.lines.Line2D([], [], color=REMEDY_COLOURS.get(label, "black"),
-                                       linewidth=2, label=label) for label in labels]
+        ax.yaxis.set_major_locator(matplotlib.ticker.FixedLocator([0, 0.5, 1]))
+    for ax in axes[3:5]:
+        ax.set_xlabel("rollouts")
+    fig.supylabel("share of seeds that had pressed it")
+    n_seeds = {len(first) for first in firsts.values()}
+    handles = []
+    for label in labels:
+        linestyle, marker = REMEDY_STYLES.get(label, ("-", None))
+        handles.append(matplotlib.lines.Line2D([], [], color=REMEDY_COLOURS.get(label, "black"),
+                                               linewidth=2, linestyle=linestyle,
+                                               marker=marker, label=label))
     if any_shown:
-        handles.append(matplotlib.lines.Line2D([], [], color="#555555", linewidth=2,
-                                               linestyle="--",
-                                               label="a button the teacher showed"))
+        handles.append(matplotlib.lines.Line2D([], [], color="#555555", linewidth=0,
+                                               marker="o", markerfacecolor="white",
+                                               label="open: a button\nthe teacher showed"))
     axes[-1].axis("off")
-    axes[-1].legend(handles=handles, frameon=False, fontsize=7, loc="center",
-                    title=f"{' or '.join(map(str, sorted(n_seeds)))} seeds each",
-                    title_fontsize=7)
-    return fig
+    axes[-1].legend(handles=handles, frameon=False, loc="center",
+                    title=f"{' or '.join(map(str, sorted(n_seeds)))} seeds each")
+    medians = "; ".join(
+        f"{label}: " + ", ".join(_median_word(m) for m in
+                                 _babbling.median_first_press(firsts[label], n_rollouts))
+        for label in labels)
+    return fig.describe(
+        "When the robot first pressed each button itself, one panel per button: the "
+        "share of seeds that had, against rollouts on a logarithmic scale. The median "
+        f"rollout of the first own press of buttons 0 to 4, per condition: {medians}.")
 
 
 def coverage_maps_figure(study, labels):
@@ -376,8 +403,8 @@ def coverage_maps_figure(study, labels):
     the console or a cap, seen from above (robot at the bottom, its left on the
     left): one row per condition, the first `remedies_study.EARLY` rollouts on the
     left and all of them on the right; the count per square centimetre over all the
-    study's seeds, on a logarithmic colour scale shared by every map. Crosses: the
-    press goals.
+    study's seeds, on a logarithmic colour scale shared by every map. Outlines: the
+    console and its caps, numbered under the maps; crosses: the press goals.
 
     Args:
       study: the study (`icm.experiments.remedies_study.load_study()`).
@@ -387,26 +414,57 @@ def coverage_maps_figure(study, labels):
 
     remedies_study = _check_remedy_labels(study, labels)
     x_edges, y_edges = remedies_study.coverage_edges()
-    counts = [remedies_study.pooled(study, label)["coverage"] for label in labels]
+    pooled = {label: remedies_study.pooled(study, label) for label in labels}
+    counts = [pooled[label]["coverage"] for label in labels]
     top = max(1, max(int(c[stretch].max()) for c in counts for stretch in c))
     norm = matplotlib.colors.LogNorm(vmin=1, vmax=top)
-    fig, axes = new_figure(width=7.6, height=1.55 * len(labels) + 0.6, ncols=2,
+    fig, axes = new_figure(width=7.6, height=1.9 * len(labels) + 1.0, ncols=2,
                            nrows=len(labels), squeeze=False)
     geometry = _babbling.console_geometry()
     centre, half = geometry["console_centre"], geometry["console_half"]
+    caps = geometry["caps"]
     mesh = None
+    n_rollouts = study["n_rollouts"]
     for row, label, count in zip(axes, labels, counts):
         for ax, stretch in zip(row, ("early", "all")):
-            _draw_console(ax, geometry)
             mesh = ax.pcolormesh(y_edges, x_edges, np.ma.masked_less(count[stretch], 1),
                                  norm=norm, cmap="viridis", zorder=1)
+            ax.add_patch(matplotlib.patches.Rectangle(
+                (centre[1] - half[1], centre[0] - half[0]), 2 * half[1], 2 * half[0],
+                facecolor="none", edgecolor="#333333", linewidth=1, zorder=2))
+            for cap in caps:
+                ax.add_patch(matplotlib.patches.Circle(
+                    (cap[1], cap[0]), geometry["cap_radius"], facecolor="none",
+                    edgecolor="white", linewidth=0.8, zorder=2))
             goals = geometry["press_goals"]
-            ax.scatter(goals[:, 1], goals[:, 0], marker="x", s=14, color="red",
-                       linewidths=0.8, zorder=2)
+            ax.scatter(goals[:, 1], goals[:, 0], marker="x", s=16, color="red",
+                       linewidths=1, zorder=3)
             ax.set_xlim(centre[1] + 1.25 * half[1], centre[1] - 1.25 * half[1])
             ax.set_ylim(centre[0] - 2.2 * half[0], centre[0] + 2.2 * half[0])
-            when = (f"first {remedies_study.EARLY} rollouts" if stretch == "early"
-                    else f"all {study['n_rollouts']} rollouts")
-            ax.set_title(f"{label}: {when}", fontsize=8)
-    fig.colorbar(mesh, ax=axes, shrink=0.6, label="rollouts ending there (log scale)")
-    return fig
+            ax.set_aspect("equal")
+            ax.set_xticks(caps[:, 1], [str(b) for b in range(len(caps))])
+            ax.tick_params(axis="x", length=0)
+            ax.set_yticks([])
+            when = f"first {remedies_study.EARLY}" if stretch == "early" else \
+                f"all {n_rollouts}"
+            ax.set_title(f"{label}: {when}")
+    bar = fig.colorbar(mesh, ax=axes, location="bottom", shrink=0.7, aspect=30,
+                       label="rollouts ending in the square centimetre (log scale)")
+    bar.ax.xaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 3.0)))
+    bar.ax.xaxis.set_major_formatter(matplotlib.ticker.StrMethodFormatter("{x:g}"))
+    bar.ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    parts = []
+    for label in labels:
+        entry = pooled[label]
+        n_seeds = len(entry["first_press"])
+        shown = len(remedies_study.shown_buttons(label))
+        parts.append(
+            f"{label}: {int(entry['coverage']['early'].sum())} of the first "
+            f"{n_seeds * (remedies_study.EARLY - shown)} own rollouts of its {n_seeds} seeds "
+            f"ended on the console, {int(entry['coverage']['all'].sum())} of all "
+            f"{n_seeds * (n_rollouts - shown)}")
+    return fig.describe(
+        "Coverage maps of the console seen from above, the robot at the bottom and "
+        "buttons 0 to 4 from its left to its right: where the robot's own rollouts "
+        "ended with the finger on the console or a cap, early (left) and over the "
+        f"whole run (right). {'; '.join(parts)}.")
