@@ -201,6 +201,11 @@ def _goal_babbling(args):
             threads=args.threads, maturation=args.maturation,
             demonstrations=args.demonstrations)
     print(goal_babbling.comparison_table(results))
+    if args.maturation != "none" or args.demonstrations:
+        shown = ", ".join(map(str, args.demonstrations))
+        plural = "s" if len(args.demonstrations) > 1 else ""
+        print(f"(maturation {args.maturation}, "
+              + (f"the teacher showed button{plural} {shown})" if shown else "no teacher)"))
     labels = figures.forming_actions.STRATEGY_LABELS
     return figures.test_error_figure({labels[s]: r for s, r in results.items()})
 
