@@ -5,7 +5,7 @@ seeds and budget, kept in assets/remedies_study.json because they take minutes.
 
 `run_condition` runs one condition on one root seed with `run_goal_babbling` (and
 `run_formed_actions`); `main` writes the file (`python -m
-icm.experiments.remedies_study`, about half an hour of CPU); `load_study` reads it; a
+icm.experiments.remedies_study`, about an hour of CPU); `load_study` reads it; a
 test reruns the first seeds of some of it (the first k seeds of a root seed are the
 same in any larger run) and expects the same numbers.
 """
