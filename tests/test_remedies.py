@@ -273,14 +273,33 @@ def study():
     return remedies_study.load_study()
 
 
-def test_the_remedies_figures_draw_and_refuse_bad_input(study):
+def _png_text(figure):
+    import io
+
+    from PIL import Image
+
+    return Image.open(io.BytesIO(figure.png())).text
+
+
+def test_the_remedies_figures_draw_readably_and_refuse_bad_input(study):
     labels = ["learning progress", "growing up", "shown buttons 0 and 4"]
-    for figure in (forming_actions.first_press_figure(study, labels),
-                   forming_actions.coverage_maps_figure(study, labels)):
-        assert len(figure._repr_png_()) > 10_000
-    first = forming_actions.first_press_figure(study, ["learning progress"])
-    assert "a button the teacher showed" not in [t.get_text() for t in
-                                                 first.axes[-1].get_legend().get_texts()]
+    first = forming_actions.first_press_figure(study, labels)
+    coverage = forming_actions.coverage_maps_figure(study, labels)
+    for figure in (first, coverage):
+        text = _png_text(figure)
+        assert text["icm:legend-overlaps"] == "0" and text["icm:text-overlaps"] == "0"
+        assert figure.summary and text["Description"].startswith(figure.summary)
+    # No two conditions differ by colour alone; a shown button has open markers.
+    styles = {(line.get_linestyle(), line.get_marker()) for line in first.axes[0].get_lines()}
+    assert len(styles) == len(labels)
+    shown = [line for line in first.axes[0].get_lines()
+             if line.get_markerfacecolor() == "white"]
+    assert [line.get_label() for line in shown] == ["shown buttons 0 and 4"]
+    # The alternative text gives the medians the chapter's table gives.
+    medians = remedies_study.summary(study)["growing up"]["median_first_press"]
+    assert "growing up: " + ", ".join(f"{m:.0f}" for m in medians) in first.summary
+    alone = forming_actions.first_press_figure(study, ["learning progress"])
+    assert not any("teacher" in t.get_text() for t in alone.axes[-1].get_legend().get_texts())
     for draw in (forming_actions.first_press_figure, forming_actions.coverage_maps_figure):
         refused(lambda: draw({}, ["growing up"]), "study", "{}", "type")
         refused(lambda: draw(study, "growing up"), "labels", "'growing up'", "type")
@@ -366,6 +385,14 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
                                                      "shown button 2")
     assert sentence.startswith("button 0 at rollout 50 (never (median) with learning "
                                "progress alone)") and "button 2" not in sentence
+    slow = _fake_study(study, [50] * 5, [300] * 5)
+    assert remedies_study.shown_sooner_sentence(
+        _fake_study(study, [-1] * 5, [50] * 5)).startswith("sooner than learning progress "
+                                                           "alone in all 8 cases")
+    assert remedies_study.shown_sooner_sentence(slow).startswith(
+        "not sooner in shown button 2, button 2 (at rollout 300, against at rollout 50)")
+    assert [c["button"] for c in remedies_study.shown_first_presses(slow)] == [2, 0, 4, 0, 1,
+                                                                              2, 3, 4]
     table = remedies_study.comparison_table(study)
     assert table.count("\n") == 1 + len(remedies_study.CONDITIONS)
     assert "| shown all five | 40 | " in table and "none left" in table
@@ -378,38 +405,52 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
 
 # --- the claims -------------------------------------------------------------------------------
 
+CLAIMS_ROOT = 17
+"""The tests' root seed for the chapter's claims (the study's roots are others)."""
+CLAIMS_SEEDS = 8
+"""Its seeds per condition."""
+STRICT = ("grow_others_pressed_early", "grow_test_error", "shown1_test_error",
+          "shown2_test_error", "shown5_test_error", "shown2_others_pressed_early")
+"""The clear differences of the study large enough to show, in the same direction and
+never tied, on the tests' fewer seeds; the chapter's other clear differences must not
+be reversed there (a tie passes: with few seeds, learning progress alone may already
+press every button early)."""
+
+
 @pytest.fixture(scope="module")
-def claims_runs():
-    """The conditions of the chapter's claims on root seed 17, five seeds each (the
-    study's roots are others)."""
-    return {label: run(**{"strategy": "learning_progress", **arguments}, n_seeds=5, seed=17,
-                       progress=False)
-            for label, arguments in remedies_study.CONDITIONS.items()
+def own_study():
+    """The study's conditions but the two random strategies, run the study's way
+    (`run_condition`) on the tests' own root seed, as a study of one root."""
+    study = remedies_study.load_study()
+    runs = {label: {str(CLAIMS_ROOT): remedies_study.run_condition(label, CLAIMS_ROOT,
+                                                                   n_seeds=CLAIMS_SEEDS)}
+            for label in remedies_study.CONDITIONS
             if label not in ("random motor babbling", "random goal babbling")}
+    return {**study, "n_seeds": CLAIMS_SEEDS, "runs": runs}
 
 
-def test_the_chapters_claims_hold_on_the_tests_own_seeds(claims_runs):
-    runs = claims_runs
-    early = remedies_study.EARLY
-    own_early = lambda result, buttons_: ((result.first_presses()[:, buttons_] > 0)
-                                          & (result.first_presses()[:, buttons_] <= early)
-                                          ).sum()
-    every = list(range(buttons.N_BUTTONS))
-    alone = runs["learning progress"]
-    # Growing up: fewer buttons pressed by the robot itself within the first EARLY
-    # rollouts, a lower test error, and every clock at the full range by the budget.
-    grown = runs["growing up"]
-    assert own_early(grown, every) < own_early(alone, every)
-    assert grown.final_test_error().mean() < alone.final_test_error().mean()
-    assert (grown.maturity[:, -1] == 1.0).all()
-    # A teacher: the shown button pressed by the robot itself sooner (median), a lower
-    # test error with any amount of teaching; the end buttons shown, more of the others
-    # pressed early and all five formed in more seeds; all five shown, all five formed.
-    shown = runs["shown button 2"]
-    assert shown.median_first_presses()[2] < alone.median_first_presses()[2]
-    for label in remedies_study.TEACHING:
-        assert runs[label].final_test_error().mean() < alone.final_test_error().mean(), label
-    ends = runs["shown buttons 0 and 4"]
-    assert own_early(ends, [1, 2, 3]) > own_early(alone, [1, 2, 3])
-    assert ends.buttons_pressed.all(axis=1).sum() >= alone.buttons_pressed.all(axis=1).sum()
-    assert runs["shown all five"].buttons_pressed.all()
+def test_the_chapters_claims_hold_on_the_tests_own_seeds(study, own_study):
+    # The chapter says, from the study's verdicts, which remedy clearly did better or
+    # worse than learning progress alone in what; on the tests' seeds, none of those
+    # differences is reversed, and the large ones (STRICT) hold strictly.
+    chapter = remedies_study.verdicts(study)
+    own = remedies_study.verdicts(own_study)
+    clear = [name[:-len("_verdict")] for name, words in chapter.items()
+             if name.endswith("_verdict") and words != remedies_study.VERDICTS["no different"]]
+    assert set(STRICT) <= set(clear)  # the study still finds them (else rephrase)
+    for name in clear:
+        sign = np.sign(chapter[name])
+        assert sign * own[name] >= 0, (name, chapter[name], own[name])
+        if name in STRICT:
+            assert sign * own[name] > 0, (name, chapter[name], own[name])
+    # Every clock at the full range by the budget; all five shown, all five formed.
+    rows = remedies_study.summary(own_study)
+    assert rows["growing up"]["maturity_full"] == 1.0
+    assert rows["shown all five"]["all_pressed_share"] == 1.0
+    # Every button shown pressed by the robot itself sooner (median) than without a
+    # teacher, as the chapter says from the study.
+    assert remedies_study.shown_sooner_sentence(study).startswith("sooner")
+    assert remedies_study.shown_sooner_sentence(own_study).startswith("sooner")
+    for case in remedies_study.shown_first_presses(own_study):
+        assert case["median"] is not None and (case["baseline"] is None
+                                               or case["median"] < case["baseline"]), case

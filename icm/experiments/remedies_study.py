@@ -327,6 +327,36 @@ def first_press_comparison(study, label, baseline="learning progress"):
     return ", ".join(parts)
 
 
+def shown_first_presses(study=None, baseline="learning progress", roots=None):
+    """For each button a teacher shows in a condition of the study: when the robot first
+    pressed it itself (the median over the seeds of `roots`, default all, as in
+    `summary`), against `baseline`. A list of dicts {"label", "button", "median",
+    "baseline"} (a median None when more than half the seeds never pressed it), in
+    the order of `TEACHING` and of the buttons shown."""
+    rows = summary(study, roots)
+    baseline = _validate.one_of("baseline", baseline, tuple(rows))
+    return [{"label": label, "button": b, "median": rows[label]["median_first_press"][b],
+             "baseline": rows[baseline]["median_first_press"][b]}
+            for label in TEACHING if label in rows for b in shown_buttons(label)]
+
+
+def shown_sooner_sentence(study=None, roots=None):
+    """A sentence saying whether, with a teacher, the robot first pressed each shown
+    button itself sooner than learning progress alone (`shown_first_presses`): "sooner
+    in every case", or the cases where it was not."""
+    cases = shown_first_presses(study, roots=roots)
+    never = float("inf")
+    late = [c for c in cases if (never if c["median"] is None else c["median"])
+            >= (never if c["baseline"] is None else c["baseline"])]
+    if not late:
+        return (f"sooner than learning progress alone in all {len(cases)} cases (each "
+                f"button shown, in each condition with a teacher)")
+    word = lambda m: "never" if m is None else f"at rollout {m:.0f}"
+    return ("not sooner in " + "; ".join(
+        f"{c['label']}, button {c['button']} ({word(c['median'])}, against "
+        f"{word(c['baseline'])})" for c in late) + f", of {len(cases)} cases")
+
+
 REMEDY_KEYS = {"growing up": "grow", "shown button 2": "shown1",
                "shown buttons 0 and 4": "shown2", "shown all five": "shown5"}
 """The short names `verdicts` gives the remedies' numbers."""
