@@ -142,18 +142,28 @@ def test_goal_babbling_grows_up_and_is_shown_buttons(tmp_path, monkeypatch, caps
     assert status == 0 and calls[1]["demonstrations"] == ()
 
 
-def test_goal_babbling_shows_its_progress_on_the_terminal(tmp_path, capsys):
-    # A bar on standard error (tqdm's, shown once a run lasts over a second), the
-    # table on standard output.
+def test_goal_babbling_shows_its_progress_on_the_terminal(tmp_path, monkeypatch, capsys):
+    # The run's progress bar is on (tqdm's: on standard error in a terminal, shown once
+    # a run lasts over a second, which a short run here may not), the table on
+    # standard output.
+    from icm.experiments import goal_babbling
+
+    bars = []
+    real = goal_babbling.progress_bar
+
+    def recording(iterable, total, description, enabled=True, unit="seed"):
+        bars.append((description, enabled, unit))
+        return real(iterable, total, description, enabled, unit)
+
+    monkeypatch.setattr(goal_babbling, "progress_bar", recording)
     out = tmp_path / "babbling.png"
-    status, stdout, stderr = in_process(
+    status, stdout, _ = in_process(
         ["goal-babbling", "--strategy", "learning_progress", "--seeds", "2", "--rollouts",
-         "150", "--maturation", "joint_range", "--demonstrations", "2", "--threads", "1",
+         "30", "--maturation", "joint_range", "--demonstrations", "2", "--threads", "1",
          "--out", str(out)], capsys)
-    assert status == 0 and "| learning_progress | 2 | 150 |" in stdout
-    assert "maturation joint_range, the teacher showed button 2" in stdout
-    assert "goal babbling (learning_progress, 2 seeds at once)" in stderr
-    assert "150/150" in stderr and "rollout" in stderr
+    assert status == 0 and "| learning_progress | 2 | 30 |" in stdout
+    assert "(maturation joint_range, the teacher showed button 2)" in stdout
+    assert ("goal babbling (learning_progress, 2 seeds at once)", True, "rollout") in bars
 
 
 def test_figure7_of_run_n_computes_that_run_alone(tmp_path, monkeypatch, capsys):

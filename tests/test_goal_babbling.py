@@ -681,7 +681,9 @@ def test_the_studys_verdicts_are_phrased_from_its_numbers(study):
 def test_the_presses_formed_figure_draws_and_refuses_bad_input(study):
     figure = forming_actions.presses_formed_figure(study, ["learning progress",
                                                           "random goal babbling"])
-    assert len(figure._repr_png_()) > 10_000
+    assert len(figure.png()) > 10_000
+    styles = [(line.get_linestyle(), line.get_marker()) for line in figure.axes[0].get_lines()]
+    assert len(set(styles)) == 2  # not told apart by colour alone
     refused(lambda: forming_actions.presses_formed_figure({}, ["learning progress"]),
             "study", "{}", "type")
     refused(lambda: forming_actions.presses_formed_figure(study, "learning progress"),

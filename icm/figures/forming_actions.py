@@ -12,8 +12,8 @@ from icm.envs import buttons
 from icm.experiments import goal_babbling as _babbling
 from icm.experiments.goal_babbling import GoalBabblingResult
 from icm.experiments.results import check_results
-from icm.figures._common import (LINESTYLES, MARKERS, check_axes, check_result, new_figure,
-                                 plot_mean_band)
+from icm.figures._common import (LINESTYLES, MARKERS, check_axes, check_result, legend_below,
+                                 new_figure, plot_mean_band)
 
 _MADE_BY = "icm.experiments.run_goal_babbling"
 STRATEGY_COLOURS = {"random_motor": "#7f7f7f", "random_goal": "#1f77b4",
@@ -278,22 +278,24 @@ def presses_formed_figure(study, labels, roots="tuning", ax=None):
                              f"root seeds {missing}")
     check_axes(ax)
     if ax is None:
-        fig, ax = new_figure(width=6.8, height=3.8)
+        fig, ax = new_figure(width=6.8, height=3.4 + 0.35 * ((len(labels) + 1) // 2))
     else:
         fig = ax.figure
     budgets = np.array(study["budgets"])
-    for label in labels:
+    for i, label in enumerate(labels):
         runs = study["runs"][label]
         pressed = np.concatenate([np.array(runs[str(root)]["pressed"])
                                   for root in root_seeds])
         all_five = pressed.all(axis=2).astype(float)  # [seed, budget]
         plot_mean_band(ax, all_five, STUDY_COLOURS.get(label, "black"),
-                       f"{label} ({len(all_five)} seeds)", x=budgets)
+                       f"{label} ({len(all_five)} seeds)", x=budgets,
+                       linestyle=LINESTYLES[i % len(LINESTYLES)],
+                       marker=MARKERS[1 + i % (len(MARKERS) - 1)])
     ax.set_xlabel("rollouts")
     ax.set_ylabel("share of seeds with all five presses")
     ax.set_ylim(0, 1.02)
     ax.set_xlim(budgets[0], budgets[-1])
-    ax.legend(frameon=False, fontsize=8, loc="upper left")
+    legend_below(ax, ncols=2)  # under the axes: in them it covered the curves
     return fig
 
 
