@@ -57,6 +57,18 @@ def _number(text):
     return value
 
 
+def _buttons(text):
+    """An argparse type: buttons, comma-separated ("2", "0,4"), or "none" (the run
+    checks the range)."""
+    if text.strip().lower() == "none":
+        return ()
+    try:
+        return tuple(int(part) for part in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be buttons separated by commas (e.g. 0,4) or "
+                                         f"none, got {text!r}") from None
+
+
 _positive_int = _integer_at_least(1)
 _seed = _integer_at_least(0)
 MAX_DPI = 1200
@@ -186,8 +198,14 @@ def _goal_babbling(args):
             exploration_noise=args.exploration_noise, epsilon=args.epsilon,
             window=args.window, outcome_space=args.outcome_space,
             inverse_model=args.inverse_model, measure=args.measure, regions=args.regions,
-            threads=args.threads)
+            threads=args.threads, maturation=args.maturation,
+            demonstrations=args.demonstrations)
     print(goal_babbling.comparison_table(results))
+    if args.maturation != "none" or args.demonstrations:
+        shown = ", ".join(map(str, args.demonstrations))
+        plural = "s" if len(args.demonstrations) > 1 else ""
+        print(f"(maturation {args.maturation}, "
+              + (f"the teacher showed button{plural} {shown})" if shown else "no teacher)"))
     labels = figures.forming_actions.STRATEGY_LABELS
     return figures.test_error_figure({labels[s]: r for s, r in results.items()})
 
@@ -231,6 +249,15 @@ def _goal_babbling_options(parser):
                         default=goal_babbling.DEFAULT_REGIONS,
                         help="learning progress: fixed regions, or regions that split as "
                              f"goals accumulate (default {goal_babbling.DEFAULT_REGIONS})")
+    parser.add_argument("--maturation", choices=goal_babbling.MATURATIONS,
+                        default=goal_babbling.DEFAULT_MATURATION,
+                        help="grow up: the arm's reachable joint range grows from around its "
+                             "resting posture as its competence stops progressing "
+                             f"(default {goal_babbling.DEFAULT_MATURATION})")
+    parser.add_argument("--demonstrations", type=_buttons, default=(),
+                        help="the buttons a teacher shows first, by moving the arm to the "
+                             "scripted press, e.g. 2 or 0,4 (each at most once; default "
+                             "none)")
     parser.add_argument("--threads", type=_integer_at_least(1), default=None,
                         help="threads stepping the rollouts (default: the cores this "
                              "process may use); the results do not depend on it")

@@ -39,7 +39,8 @@ def test_help_documents_every_figure_and_option(capsys):
     assert "--predictor-lr" in in_process(["figure7", "--help"], capsys)[1]
     babbling_help = in_process(["goal-babbling", "--help"], capsys)[1]
     for option in ("--strategy", "--rollouts", "--exploration-noise", "--window",
-                   "--outcome-space", "--inverse-model", "--measure", "--regions", "--threads"):
+                   "--outcome-space", "--inverse-model", "--measure", "--regions", "--threads",
+                   "--maturation", "--demonstrations"):
         assert option in babbling_help
 
 
@@ -83,6 +84,12 @@ def test_figure5_is_written_as_an_image(tmp_path):
     (["goal-babbling", "--measure", "novelty"], "--measure"),
     (["goal-babbling", "--regions", "tree"], "--regions"),
     (["goal-babbling", "--threads", "0"], "--threads: must be an integer >= 1"),
+    (["goal-babbling", "--maturation", "grow"], "--maturation"),
+    (["goal-babbling", "--demonstrations", "x"], "--demonstrations: must be buttons"),
+    (["goal-babbling", "--demonstrations", "7", "--rollouts", "3"],
+     "demonstrations must be buttons 0 to 4, each shown at most once, got (7,)"),
+    (["goal-babbling", "--demonstrations", "1,1", "--rollouts", "3"],
+     "demonstrations must be buttons 0 to 4, each shown at most once, got (1, 1)"),
 ])
 def test_bad_options_fail_with_a_clear_message(args, message, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
@@ -113,6 +120,50 @@ def test_goal_babbling_prints_the_numbers_and_writes_the_test_error(tmp_path, ca
     assert "| random_goal | 1 | 25 |" in stdout
     image = matplotlib.image.imread(out)
     assert image.shape[0] > 100 and image.std() > 0.01
+
+
+def test_goal_babbling_grows_up_and_is_shown_buttons(tmp_path, monkeypatch, capsys):
+    from icm import experiments
+
+    calls = []
+    real = experiments.run_goal_babbling
+    monkeypatch.setattr(experiments, "run_goal_babbling",
+                        lambda **kwargs: calls.append(kwargs) or real(**kwargs))
+    out = tmp_path / "babbling.png"
+    status, stdout, _ = in_process(["goal-babbling", "--strategy", "learning_progress",
+                                    "--seeds", "1", "--rollouts", "25", "--maturation",
+                                    "joint_range", "--demonstrations", "0,4", "--threads", "1",
+                                    "--out", str(out)], capsys)
+    assert status == 0 and "wrote" in stdout and out.exists()
+    assert calls[0]["maturation"] == "joint_range" and calls[0]["demonstrations"] == (0, 4)
+    status, _, _ = in_process(["goal-babbling", "--strategy", "random_goal", "--seeds", "1",
+                               "--rollouts", "2", "--demonstrations", "none", "--threads", "1",
+                               "--out", str(out)], capsys)
+    assert status == 0 and calls[1]["demonstrations"] == ()
+
+
+def test_goal_babbling_shows_its_progress_on_the_terminal(tmp_path, monkeypatch, capsys):
+    # The run's progress bar is on (tqdm's: on standard error in a terminal, shown once
+    # a run lasts over a second, which a short run here may not), the table on
+    # standard output.
+    from icm.experiments import goal_babbling
+
+    bars = []
+    real = goal_babbling.progress_bar
+
+    def recording(iterable, total, description, enabled=True, unit="seed"):
+        bars.append((description, enabled, unit))
+        return real(iterable, total, description, enabled, unit)
+
+    monkeypatch.setattr(goal_babbling, "progress_bar", recording)
+    out = tmp_path / "babbling.png"
+    status, stdout, _ = in_process(
+        ["goal-babbling", "--strategy", "learning_progress", "--seeds", "2", "--rollouts",
+         "30", "--maturation", "joint_range", "--demonstrations", "2", "--threads", "1",
+         "--out", str(out)], capsys)
+    assert status == 0 and "| learning_progress | 2 | 30 |" in stdout
+    assert "(maturation joint_range, the teacher showed button 2)" in stdout
+    assert ("goal babbling (learning_progress, 2 seeds at once)", True, "rollout") in bars
 
 
 def test_figure7_of_run_n_computes_that_run_alone(tmp_path, monkeypatch, capsys):

@@ -682,6 +682,8 @@ def test_the_presses_formed_figure_draws_and_refuses_bad_input(study):
     figure = forming_actions.presses_formed_figure(study, ["learning progress",
                                                           "random goal babbling"])
     assert len(figure.png()) > 10_000
+    styles = [(line.get_linestyle(), line.get_marker()) for line in figure.axes[0].get_lines()]
+    assert len(set(styles)) == 2  # not told apart by colour alone
     refused(lambda: forming_actions.presses_formed_figure({}, ["learning progress"]),
             "study", "{}", "type")
     refused(lambda: forming_actions.presses_formed_figure(study, "learning progress"),

@@ -12,6 +12,11 @@ strategies spend the same budget of rollouts:
 - "random_goal": uniform random goals in the goal space, through the inverse model;
 - "learning_progress": goals in regions chosen by their progress.
 
+Two remedies that the paper's discussion names can be added to any of them: a body
+that grows (`maturation`, after Baranes and Oudeyer 2010: `icm.learners.maturation`)
+and a teacher who shows the scripted presses of some buttons first (`demonstrations`,
+after Thomaz 2006 and Nguyen and Oudeyer's socially guided intrinsic motivation).
+
 A movement's outcome (`OUTCOME_SPACES`) is where it brought the finger (the lowest
 point of the finger at the end of the hold) and, by default, how far each cap went
 down. All seeds run at once: rollout k of every seed is stepped in one call of
@@ -38,6 +43,8 @@ from icm.learners.goal_babbling import (  # noqa: F401 (N_BOOTSTRAP re-exported)
 from icm.learners.goal_choice import (  # noqa: F401 (re-exported)
     DEFAULT_EPSILON, DEFAULT_WINDOW, MEASURES, RandomGoals, RegionGrid, RegionProgress,
     SplittingRegionProgress)
+from icm.learners.maturation import (  # noqa: F401 (re-exported)
+    DEFAULT_MATURATION, MATURATIONS, JointRangeMaturation)
 from icm.learners.sensorimotor import (  # noqa: F401 (re-exported)
     DEFAULT_EXPLORATION_NOISE, INVERSE_MODELS, NOISE_DISTANCE, make_inverse_model)
 from icm.stats import PANEL_RESAMPLES, bootstrap_band, comes_first
@@ -225,6 +232,13 @@ class GoalBabblingResult:
       regions: [seed, rollout], the region of each goal (-1 for none).
       interest: [seed, rollout, region], the interest (progress) of each region
         after each rollout (learning_progress only; zeros otherwise).
+      maturity: [seed, rollout], the maturational clock after each rollout: the share
+        of the way from the resting posture to the joints' limits that the arm could
+        reach (1 throughout without maturation).
+
+    The first `n_demonstrations` rollouts are the teacher's demonstrations
+    (`settings["demonstrations"]`, the buttons shown, in order), the same in every
+    seed.
     """
 
     settings: dict
@@ -242,6 +256,7 @@ class GoalBabblingResult:
     goals: np.ndarray
     regions: np.ndarray
     interest: np.ndarray
+    maturity: np.ndarray
 
     @property
     def n_seeds(self):
@@ -254,6 +269,25 @@ class GoalBabblingResult:
     @property
     def strategy(self):
         return self.settings["strategy"]
+
+    @property
+    def n_demonstrations(self):
+        """The teacher's demonstrations at the start of the run (0 without a teacher)."""
+        return len(self.settings.get("demonstrations", ()))
+
+    def first_presses(self):
+        """The robot's first own press of each button: [seed, button], the rollout
+        (counted from 1, demonstrations included in the count) of the first rollout
+        that is not a demonstration in which that button, and no other, went down
+        past the press depth (`buttons.PRESS_DEPTH`); -1 where none did."""
+        over = self.depths > buttons.PRESS_DEPTH  # [seed, rollout, button]
+        clean = over & (over.sum(axis=2, keepdims=True) == 1)
+        clean[:, :self.n_demonstrations] = False
+        return np.where(clean.any(axis=1), clean.argmax(axis=1) + 1, -1)
+
+    def median_first_presses(self):
+        """The median over seeds of `first_presses`, [button] (`median_first_press`)."""
+        return median_first_press(self.first_presses(), self.n_rollouts)
 
     def final_test_error(self):
         """The test error at the end of each seed's run, [seed] (m)."""
@@ -328,6 +362,16 @@ class GoalBabblingResult:
         return out
 
 
+def median_first_press(first, n_rollouts):
+    """The median over seeds (the first axis) of first-press rollouts `first` [seed,
+    ...] (from 1, -1 for never), a seed that never pressed counted as pressing after
+    all `n_rollouts`: a float array [...], NaN where more than half never pressed."""
+    first = np.asarray(first)
+    never = n_rollouts + 1
+    median = np.median(np.where(first < 0, never, first), axis=0)
+    return np.where(median >= never, np.nan, median)
+
+
 COLUMN_NAMES = ("beyond button 4", "button 4", "button 3", "button 2", "button 1",
                 "button 0", "beyond button 0")
 """The columns of regions along y (`REGION_GRID[1]` of them), the robot's right first:
@@ -339,9 +383,34 @@ def _region_columns():
     return np.array([index[1] for index in np.ndindex(*REGION_GRID)])
 
 
+def check_demonstrations(demonstrations):
+    """`demonstrations` as a tuple of distinct buttons (0 to 4), in the order shown:
+    None or an empty sequence for no teacher.
+
+    Raises:
+      ValueError: for a button outside 0..4 or shown twice (an `ArgumentTypeError` for
+        what is not a sequence of integers).
+    """
+    if demonstrations is None:
+        return ()
+    if isinstance(demonstrations, (str, bytes)) or not isinstance(
+            demonstrations, (tuple, list, np.ndarray)):
+        raise _validate.ArgumentTypeError(
+            f"demonstrations must be a tuple of buttons (0 to {buttons.N_BUTTONS - 1}), "
+            f"each shown at most once, got {_validate.show(demonstrations)}")
+    if len(demonstrations) == 0:
+        return ()
+    shown = _validate.integer_array("demonstrations", demonstrations, ndim=1)
+    if np.any((shown < 0) | (shown >= buttons.N_BUTTONS)) or len(set(shown.tolist())) \
+            != len(shown):
+        raise ValueError(f"demonstrations must be buttons 0 to {buttons.N_BUTTONS - 1}, "
+                         f"each shown at most once, got {_validate.show(demonstrations)}")
+    return tuple(int(b) for b in shown)
+
+
 def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, exploration_noise,
                          epsilon, window, outcome_space, inverse_model, measure, regions,
-                         depth_weight, retract, threads):
+                         depth_weight, retract, threads, maturation, demonstrations):
     checked = dict(
         strategy=_validate.one_of("strategy", strategy, STRATEGIES),
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
@@ -357,7 +426,12 @@ def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, explorat
         regions=_validate.one_of("regions", regions, REGION_KINDS),
         depth_weight=_validate.real("depth_weight", depth_weight, 0.0, MAX_DEPTH_WEIGHT,
                                     low_open=True),
-        retract=_validate.boolean("retract", retract))
+        retract=_validate.boolean("retract", retract),
+        maturation=_validate.one_of("maturation", maturation, MATURATIONS),
+        demonstrations=check_demonstrations(demonstrations))
+    if checked["n_rollouts"] < len(checked["demonstrations"]):
+        raise ValueError(f"n_rollouts must be at least the number of demonstrations "
+                         f"({len(checked['demonstrations'])}), got {checked['n_rollouts']}")
     _validate.boolean("progress", progress)
     if threads is not None:
         _validate.integer_in_range("threads", threads, 1, _movements.MAX_THREADS)
@@ -365,7 +439,7 @@ def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, explorat
     # Per rollout: movement, outcome, depths, goal, flags and two distances per test
     # goal; per seed: one rollout's simulated states.
     check_run_size("run_goal_babbling", checked["n_seeds"], checked["n_rollouts"],
-                   8 * (7 + 8 + 5 + 3 + 3 + 2 * n_goals + int(np.prod(REGION_GRID))),
+                   8 * (7 + 8 + 5 + 3 + 3 + 1 + 2 * n_goals + int(np.prod(REGION_GRID))),
                    bytes_per_seed=150_000)
     return checked
 
@@ -383,7 +457,8 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
                       epsilon=DEFAULT_EPSILON, window=DEFAULT_WINDOW,
                       outcome_space=DEFAULT_OUTCOME_SPACE, inverse_model=DEFAULT_INVERSE_MODEL,
                       measure=DEFAULT_MEASURE, regions=DEFAULT_REGIONS,
-                      depth_weight=DEPTH_WEIGHT, retract=False, threads=None):
+                      depth_weight=DEPTH_WEIGHT, retract=False, threads=None,
+                      maturation=DEFAULT_MATURATION, demonstrations=()):
     """Runs goal babbling on the simulated iCub, all seeds at once.
 
     Every rollout is a movement performed in physics from the start of a trial
@@ -394,6 +469,14 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
     probability proportional to its interest, uniformly while every interest is 0),
     and the inverse model gives a movement for it, plus exploration noise (see
     `icm.learners.sensorimotor`).
+
+    With `maturation="joint_range"` the arm grows up: it reaches a range of joint
+    angles around its resting posture that grows as its competence stops progressing
+    (`icm.learners.maturation.JointRangeMaturation`, with its defaults). With
+    `demonstrations`, a teacher first moves the arm to the scripted press's lowest
+    posture of each button listed, one rollout each, counted in `n_rollouts`: the
+    movement and what it did enter the inverse model's memory, and the robot then
+    babbles as without a teacher (see `icm.learners.goal_babbling`).
 
     At the end, each seed's movement whose outcome lies nearest each button's press
     goal is run on the physics console, the button lit red.
@@ -421,6 +504,9 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
         then cover it too); the outcome is read at the end of the hold either way.
       threads: threads stepping the rollouts, 1 to `movements.MAX_THREADS` (None:
         the cores this process may use). The results do not depend on it.
+      maturation: one of `MATURATIONS` ("none" or "joint_range").
+      demonstrations: the buttons the teacher shows, in order, each at most once (a
+        tuple of integers 0 to 4; empty or None: no teacher).
 
     Returns:
       A `GoalBabblingResult`.
@@ -432,7 +518,7 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
     settings = _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress,
                                     exploration_noise, epsilon, window, outcome_space,
                                     inverse_model, measure, regions, depth_weight,
-                                    retract, threads)
+                                    retract, threads, maturation, demonstrations)
     lab = MovementLab(threads)
     seeds = run_seeds(settings["seed"], n_seeds, 2)
     arrays = _babble(settings, lab, [s[0] for s in seeds], progress)
@@ -455,7 +541,7 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
                               buttons_pressed, press_movements, press_outcomes, movements,
                               outcomes, arrays["depths"], arrays["touched"],
                               arrays["pressed"], arrays["goals"], arrays["regions"],
-                              arrays["interest"])
+                              arrays["interest"], arrays["maturity"])
 
 
 def _babble(settings, lab, seeds, progress):
@@ -477,8 +563,12 @@ def _babble(settings, lab, seeds, progress):
         kind = RegionProgress if settings["regions"] == "fixed" else SplittingRegionProgress
         choice = kind(grid, n_seeds, settings["measure"], settings["epsilon"],
                       settings["window"])
+    maturation = None if settings["maturation"] == "none" else \
+        JointRangeMaturation(n_seeds, lab.home, lab.lower, lab.upper)
+    shown = lab.press_postures[list(settings["demonstrations"])]
     agent = GoalBabblingAgent(model, choice, [np.random.default_rng(s) for s in seeds],
-                              lambda goals: goal_outcomes(goals, space, weight))
+                              lambda goals: goal_outcomes(goals, space, weight),
+                              maturation=maturation, demonstrations=shown)
     movements = np.zeros((n_seeds, n_rollouts, 7))
     outcomes = np.zeros((n_seeds, n_rollouts, 3))
     depths = np.zeros((n_seeds, n_rollouts, buttons.N_BUTTONS))
@@ -487,6 +577,7 @@ def _babble(settings, lab, seeds, progress):
     goals = np.full((n_seeds, n_rollouts, 3), np.nan)
     regions = np.full((n_seeds, n_rollouts), -1, dtype=np.int64)
     interest_log = np.zeros((n_seeds, n_rollouts, grid.n_regions))
+    maturity = np.ones((n_seeds, n_rollouts))
     for i in progress_bar(range(n_rollouts), n_rollouts,
                           f"goal babbling ({strategy}, {n_seeds} seeds at once)", progress,
                           unit="rollout"):
@@ -499,9 +590,11 @@ def _babble(settings, lab, seeds, progress):
             goals[:, i], regions[:, i] = goal, region
             if strategy == "learning_progress":
                 interest_log[:, i] = choice.values()
+        if maturation is not None:
+            maturity[:, i] = maturation.psi
     return {"movements": movements, "outcomes": outcomes, "depths": depths,
             "touched": touched, "pressed": pressed, "goals": goals, "regions": regions,
-            "interest": interest_log}
+            "interest": interest_log, "maturity": maturity}
 
 
 def presses_formed(result, rollouts):
@@ -537,6 +630,47 @@ def presses_formed(result, rollouts):
         movements = np.take_along_axis(result.movements, nearest[:, :, None], axis=1)
         out[i] = _press_each_button(lab, movements, seeds)
     return out
+
+
+RANGE_SHARES = (0.2, 0.3, 0.4, 0.5, 0.7, 1.0)
+"""The reachable ranges `touch_shares` measures by default, as shares of the way from
+the resting posture to the joints' limits."""
+
+
+def touch_shares(shares=RANGE_SHARES, n_movements=500, seed=0, threads=None):
+    """How often random movements reach the console when the arm's joint range is cut
+    down around its resting posture, as a maturing arm's is
+    (`icm.learners.maturation.JointRangeMaturation` with psi = share): for each
+    share, `n_movements` joint targets uniform in [home - share (home - lower), home
+    + share (upper - home)] are performed, and the share of them that end with the
+    finger on the console or a cap is returned, with the share that pressed a button.
+
+    Args:
+      shares: increasing shares of the range in (0, 1].
+      n_movements: random movements per share (>= 1).
+      seed: the seed of the movements (an integer >= 0, a Generator or None).
+      threads: as in `run_goal_babbling`.
+
+    Returns:
+      A dict {"shares": [...], "touched": [...], "pressed": [...]}, one value per share.
+    """
+    given, shares = shares, _validate.finite_array("shares", shares, ndim=1)
+    if not len(shares) or np.any(np.diff(shares) <= 0) or shares[0] <= 0 or shares[-1] > 1:
+        raise ValueError(f"shares must be increasing shares in (0, 1], got "
+                         f"{_validate.show(given)}")
+    n_movements = _validate.integer_at_least("n_movements", n_movements, 1)
+    rng = np.random.default_rng(_validate.root_seed("seed", seed))
+    if threads is not None:
+        _validate.integer_in_range("threads", threads, 1, _movements.MAX_THREADS)
+    lab = MovementLab(threads)
+    touched, pressed = [], []
+    for share in shares:
+        low = lab.home - share * (lab.home - lab.lower)
+        high = lab.home + share * (lab.upper - lab.home)
+        done = lab.perform(rng.uniform(low, high, (n_movements, len(lab.home))))
+        touched.append(float(done["touched"].mean()))
+        pressed.append(float((done["pressed"] >= 0).mean()))
+    return {"shares": shares.tolist(), "touched": touched, "pressed": pressed}
 
 
 PRESS_FAILURES = ("formed", "not pushed in far enough", "off the cap",

@@ -9,7 +9,8 @@ from icm.figures._common import TASK_COLOURS, Figure, new_figure, plot_mean_band
 from icm.figures.actor_critic import (figure3, figure4, figure6, figure6_grid,
                                       practice_figure)
 from icm.figures.buttons import draw_console, figure2, outcome_table_figure, trial_figure
-from icm.figures.forming_actions import (coverage_figure, goal_choice_figure,
+from icm.figures.forming_actions import (coverage_figure, coverage_maps_figure,
+                                        first_press_figure, goal_choice_figure,
                                         learned_presses_figure, presses_formed_figure,
                                         record_learned_press, test_error_figure)
 from icm.figures.goal_oriented import figure5, figure5_grid, mastery_figure

@@ -1,6 +1,7 @@
 """Figures of the chapter "Forming actions": test error of the three goal-babbling
-strategies, coverage of the console, where learning progress put its goals, and the
-learned presses rendered from the simulation."""
+strategies, coverage of the console, where learning progress put its goals, the
+learned presses rendered from the simulation, and, for the remedies (growing up,
+being shown), when each button was first pressed and where the finger went."""
 
 import matplotlib.patches
 import matplotlib.ticker
@@ -276,8 +277,8 @@ def presses_formed_figure(study, labels, roots="tuning", ax=None):
             raise ValueError(f"labels: the study did not run {label!r} on the {roots} "
                              f"root seeds {missing}")
     check_axes(ax)
-    if ax is None:  # taller than the others: the legend under the axes takes three rows
-        fig, ax = new_figure(width=6.8, height=4.4)
+    if ax is None:  # taller for more variants: the legend under the axes grows
+        fig, ax = new_figure(width=6.8, height=3.4 + 0.35 * ((len(labels) + 1) // 2))
     else:
         fig = ax.figure
     budgets = np.array(study["budgets"])
@@ -294,5 +295,178 @@ def presses_formed_figure(study, labels, roots="tuning", ax=None):
     ax.set_ylabel("share of seeds with all five presses")
     ax.set_ylim(0, 1.02)
     ax.set_xlim(budgets[0], budgets[-1])
-    legend_below(ax)  # over the curves, a legend would hide where they rise
+    legend_below(ax, ncols=2)  # under the axes: in them it covered the curves
     return fig
+
+
+REMEDY_COLOURS = {"random motor babbling": "#7f7f7f", "random goal babbling": "#1f77b4",
+                  "learning progress": "#e66101", "growing up": "#1b9e77",
+                  "shown button 2": "#c2a5cf", "shown buttons 0 and 4": "#9970ab",
+                  "shown all five": "#40004b"}
+"""One colour per condition of `icm.experiments.remedies_study` (the teacher's in
+purples, darker for more buttons shown)."""
+REMEDY_STYLES = {"random motor babbling": (":", "x"), "random goal babbling": ("-.", "^"),
+                 "learning progress": ("-", "o"), "growing up": ("--", "s"),
+                 "shown button 2": ("--", "D"), "shown buttons 0 and 4": ("-.", "v"),
+                 "shown all five": (":", "P")}
+"""Per condition, the line style and marker of its curves, so that no two conditions
+drawn together (the strategies with the growing arm; learning progress with each
+amount of teaching) differ by colour alone."""
+FIRST_PRESS_POINTS = 41
+"""The first-press curves are drawn at this many rollouts, evenly spaced on the
+logarithmic scale from 10 to the budget."""
+
+
+def _check_remedy_labels(study, labels):
+    from icm.experiments import remedies_study
+
+    remedies_study.check_study(study)
+    if isinstance(labels, str) or not isinstance(labels, (list, tuple)) or not labels:
+        raise _validate.ArgumentTypeError(f"labels must be a non-empty list of the study's "
+                                          f"conditions, got {_validate.show(labels)}")
+    for label in labels:
+        _validate.one_of("labels[i]", label, tuple(study["runs"]))
+    return remedies_study
+
+
+def _median_word(median):
+    return "never (median)" if np.isnan(median) else f"{median:.0f}"
+
+
+def first_press_figure(study, labels):
+    """When the robot first pressed each button itself: one panel per button, the share
+    of seeds whose own rollouts (demonstrations left out) had pressed that button,
+    and no other, by each rollout (logarithmic scale); the mean over the study's seeds
+    with its 95% band, one curve per condition, each with its colour, line style and
+    marker (`REMEDY_STYLES`). A button a condition's teacher showed has open markers
+    in that condition.
+
+    Args:
+      study: the study (`icm.experiments.remedies_study.load_study()`).
+      labels: the conditions to draw, a non-empty list of the study's labels.
+    """
+    import matplotlib.lines
+
+    remedies_study = _check_remedy_labels(study, labels)
+    n_rollouts = study["n_rollouts"]
+    x = np.unique(np.round(np.geomspace(10, n_rollouts, FIRST_PRESS_POINTS)))
+    fig, axes = new_figure(width=7.6, height=5.6, ncols=3, nrows=2, sharey=True)
+    axes = axes.ravel()
+    any_shown = False
+    firsts = {label: remedies_study.pooled(study, label)["first_press"] for label in labels}
+    for button, ax in enumerate(axes[:buttons.N_BUTTONS]):
+        for label in labels:
+            first = firsts[label][:, button]
+            done = ((first[:, None] > 0) & (first[:, None] <= x[None, :])).astype(float)
+            shown = button in remedies_study.shown_buttons(label)
+            any_shown |= shown
+            linestyle, marker = REMEDY_STYLES.get(label, ("-", None))
+            plot_mean_band(ax, done, REMEDY_COLOURS.get(label, "black"), label, x=x,
+                           linestyle=linestyle, marker=marker)
+            if shown:
+                ax.get_lines()[-1].set_markerfacecolor("white")
+        ax.set_title(f"button {button}")
+        ax.set_xscale("log")
+        ax.set_xlim(x[0], n_rollouts)
+        ax.set_ylim(0, 1.02)
+        ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator([10, 100, 1000]))
+        ax.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.yaxis.set_major_locator(matplotlib.ticker.FixedLocator([0, 0.5, 1]))
+    for ax in axes[3:5]:
+        ax.set_xlabel("rollouts")
+    fig.supylabel("share of seeds that had pressed it")
+    n_seeds = {len(first) for first in firsts.values()}
+    handles = []
+    for label in labels:
+        linestyle, marker = REMEDY_STYLES.get(label, ("-", None))
+        handles.append(matplotlib.lines.Line2D([], [], color=REMEDY_COLOURS.get(label, "black"),
+                                               linewidth=2, linestyle=linestyle,
+                                               marker=marker, label=label))
+    if any_shown:
+        handles.append(matplotlib.lines.Line2D([], [], color="#555555", linewidth=0,
+                                               marker="o", markerfacecolor="white",
+                                               label="open: a button\nthe teacher showed"))
+    axes[-1].axis("off")
+    axes[-1].legend(handles=handles, frameon=False, loc="center",
+                    title=f"{' or '.join(map(str, sorted(n_seeds)))} seeds each")
+    medians = "; ".join(
+        f"{label}: " + ", ".join(_median_word(m) for m in
+                                 _babbling.median_first_press(firsts[label], n_rollouts))
+        for label in labels)
+    return fig.describe(
+        "When the robot first pressed each button itself, one panel per button: the "
+        "share of seeds that had, against rollouts on a logarithmic scale. The median "
+        f"rollout of the first own press of buttons 0 to 4, per condition: {medians}.")
+
+
+def coverage_maps_figure(study, labels):
+    """Where the robot's own rollouts (demonstrations left out) ended with the finger on
+    the console or a cap, seen from above (robot at the bottom, its left on the
+    left): one row per condition, the first `remedies_study.EARLY` rollouts on the
+    left and all of them on the right; the count per square centimetre over all the
+    study's seeds, on a logarithmic colour scale shared by every map. Outlines: the
+    console and its caps, numbered under the maps; crosses: the press goals.
+
+    Args:
+      study: the study (`icm.experiments.remedies_study.load_study()`).
+      labels: the conditions to draw, a non-empty list of the study's labels.
+    """
+    import matplotlib.colors
+
+    remedies_study = _check_remedy_labels(study, labels)
+    x_edges, y_edges = remedies_study.coverage_edges()
+    pooled = {label: remedies_study.pooled(study, label) for label in labels}
+    counts = [pooled[label]["coverage"] for label in labels]
+    top = max(1, max(int(c[stretch].max()) for c in counts for stretch in c))
+    norm = matplotlib.colors.LogNorm(vmin=1, vmax=top)
+    fig, axes = new_figure(width=7.6, height=1.9 * len(labels) + 1.0, ncols=2,
+                           nrows=len(labels), squeeze=False)
+    geometry = _babbling.console_geometry()
+    centre, half = geometry["console_centre"], geometry["console_half"]
+    caps = geometry["caps"]
+    mesh = None
+    n_rollouts = study["n_rollouts"]
+    for row, label, count in zip(axes, labels, counts):
+        for ax, stretch in zip(row, ("early", "all")):
+            mesh = ax.pcolormesh(y_edges, x_edges, np.ma.masked_less(count[stretch], 1),
+                                 norm=norm, cmap="viridis", zorder=1)
+            ax.add_patch(matplotlib.patches.Rectangle(
+                (centre[1] - half[1], centre[0] - half[0]), 2 * half[1], 2 * half[0],
+                facecolor="none", edgecolor="#333333", linewidth=1, zorder=2))
+            for cap in caps:
+                ax.add_patch(matplotlib.patches.Circle(
+                    (cap[1], cap[0]), geometry["cap_radius"], facecolor="none",
+                    edgecolor="white", linewidth=0.8, zorder=2))
+            goals = geometry["press_goals"]
+            ax.scatter(goals[:, 1], goals[:, 0], marker="x", s=16, color="red",
+                       linewidths=1, zorder=3)
+            ax.set_xlim(centre[1] + 1.25 * half[1], centre[1] - 1.25 * half[1])
+            ax.set_ylim(centre[0] - 2.2 * half[0], centre[0] + 2.2 * half[0])
+            ax.set_aspect("equal")
+            ax.set_xticks(caps[:, 1], [str(b) for b in range(len(caps))])
+            ax.tick_params(axis="x", length=0)
+            ax.set_yticks([])
+            when = f"first {remedies_study.EARLY}" if stretch == "early" else \
+                f"all {n_rollouts}"
+            ax.set_title(f"{label}: {when}")
+    bar = fig.colorbar(mesh, ax=axes, location="bottom", shrink=0.7, aspect=30,
+                       label="rollouts ending in the square centimetre (log scale)")
+    bar.ax.xaxis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 3.0)))
+    bar.ax.xaxis.set_major_formatter(matplotlib.ticker.StrMethodFormatter("{x:g}"))
+    bar.ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    parts = []
+    for label in labels:
+        entry = pooled[label]
+        n_seeds = len(entry["first_press"])
+        shown = len(remedies_study.shown_buttons(label))
+        parts.append(
+            f"{label}: {int(entry['coverage']['early'].sum())} of the first "
+            f"{n_seeds * (remedies_study.EARLY - shown)} own rollouts of its {n_seeds} seeds "
+            f"ended on the console, {int(entry['coverage']['all'].sum())} of all "
+            f"{n_seeds * (n_rollouts - shown)}")
+    return fig.describe(
+        "Coverage maps of the console seen from above, the robot at the bottom and "
+        "buttons 0 to 4 from its left to its right: where the robot's own rollouts "
+        "ended with the finger on the console or a cap, early (left) and over the "
+        f"whole run (right). {'; '.join(parts)}.")

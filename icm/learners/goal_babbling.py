@@ -1,12 +1,14 @@
 """The goal-babbling agent (Rolf, Steil and Gienger 2010; SAGG-RIAC, Baranes and
 Oudeyer 2013): an interest model proposes a goal, a sensorimotor model turns it into
 a movement, and both learn from what the movement reached; explauto's agent loop
-(`produce`, then `perceive`), for many agents (rows) at once."""
+(`produce`, then `perceive`), for many agents (rows) at once, optionally with a body
+that grows (`icm.learners.maturation`) and a teacher's demonstrations."""
 
 import numpy as np
 
 from icm import _validate
 from icm.learners.goal_choice import RandomGoals, RegionProgress, SplittingRegionProgress
+from icm.learners.maturation import JointRangeMaturation
 from icm.learners.sensorimotor import NearestNeighbourInverse
 
 N_BOOTSTRAP = 20
@@ -17,12 +19,22 @@ needs outcomes to start from). Our choice; the paper has no goal babbling."""
 class GoalBabblingAgent:
     """Goal babbling for many agents (rows) at once, each with its own generator.
 
-    `produce` gives each row's next movement: for the first `n_bootstrap` rollouts,
-    and always without an interest model (random motor babbling), joint targets
-    uniform within the joints' ranges (7 numbers from the row's generator);
-    afterwards, a goal from the interest model (`goal_choice.sample`), turned into an
-    outcome by `goal_outcome`, and a movement for it from the sensorimotor model
-    (`inverse_model.explore`). `perceive` gives both what the movement reached.
+    `produce` gives each row's next movement: first the teacher's `demonstrations`,
+    one per rollout, the same for every row (no random number drawn); then, for
+    `n_bootstrap` rollouts, and always without an interest model (random motor
+    babbling), joint targets uniform within the joints' ranges (7 numbers from the
+    row's generator); afterwards, a goal from the interest model
+    (`goal_choice.sample`), turned into an outcome by `goal_outcome`, and a movement
+    for it from the sensorimotor model (`inverse_model.explore`). `perceive` gives
+    both what the movement reached: a demonstration enters the sensorimotor model's
+    memory like any movement, and the interest model learns nothing from it (it
+    had no goal).
+
+    With `maturation`, the joints' ranges are the row's reachable ranges now
+    (`maturation.bounds()`): random commands are uniform within them, the inverse
+    model's movements are clipped to them, and after each goal the maturation
+    learns the distance to it. A demonstration is performed as shown, whatever
+    the range (the teacher moves the arm).
 
     Args:
       inverse_model: a sensorimotor model (`icm.learners.sensorimotor`), with one
@@ -34,10 +46,14 @@ class GoalBabblingAgent:
       goal_outcome: a function from goals [rows, dims] to the outcomes they ask for
         [rows, n_outcome] (default: the goals themselves).
       n_bootstrap: random motor commands before the first goal (>= 1).
+      maturation: a `icm.learners.maturation.JointRangeMaturation` with one row per
+        agent, or None (the full ranges from the start).
+      demonstrations: the teacher's movements, an array [demonstration, joints]
+        within the joints' ranges, or None (no teacher).
     """
 
     def __init__(self, inverse_model, goal_choice, generators, goal_outcome=None,
-                 n_bootstrap=N_BOOTSTRAP):
+                 n_bootstrap=N_BOOTSTRAP, maturation=None, demonstrations=None):
         self.inverse_model = _validate.instance("inverse_model", inverse_model,
                                                 NearestNeighbourInverse)
         if goal_choice is not None:
@@ -53,6 +69,22 @@ class GoalBabblingAgent:
             _validate.instance(f"generators[{k}]", rng, np.random.Generator)
         self.goal_outcome = _validate.function("goal_outcome", goal_outcome) or (lambda g: g)
         self.n_bootstrap = _validate.integer_at_least("n_bootstrap", n_bootstrap, 1)
+        if maturation is not None:
+            _validate.instance("maturation", maturation, JointRangeMaturation,
+                               "a JointRangeMaturation or None")
+            if maturation.n_rows != inverse_model.n_rows:
+                raise ValueError(f"maturation must have one row per agent "
+                                 f"({inverse_model.n_rows}), got {maturation.n_rows}")
+        self.maturation = maturation
+        if demonstrations is None:
+            demonstrations = np.zeros((0, len(inverse_model.lower)))
+        demonstrations = _validate.finite_array("demonstrations", demonstrations, ndim=2)
+        if demonstrations.shape[1] != len(inverse_model.lower) or np.any(
+                (demonstrations < inverse_model.lower) | (demonstrations > inverse_model.upper)):
+            raise ValueError(f"demonstrations must be movements [demonstration, "
+                             f"{len(inverse_model.lower)}] within the joints' ranges, got "
+                             f"{_validate.show(demonstrations)}")
+        self.demonstrations = demonstrations
         self.n_produced = 0
         self._goal_outcomes = None
 
@@ -65,14 +97,25 @@ class GoalBabblingAgent:
         or None while babbling randomly, regions [rows] or None)."""
         model = self.inverse_model
         self.n_produced += 1
-        if self.goal_choice is None or self.n_produced <= self.n_bootstrap:
-            self._goal_outcomes = None
-            return (np.array([rng.uniform(model.lower, model.upper)
-                              for rng in self.generators]), None, None)
+        n_shown = len(self.demonstrations)
+        self._goal_outcomes = None
+        if self.n_produced <= n_shown:
+            shown = self.demonstrations[self.n_produced - 1]
+            return np.tile(shown, (self.n_rows, 1)), None, None
+        if self.maturation is None:
+            lower, upper = [model.lower] * self.n_rows, [model.upper] * self.n_rows
+        else:
+            lower, upper = self.maturation.bounds()
+        if self.goal_choice is None or self.n_produced <= n_shown + self.n_bootstrap:
+            return (np.array([rng.uniform(low, high) for rng, low, high
+                              in zip(self.generators, lower, upper)]), None, None)
         goals, regions = self.goal_choice.sample(self.generators)
         self._goal_outcomes = self.goal_outcome(goals)
         self._regions = regions
-        return model.explore(self._goal_outcomes, self.generators), goals, regions
+        movements = model.explore(self._goal_outcomes, self.generators)
+        if self.maturation is not None:
+            movements = self.maturation.clip(movements)
+        return movements, goals, regions
 
     def perceive(self, movements, outcomes):
         """Every row learns what its last movement reached: `movements` [rows, joints]
@@ -83,4 +126,6 @@ class GoalBabblingAgent:
             return None
         distances = np.sqrt(((self._goal_outcomes - outcomes) ** 2).sum(axis=1))
         self.goal_choice.update(self._regions, distances)
+        if self.maturation is not None:
+            self.maturation.update(distances)
         return distances

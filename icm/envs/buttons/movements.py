@@ -98,6 +98,11 @@ class MovementLab:
     Without `retract=True` the rollouts stop at the end of the hold, 40% of the
     steps sooner, and "depths" and "pressed" cover the reach and the hold.
 
+    `home` is the resting posture, `lower` and `upper` the joint ranges, and
+    `press_postures` [button, 7] the scripted press's lowest posture for each button
+    (`ButtonMotions.down`, the fingertip 2.5 cm below the cap's top, by inverse
+    kinematics): a movement to it presses that button, the teacher's demonstration.
+
     Args:
       threads: MjData instances for `mujoco.rollout` (its threads), 1 to
         `MAX_THREADS`; default `default_threads()`. The results do not depend on it.
@@ -120,7 +125,9 @@ class MovementLab:
         self.model = model
         arm = icub.Arm(physics)
         self.lower, self.upper = arm.lower.copy(), arm.upper.copy()
-        self.home = np.array(task.motions(physics).home)
+        motions = task.motions(physics)
+        self.home = np.array(motions.home)
+        self.press_postures = np.array(motions.down)
         self.arm_actuators = arm.actuator_index
         state = mujoco.mjtState.mjSTATE_FULLPHYSICS
         self.initial_state = np.empty(mujoco.mj_stateSize(model, state))

@@ -1,0 +1,395 @@
+"""The longer runs of "Growing up, and being shown", the second half of the chapter
+"Forming actions": the paper's two remedies for exploration that takes too long,
+maturational constraints and a teacher, against the three strategies, all on the same
+seeds and budget, kept in assets/remedies_study.json because they take minutes.
+
+`run_condition` runs one condition on one root seed with `run_goal_babbling` (and
+`run_formed_actions`); `main` writes the file (`python -m
+icm.experiments.remedies_study`, about an hour of CPU); `load_study` reads it; a
+test reruns the first seeds of some of it (the first k seeds of a root seed are the
+same in any larger run) and expects the same numbers.
+"""
+
+import json
+
+import numpy as np
+
+from icm import _validate
+from icm.envs import buttons
+from icm.envs._assets import ASSETS, asset_path
+from icm.experiments import goal_babbling, goal_babbling_study
+from icm.stats import PANEL_RESAMPLES, bootstrap_band
+
+STUDY_FILE = "remedies_study.json"
+"""The file in assets/ that holds the study."""
+CONDITIONS = {
+    "random motor babbling": {"strategy": "random_motor"},
+    "random goal babbling": {"strategy": "random_goal"},
+    "learning progress": {},
+    "growing up": {"maturation": "joint_range"},
+    "shown button 2": {"demonstrations": (2,)},
+    "shown buttons 0 and 4": {"demonstrations": (0, 4)},
+    "shown all five": {"demonstrations": (0, 1, 2, 3, 4)},
+}
+"""The conditions compared, by label: `run_goal_babbling` arguments that differ from
+its defaults (learning progress over fixed regions, no maturation, no teacher). One
+button shown is the middle one, the red button of the paper's experiment; two are the
+end buttons, farthest from the resting hand."""
+ROOTS = goal_babbling_study.TUNING_ROOTS + goal_babbling_study.HELD_OUT_ROOTS
+"""Root seeds on which every condition runs: those of `goal_babbling_study`, which no
+test uses (the maturation's settings were chosen on its tuning roots, the first two)."""
+N_SEEDS = 10
+"""Seeds per root seed."""
+BUDGETS = goal_babbling_study.BUDGETS
+"""Rollouts after which the presses formed so far are tested (`presses_formed`)."""
+EARLY = 200
+"""Coverage is also counted over the first this many rollouts."""
+COVERAGE_CELL = 0.01
+"""The side of a coverage map's cells (m), over the goal space's x and y."""
+TEACHING = ("shown button 2", "shown buttons 0 and 4", "shown all five")
+"""The conditions with a teacher, fewest buttons shown first."""
+REACH_MOVEMENTS = 1000
+"""Random movements per share of the joint range in the study's `touch_shares`."""
+REACH_SEED = 0
+"""Their seed."""
+
+
+def run_reach():
+    """How often random movements touch the console for each reachable range of
+    `goal_babbling.RANGE_SHARES` (`goal_babbling.touch_shares` with `REACH_MOVEMENTS`
+    movements per share, seed `REACH_SEED`): the study's "reach"."""
+    return goal_babbling.touch_shares(goal_babbling.RANGE_SHARES, REACH_MOVEMENTS, REACH_SEED)
+
+
+def coverage_edges():
+    """The edges of a coverage map's cells: (x edges, y edges), `COVERAGE_CELL` apart
+    over the goal space (`goal_babbling.GOAL_LOW` to `GOAL_HIGH`)."""
+    low, high = goal_babbling.GOAL_LOW, goal_babbling.GOAL_HIGH
+    return tuple(np.linspace(low[i], high[i], int(round((high[i] - low[i]) / COVERAGE_CELL)) + 1)
+                 for i in (0, 1))
+
+
+def coverage_counts(result, stop=None):
+    """How many of the robot's own rollouts (demonstrations left out) ended with the
+    finger on the console or a cap, per cell of the console seen from above, over
+    every seed of `result` and its first `stop` rollouts (all by default): an int
+    array [x cell, y cell] (`coverage_edges`)."""
+    stop = result.n_rollouts if stop is None else stop
+    start = result.n_demonstrations
+    points = result.outcomes[:, start:stop].reshape(-1, 3)
+    touched = result.touched[:, start:stop].reshape(-1)
+    counts, _, _ = np.histogram2d(points[touched, 0], points[touched, 1],
+                                  bins=coverage_edges())
+    return counts.astype(np.int64)
+
+
+def run_condition(label, root, n_seeds=N_SEEDS, progress=False):
+    """Runs one condition on the first `n_seeds` seeds of one root seed and returns its
+    entry of the study (the first k seeds of a root seed are the same in any larger
+    run, so a shorter rerun checks them).
+
+    Args:
+      label: a key of `CONDITIONS`.
+      root: the root seed (an integer >= 0).
+      n_seeds: seeds (>= 1).
+      progress: show progress bars.
+
+    Returns:
+      A dict: "pressed" [seed][budget][button] (0 or 1, budgets `BUDGETS`),
+      "first_press" [seed][button] (`GoalBabblingResult.first_presses`, -1 for
+      never), "test_error" [seed] (final), "red_first" [seed] (0 or 1) and
+      "as_scripted" [seed] (the goal-oriented learner on the formed presses, seeded
+      with the root seed), "maturity" [seed][budget] (the maturational clock at the
+      budgets), and "coverage" {"early": ..., "all": ...} (`coverage_counts` over
+      the first `EARLY` rollouts and over all, summed over the seeds).
+    """
+    label = _validate.one_of("label", label, tuple(CONDITIONS))
+    root = _validate.seed("root", root)
+    arguments = {"strategy": "learning_progress", **CONDITIONS[label]}
+    result = goal_babbling.run_goal_babbling(**arguments, n_seeds=n_seeds, seed=root,
+                                             progress=progress)
+    pressed = goal_babbling.presses_formed(result, BUDGETS)  # [budget, seed, button]
+    loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress)
+    return {"pressed": np.moveaxis(pressed, 0, 1).astype(int).tolist(),
+            "first_press": result.first_presses().tolist(),
+            "test_error": result.final_test_error().tolist(),
+            "red_first": loop.red_first().astype(int).tolist(),
+            "as_scripted": loop.as_scripted_per_seed.tolist(),
+            "maturity": result.maturity[:, np.array(BUDGETS) - 1].tolist(),
+            "coverage": {"early": coverage_counts(result, EARLY).tolist(),
+                         "all": coverage_counts(result).tolist()}}
+
+
+def run_study(progress=True, partial=None, save=None):
+    """Every condition on every root seed of `ROOTS`: {"budgets": [...], "n_seeds":
+    N_SEEDS, "n_rollouts": ..., "reach": `run_reach()`, "runs": {label: {root:
+    entry}}} (entries as `run_condition` returns them; roots as strings, as JSON keys
+    are).
+
+    Args:
+      progress: show progress bars.
+      partial: a study of the same budgets and seeds, whose entries are kept rather
+        than run again (to finish an interrupted study), or None.
+      save: None, or a function called with the study so far after every entry.
+    """
+    if BUDGETS[-1] != goal_babbling.DEFAULT_N_ROLLOUTS:
+        raise ValueError(f"BUDGETS must end at the default budget "
+                         f"({goal_babbling.DEFAULT_N_ROLLOUTS}), got {BUDGETS[-1]}")
+    study = {"budgets": list(BUDGETS), "n_seeds": N_SEEDS,
+             "n_rollouts": goal_babbling.DEFAULT_N_ROLLOUTS, "runs": {}}
+    keys = ("budgets", "n_seeds", "n_rollouts")
+    if partial is not None and {k: partial.get(k) for k in keys} != {k: study[k] for k in keys}:
+        raise ValueError("partial must be a study of the same budgets, seeds and rollouts")
+    study["reach"] = (partial or {}).get("reach") or run_reach()
+    for label in CONDITIONS:
+        study["runs"][label] = {}
+        for root in ROOTS:
+            kept = (partial or {}).get("runs", {}).get(label, {}).get(str(root))
+            study["runs"][label][str(root)] = kept if kept is not None else \
+                run_condition(label, root, progress=progress)
+            if save is not None:
+                save(study)
+    return study
+
+
+def load_study():
+    """The study as `run_study` returns it, read from assets/remedies_study.json."""
+    return json.loads(asset_path(STUDY_FILE).read_text())
+
+
+def main():
+    """Runs the study and writes assets/remedies_study.json, after every entry (a study
+    left unfinished there is finished, not started again)."""
+    path = ASSETS / STUDY_FILE
+    partial = json.loads(path.read_text()) if path.exists() else None
+    write = lambda study: path.write_text(json.dumps(study, separators=(",", ":")) + "\n")
+    write(run_study(partial=partial, save=write))
+    print(f"wrote {path}")
+
+
+def check_study(study):
+    """`study` if it is a study dict (as `load_study` returns it), else raises an
+    `ArgumentTypeError`."""
+    if not isinstance(study, dict) or not {"runs", "budgets", "n_seeds"} <= set(study):
+        raise _validate.ArgumentTypeError(f"study must be a study dict (from icm.experiments."
+                                          f"remedies_study.load_study), got "
+                                          f"{_validate.show(study)}")
+    return study
+
+
+def pooled(study, label, roots=None):
+    """One condition's entries over `roots` (default: every root seed it ran on), as
+    arrays with the seeds of all of them on the first axis: "pressed" [seed, budget,
+    button], "first_press" [seed, button], "test_error", "red_first", "as_scripted"
+    [seed], "maturity" [seed, budget], and "coverage" {"early": ..., "all": ...}
+    summed over the roots."""
+    check_study(study)
+    label = _validate.one_of("label", label, tuple(study["runs"]))
+    by_root = study["runs"][label]
+    roots = list(by_root) if roots is None else [str(r) for r in roots]
+    missing = [r for r in roots if r not in by_root]
+    if missing:
+        raise ValueError(f"roots: the study did not run {label!r} on {missing}")
+    entries = [by_root[r] for r in roots]
+    out = {key: np.concatenate([np.array(e[key]) for e in entries])
+           for key in ("pressed", "first_press", "test_error", "red_first", "as_scripted",
+                       "maturity")}
+    out["coverage"] = {stretch: sum(np.array(e["coverage"][stretch]) for e in entries)
+                       for stretch in ("early", "all")}
+    return out
+
+
+def shown_buttons(label):
+    """The buttons the teacher shows in condition `label` (a tuple, empty for none)."""
+    label = _validate.one_of("label", label, tuple(CONDITIONS))
+    return tuple(CONDITIONS[label].get("demonstrations", ()))
+
+
+def summary(study=None, roots=None):
+    """Per condition, over the seeds of `roots` (default all): a dict {label: {...}}
+    with "n_seeds", "all_pressed_share" (seeds with all five presses formed at the
+    default budget), "buttons_pressed" (mean formed, of 5), "others_pressed" (mean
+    formed among the buttons not shown, of as many), "test_error" (m), "red_first_share",
+    "as_scripted", "self_pressed" [button] (share of seeds whose own rollouts pressed
+    each button), "median_first_press" [button] (median rollout of the robot's first
+    own press, the seeds that never pressed counted as never: None when more than
+    half never did), and "maturity_full" (share of seeds whose clock reached 1)."""
+    study = load_study() if study is None else check_study(study)
+    out = {}
+    for label in study["runs"]:
+        entry = pooled(study, label, roots)
+        pressed = entry["pressed"][:, -1]  # [seed, button] at the default budget
+        others = [b for b in range(buttons.N_BUTTONS) if b not in shown_buttons(label)]
+        first = entry["first_press"]
+        median = goal_babbling.median_first_press(first, study["n_rollouts"])
+        out[label] = {
+            "n_seeds": len(pressed),
+            "all_pressed_share": float(pressed.all(axis=1).mean()),
+            "buttons_pressed": float(pressed.sum(axis=1).mean()),
+            "others_pressed": float(pressed[:, others].sum(axis=1).mean()) if others else None,
+            "test_error": float(entry["test_error"].mean()),
+            "red_first_share": float(entry["red_first"].mean()),
+            "as_scripted": float(entry["as_scripted"].mean()),
+            "self_pressed": (first > 0).mean(axis=0).tolist(),
+            "median_first_press": [None if np.isnan(m) else float(m) for m in median],
+            "maturity_full": float((entry["maturity"][:, -1] >= 1.0).mean())}
+    return out
+
+
+def comparison_table(study=None, roots=None):
+    """A Markdown table of `summary`: one row per condition.
+
+    Args:
+      study: the study (default `load_study()`).
+      roots: the root seeds pooled (default all).
+    """
+    rows = summary(study, roots)
+    header = " | ".join(f"button {b}" for b in range(buttons.N_BUTTONS))
+    lines = ["| condition | seeds | all five presses formed | presses formed (of 5) "
+             "| of the buttons not shown | test error, cm | red mastered first "
+             f"| rollouts to the robot's own first press (median): {header} |",
+             "|---|---|---|---|---|---|---|" + "---|" * buttons.N_BUTTONS]
+    for label, row in rows.items():
+        shown = shown_buttons(label)
+        others = ("none left" if row["others_pressed"] is None else
+                  f"{row['others_pressed']:.2f} of {buttons.N_BUTTONS - len(shown)}")
+        firsts = " | ".join("never" if m is None else f"{m:.0f}"
+                            for m in row["median_first_press"])
+        lines.append(f"| {label} | {row['n_seeds']} | {row['all_pressed_share']:.0%} "
+                     f"| {row['buttons_pressed']:.2f} | {others} "
+                     f"| {100 * row['test_error']:.2f} | {row['red_first_share']:.0%} "
+                     f"| {firsts} |")
+    return "\n".join(lines)
+
+
+PAIRED_MEASURES = ("all_pressed", "others_formed", "others_pressed_early", "test_error")
+"""What `paired_difference` compares: "all_pressed" (1 for a seed with all five presses
+formed at the default budget), "others_formed" (how many presses formed among the
+buttons the condition's teacher does not show), "others_pressed_early" (how many of
+those buttons the robot pressed itself within the first `EARLY` rollouts), and
+"test_error" (m)."""
+
+
+def seed_values(study, label, measure, others_of=None, roots=None):
+    """One number per seed of condition `label` (`PAIRED_MEASURES`), over `roots`
+    (default all); "the buttons not shown" are those of condition `others_of`
+    (default `label`)."""
+    measure = _validate.one_of("measure", measure, PAIRED_MEASURES)
+    shown = shown_buttons(label if others_of is None else others_of)
+    others = [b for b in range(buttons.N_BUTTONS) if b not in shown]
+    entry = pooled(study, label, roots)
+    pressed = entry["pressed"][:, -1]  # [seed, button] at the default budget
+    if measure == "all_pressed":
+        return pressed.all(axis=1).astype(float)
+    if measure == "others_formed":
+        return pressed[:, others].sum(axis=1).astype(float)
+    if measure == "others_pressed_early":
+        first = entry["first_press"][:, others]
+        return ((first > 0) & (first <= EARLY)).sum(axis=1).astype(float)
+    return entry["test_error"].astype(float)
+
+
+def paired_difference(study, label, baseline, measure, roots=None):
+    """The difference between two conditions, seed by seed (they run on the same
+    seeds), in one of `PAIRED_MEASURES` (the buttons not shown: those of `label`, in
+    both), with its 95% bootstrap band: (mean, low, high).
+
+    Args:
+      study: the study.
+      label, baseline: two conditions of the study.
+      measure: one of `PAIRED_MEASURES`.
+      roots: the root seeds pooled (default all).
+    """
+    a = seed_values(study, label, measure, label, roots)
+    b = seed_values(study, baseline, measure, label, roots)
+    mean, low, high = bootstrap_band((a - b)[:, None], resamples=PANEL_RESAMPLES)
+    return float(mean[0]), float(low[0]), float(high[0])
+
+
+VERDICTS = {"better": "clearly better", "worse": "clearly worse",
+            "no different": "no clear difference"}
+"""The words of a verdict of `verdicts`: "clearly" when the difference's bootstrap
+interval lies on one side of zero (for the test error, lower is better), "no clear
+difference" when it includes zero."""
+def first_press_comparison(study, label, baseline="learning progress"):
+    """A sentence comparing, button by button, when the robot first pressed each button
+    itself in condition `label` and in `baseline` (medians over every seed of the
+    study, as in `summary`), e.g. "button 0 at rollout 132 (153 with learning
+    progress alone), ...". The buttons the teacher shows in `label` are left out."""
+    rows = summary(study)
+    label = _validate.one_of("label", label, tuple(rows))
+    baseline = _validate.one_of("baseline", baseline, tuple(rows))
+    shown = shown_buttons(label)
+    word = lambda m: "never (median)" if m is None else f"rollout {m:.0f}"
+    parts = [f"button {b} at {word(rows[label]['median_first_press'][b])} "
+             f"({word(rows[baseline]['median_first_press'][b])} with {baseline} alone)"
+             for b in range(buttons.N_BUTTONS) if b not in shown]
+    return ", ".join(parts)
+
+
+def shown_first_presses(study=None, baseline="learning progress", roots=None):
+    """For each button a teacher shows in a condition of the study: when the robot first
+    pressed it itself (the median over the seeds of `roots`, default all, as in
+    `summary`), against `baseline`. A list of dicts {"label", "button", "median",
+    "baseline"} (a median None when more than half the seeds never pressed it), in
+    the order of `TEACHING` and of the buttons shown."""
+    rows = summary(study, roots)
+    baseline = _validate.one_of("baseline", baseline, tuple(rows))
+    return [{"label": label, "button": b, "median": rows[label]["median_first_press"][b],
+             "baseline": rows[baseline]["median_first_press"][b]}
+            for label in TEACHING if label in rows for b in shown_buttons(label)]
+
+
+def shown_sooner_sentence(study=None, roots=None):
+    """A sentence saying whether, with a teacher, the robot first pressed each shown
+    button itself sooner than learning progress alone (`shown_first_presses`): "sooner
+    in every case", or the cases where it was not."""
+    cases = shown_first_presses(study, roots=roots)
+    never = float("inf")
+    late = [c for c in cases if (never if c["median"] is None else c["median"])
+            >= (never if c["baseline"] is None else c["baseline"])]
+    if not late:
+        return (f"sooner than learning progress alone in all {len(cases)} cases (each "
+                f"button shown, in each condition with a teacher)")
+    word = lambda m: "never" if m is None else f"at rollout {m:.0f}"
+    return ("not sooner in " + "; ".join(
+        f"{c['label']}, button {c['button']} ({word(c['median'])}, against "
+        f"{word(c['baseline'])})" for c in late) + f", of {len(cases)} cases")
+
+
+REMEDY_KEYS = {"growing up": "grow", "shown button 2": "shown1",
+               "shown buttons 0 and 4": "shown2", "shown all five": "shown5"}
+"""The short names `verdicts` gives the remedies' numbers."""
+
+
+def verdicts(study=None, roots=None):
+    """The numbers and words the chapter's comparisons of the remedies are phrased
+    from, over the seeds of `roots` (default all): for each remedy (`REMEDY_KEYS`)
+    against learning progress alone, seed by seed, the difference in each of
+    `PAIRED_MEASURES` with its 95% bootstrap band ("{key}_{measure}", "..._low",
+    "..._high") and the words of `VERDICTS` saying whether the remedy did better, worse,
+    or no clearly different ("..._verdict"); the measures of the buttons not shown
+    are left out where the teacher shows all five. A dict {name: value}."""
+    study = load_study() if study is None else check_study(study)
+    out = {}
+    for label, key in REMEDY_KEYS.items():
+        for measure in PAIRED_MEASURES:
+            if measure.startswith("others") and len(shown_buttons(label)) == buttons.N_BUTTONS:
+                continue  # no button left unshown
+            mean, low, high = paired_difference(study, label, "learning progress", measure,
+                                                roots)
+            name = f"{key}_{measure}"
+            out[name], out[f"{name}_low"], out[f"{name}_high"] = mean, low, high
+            lower_is_better = measure == "test_error"
+            if low > 0:
+                verdict = "worse" if lower_is_better else "better"
+            elif high < 0:
+                verdict = "better" if lower_is_better else "worse"
+            else:
+                verdict = "no different"
+            out[f"{name}_verdict"] = VERDICTS[verdict]
+    return out
+
+
+if __name__ == "__main__":
+    main()
