@@ -106,17 +106,40 @@ def run_study(progress=True, partial=None, save=None):
     """
     study = {"budgets": list(BUDGETS), "n_seeds": N_SEEDS,
              "n_rollouts": goal_babbling.DEFAULT_N_ROLLOUTS, "runs": {}}
-    if partial is not None and {k: partial.get(k) for k in ("budgets", "n_seeds",
-                                                            "n_rollouts")} \
-            != {k: study[k] for k in ("budgets", "n_seeds", "n_rollouts")}:
-        raise ValueError("partial must be a study of the same budgets, seeds and rollouts")
-    for label in VARIANTS:
-        roots = TUNING_ROOTS + (HELD_OUT_ROOTS if label in HELD_OUT_VARIANTS else ())
+    plan = {label: TUNING_ROOTS + (HELD_OUT_ROOTS if label in HELD_OUT_VARIANTS else ())
+            for label in VARIANTS}
+    return fill_study(study, plan, run_variant, progress, partial, save)
+
+
+def fill_study(study, plan, run, progress=True, partial=None, save=None):
+    """Fills `study["runs"]` for every label and root seed of `plan` ({label: root
+    seeds}) with `run(label, root, progress=progress)`, in order, keeping the entries
+    that `partial` already holds; returns `study`. The shared loop of this module's
+    study and of `icm.experiments.remedies_study`'s.
+
+    Args:
+      study: the study to fill: a dict with "budgets", "n_seeds", "n_rollouts" and
+        "runs" (roots are kept as strings, as JSON keys are).
+      plan: {label: sequence of root seeds}.
+      run: the function that runs one entry.
+      progress: passed to `run`.
+      partial: a study of the same budgets, seeds and rollouts, or None.
+      save: None, or a function called with the study so far after every entry.
+
+    Raises:
+      ValueError: for a `partial` of other budgets, seeds or rollouts.
+    """
+    keys = ("budgets", "n_seeds", "n_rollouts")
+    if partial is not None and {k: partial.get(k) for k in keys} != {k: study[k] for k in keys}:
+        raise ValueError("partial must be a study of the same budgets, seeds and rollouts, "
+                         f"{ {k: study[k] for k in keys} }, got "
+                         f"{ {k: partial.get(k) for k in keys} }")
+    for label, roots in plan.items():
         study["runs"][label] = {}
         for root in roots:
             kept = (partial or {}).get("runs", {}).get(label, {}).get(str(root))
             study["runs"][label][str(root)] = kept if kept is not None else \
-                run_variant(label, root, progress=progress)
+                run(label, root, progress=progress)
             if save is not None:
                 save(study)
     return study

@@ -137,19 +137,9 @@ def run_study(progress=True, partial=None, save=None):
                          f"({goal_babbling.DEFAULT_N_ROLLOUTS}), got {BUDGETS[-1]}")
     study = {"budgets": list(BUDGETS), "n_seeds": N_SEEDS,
              "n_rollouts": goal_babbling.DEFAULT_N_ROLLOUTS, "runs": {}}
-    keys = ("budgets", "n_seeds", "n_rollouts")
-    if partial is not None and {k: partial.get(k) for k in keys} != {k: study[k] for k in keys}:
-        raise ValueError("partial must be a study of the same budgets, seeds and rollouts")
     study["reach"] = (partial or {}).get("reach") or run_reach()
-    for label in CONDITIONS:
-        study["runs"][label] = {}
-        for root in ROOTS:
-            kept = (partial or {}).get("runs", {}).get(label, {}).get(str(root))
-            study["runs"][label][str(root)] = kept if kept is not None else \
-                run_condition(label, root, progress=progress)
-            if save is not None:
-                save(study)
-    return study
+    return goal_babbling_study.fill_study(study, {label: ROOTS for label in CONDITIONS},
+                                          run_condition, progress, partial, save)
 
 
 def load_study():
