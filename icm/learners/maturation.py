@@ -48,7 +48,7 @@ class JointRangeMaturation:
     records the distance between the goal and what the movement reached; once the
     row has `window` of them, its competence progress over the last `window`
     (SAGG-RIAC's, as `icm.learners.goal_choice.competence_progress` measures it:
-    |mean of the newer half - mean of the older half| of minus the distances) is
+    abs(mean of the newer half - mean of the older half) of minus the distances) is
     compared with `plateau`: below it, the clock advances by `step`. A learner that
     still progresses within its body keeps it; one that no longer does grows.
 
