@@ -396,6 +396,10 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
     table = remedies_study.comparison_table(study)
     assert table.count("\n") == 1 + len(remedies_study.CONDITIONS)
     assert "| shown all five | 40 | " in table and "none left" in table
+    firsts = remedies_study.first_press_table(study)
+    assert firsts.count("\n") == 1 + len(remedies_study.CONDITIONS)
+    assert firsts.count("(shown)") == 1 + 2 + 5 and "| random motor babbling | never |" in firsts
+    assert all(line.count("|") == 7 for line in firsts.splitlines())  # condition and 5 buttons
     refused(lambda: remedies_study.verdicts({"runs": {}}), "study", "runs", "type")
     refused(lambda: remedies_study.paired_difference(study, "growing up", "learning progress",
                                                      "speed"), "measure", "'speed'", "value")

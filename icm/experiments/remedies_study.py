@@ -227,28 +227,47 @@ def summary(study=None, roots=None):
 
 
 def comparison_table(study=None, roots=None):
-    """A Markdown table of `summary`: one row per condition.
+    """A Markdown table of `summary`'s outcomes: one row per condition, with its seeds,
+    the share with all five presses formed, the presses formed (of all five, and of
+    the buttons its teacher did not show), the test error and the share with red
+    mastered first. `first_press_table` gives the first presses: two tables, each
+    narrow enough for a book page.
 
     Args:
       study: the study (default `load_study()`).
       roots: the root seeds pooled (default all).
     """
-    rows = summary(study, roots)
-    header = " | ".join(f"button {b}" for b in range(buttons.N_BUTTONS))
-    lines = ["| condition | seeds | all five presses formed | presses formed (of 5) "
-             "| of the buttons not shown | test error, cm | red mastered first "
-             f"| rollouts to the robot's own first press (median): {header} |",
-             "|---|---|---|---|---|---|---|" + "---|" * buttons.N_BUTTONS]
-    for label, row in rows.items():
+    lines = ["| condition | seeds | all five formed | presses formed (of 5) "
+             "| of the buttons not shown | test error, cm | red mastered first |",
+             "|---|---|---|---|---|---|---|"]
+    for label, row in summary(study, roots).items():
         shown = shown_buttons(label)
         others = ("none left" if row["others_pressed"] is None else
                   f"{row['others_pressed']:.2f} of {buttons.N_BUTTONS - len(shown)}")
-        firsts = " | ".join("never" if m is None else f"{m:.0f}"
-                            for m in row["median_first_press"])
         lines.append(f"| {label} | {row['n_seeds']} | {row['all_pressed_share']:.0%} "
                      f"| {row['buttons_pressed']:.2f} | {others} "
-                     f"| {100 * row['test_error']:.2f} | {row['red_first_share']:.0%} "
-                     f"| {firsts} |")
+                     f"| {100 * row['test_error']:.2f} | {row['red_first_share']:.0%} |")
+    return "\n".join(lines)
+
+
+def first_press_table(study=None, roots=None):
+    """A Markdown table of `summary`'s first presses: one row per condition, and per
+    button the median over the seeds of the rollout of the robot's own first press
+    ("never" where more than half the seeds never pressed it; "shown" marks a button
+    the condition's teacher showed).
+
+    Args:
+      study: the study (default `load_study()`).
+      roots: the root seeds pooled (default all).
+    """
+    header = " | ".join(f"button {b}" for b in range(buttons.N_BUTTONS))
+    lines = [f"| condition | {header} |", "|---|" + "---|" * buttons.N_BUTTONS]
+    for label, row in summary(study, roots).items():
+        shown = shown_buttons(label)
+        firsts = " | ".join(("never" if m is None else f"{m:.0f}")
+                            + (" (shown)" if b in shown else "")
+                            for b, m in enumerate(row["median_first_press"]))
+        lines.append(f"| {label} | {firsts} |")
     return "\n".join(lines)
 
 
