@@ -192,8 +192,16 @@ class BookClient(NotebookClient):
     def __init__(self, nb, path, stop, stall_seconds, cpu_limit, socket_folder, **kwargs):
         km = AsyncKernelManager(kernel_name=nb.metadata.get("kernelspec", {}).get(
             "name", "python3"), transport="ipc", ip=str(socket_folder / "kernel"))
+        # Every kernel is killed at the end, never asked to shut down: a finished
+        # notebook's kernel has nothing left to do, and one asked to shut down
+        # (ipykernel 7.4) may still run a handler that sends on a socket it has just
+        # closed, which tornado then logs as "Uncaught exception in ZMQStream
+        # callback ... ZMQError: Socket operation on non-socket" (seen here once in
+        # about a hundred builds of a one-cell notebook, which still succeeded). A
+        # kernel that stalls or runs away is killed too (async_execute_cell).
         super().__init__(nb, km=km, on_notebook_start=self._slice_channels,
-                         on_cell_execute=self._note_cell, **kwargs)
+                         on_cell_execute=self._note_cell, shutdown_kernel="immediate",
+                         **kwargs)
         self.path = path
         self.cell_index = None
         self.stop = stop
@@ -248,10 +256,10 @@ class BookClient(NotebookClient):
                         f"stalled (no output and {used - mark_cpu:.2f} s of CPU in the last "
                         f"{now - mark_time:.0f} s: the kernel is waiting, not computing)")
             if problem is not None:
-                # Killed, not asked to shut down: a kernel asked while it computes
-                # closes its sockets under the running cell, which then fails to send
-                # its reply (ZMQError: Socket operation on non-socket, in the log).
-                self.shutdown_kernel = "immediate"
+                # Killed (shutdown_kernel is "immediate"), not asked to shut down: a
+                # kernel asked while it computes closes its sockets under the running
+                # cell, which then fails to send its reply (ZMQError: Socket operation
+                # on non-socket, in the log).
                 # The cell's task and nbclient's pollers of this notebook's loop.
                 for other in asyncio.all_tasks():
                     if other is not asyncio.current_task():
