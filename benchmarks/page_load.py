@@ -25,7 +25,9 @@ BUDGET_MS = 2000
 """Every chapter interactive within 2 s of being opened, on this machine."""
 
 PANELS_DRAWN = """() => document.querySelectorAll('.icm-static-panel').length ==
-  (window.icmPanelTimes || []).length"""
+    Object.keys(window.icmPanels || {}).length"""
+"""True once every static panel of the page is drawn (icm.figures.static_panels); the
+browser tests wait on it too."""
 READY = """() => {
   const navigation = performance.getEntriesByType("navigation")[0];
   return Math.max(navigation.loadEventEnd, ...(window.icmPanelTimes || [0]));

@@ -12,7 +12,7 @@ from icm.envs import buttons
 from icm.experiments import goal_babbling as _babbling
 from icm.experiments.goal_babbling import GoalBabblingResult
 from icm.experiments.results import check_results
-from icm.figures._common import (LINESTYLES, MARKERS, check_axes, check_result, legend_below,
+from icm.figures._common import (LINESTYLES, MARKERS, check_result, figure_and_axes, legend_below,
                                  new_figure, plot_mean_band)
 
 _MADE_BY = "icm.experiments.run_goal_babbling"
@@ -276,11 +276,8 @@ def presses_formed_figure(study, labels, roots="tuning", ax=None):
         if missing:
             raise ValueError(f"labels: the study did not run {label!r} on the {roots} "
                              f"root seeds {missing}")
-    check_axes(ax)
-    if ax is None:  # taller for more variants: the legend under the axes grows
-        fig, ax = new_figure(width=6.8, height=3.4 + 0.35 * ((len(labels) + 1) // 2))
-    else:
-        fig = ax.figure
+    # Taller for more variants: the legend under the axes grows.
+    fig, ax = figure_and_axes(ax, width=6.8, height=3.4 + 0.35 * ((len(labels) + 1) // 2))
     budgets = np.array(study["budgets"])
     for i, label in enumerate(labels):
         runs = study["runs"][label]
