@@ -396,7 +396,10 @@ def test_a_live_panel_never_makes_the_notebook_client_write_on_the_shell_channel
         client.kc.shell_channel.send = lambda msg: (sent.append(msg["header"]["msg_type"]),
                                                     send(msg))[1]
 
-    client = NotebookClient(nb, timeout=300, kernel_name="python3",
+    # The Output case can itself lose the reply's wakeup: the wait then ends only at the
+    # timeout, where the reply is found (301 s of a test run here with 300). A minute
+    # is ample for these two small cells on a loaded machine.
+    client = NotebookClient(nb, timeout=60, kernel_name="python3",
                             on_notebook_start=spy_on_the_shell,
                             resources={"metadata": {"path": str(tmp_path)}})
     client.execute()
