@@ -377,11 +377,13 @@ MARK_CONTROLS = """() => {
   const article = document.querySelector(".bd-article");
   // Every control a reader could work: the natively interactive elements (even one
   // taken out of the Tab order with tabindex="-1", which must then fail the test) and
-  // any other element put into the Tab order.
+  // any other element put into the Tab order. A control inside a closed fold is
+  // reached once the fold is opened (checkVisibility: no closed <details> above it).
   const native = "a[href], button, input, select, textarea, summary";
   const controls = Array.from(article.querySelectorAll(native + ", [tabindex]"))
     .filter(e => (e.matches(native) || e.getAttribute("tabindex") !== "-1") && !e.disabled &&
-                 e.getClientRects().length > 0 && getComputedStyle(e).visibility !== "hidden");
+                 e.getClientRects().length > 0 && getComputedStyle(e).visibility !== "hidden" &&
+                 e.checkVisibility());
   controls.forEach((e, i) => e.dataset.icmKey = i);
   article.setAttribute("tabindex", "-1");  // Tab goes on from the article's start
   article.focus();

@@ -122,6 +122,14 @@ def test_no_result_or_setting_is_typed_in_a_chapter(path):
             f"  {number!r} in: {line[:110]}" for number, line in found))
 
 
+def test_no_result_or_setting_is_typed_in_the_preface():
+    # The preface cannot glue (it is not a notebook): it says what the chapters
+    # measure, and how long they take, in words.
+    found = typed_numbers((ROOT / "book" / "preface.md").read_text(), ALLOWED["*"])
+    assert found == [], "preface.md types numbers:\n" + "\n".join(
+        f"  {number!r} in: {line[:110]}" for number, line in found)
+
+
 def test_the_scanner_finds_typed_results_and_leaves_glued_ones():
     text = ("Red is mastered first in 97% of the 200 seeds, at trial {glue:text}`red:.1f`; "
             "see Figure 5 and section 4.1, and $k = 5$.\n> the paper's 50%\n")
