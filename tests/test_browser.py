@@ -375,6 +375,8 @@ def test_every_page_becomes_interactive(built_book):
 
 MARK_CONTROLS = """() => {
   const article = document.querySelector(".bd-article");
+  // Folds open, as a reader opens them: a link inside a fold must be reached too.
+  article.querySelectorAll("details").forEach(d => { d.open = true; });
   // Every control a reader could work: the natively interactive elements (even one
   // taken out of the Tab order with tabindex="-1", which must then fail the test) and
   // any other element put into the Tab order. A control inside a closed fold is

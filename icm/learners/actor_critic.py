@@ -293,8 +293,10 @@ class ActorCritic:
         reward = _validate.real("reward", reward)
         discount = _validate.in_closed_interval("discount", discount, 0.0, 1.0)
         gamma = self.gamma * discount
-        if self.td_form == "printed":  # equation 2 as printed: r + gamma * (V(s) - V(s'))
-            td_error = reward + gamma * (self.value(state) - self.value(next_state))
+        if self.td_form == "printed":
+            # equation 2 as printed: r + gamma * (V(s) - V(s'))
+            td_error = reward + gamma * (self.value(state)
+                                         - self.value(next_state))
         else:  # the standard TD error: r + gamma * V(s') - V(s)
             td_error = reward + gamma * self.value(next_state) - self.value(state)
         return _check_finite(td_error)
@@ -323,9 +325,11 @@ class ActorCritic:
             is not an integer in 0..n_actions-1, an external reward that is not a
             finite number, or a discount outside [0, 1].
         """
-        action, external_reward, discount = self._check_step(action, external_reward, discount)
+        action, external_reward, discount = self._check_step(
+            action, external_reward, discount)
         state = self.state(observation)
-        next_state = read_observation("next_observation", next_observation, self.state_keys)
+        next_state = read_observation("next_observation", next_observation,
+                                      self.state_keys)
         effect = self.effect(next_observation)
         if self.reward == "intrinsic":  # Figure 3b: the agent pays itself
             reward = self.internal_reward(state, action, effect)
