@@ -379,8 +379,8 @@ MARK_CONTROLS = """() => {
   article.querySelectorAll("details").forEach(d => { d.open = true; });
   // Every control a reader could work: the natively interactive elements (even one
   // taken out of the Tab order with tabindex="-1", which must then fail the test) and
-  // any other element put into the Tab order. A control inside a closed fold is
-  // reached once the fold is opened (checkVisibility: no closed <details> above it).
+  // any other element put into the Tab order, that the reader can see
+  // (checkVisibility: not inside a fold still closed, such as a solution's).
   const native = "a[href], button, input, select, textarea, summary";
   const controls = Array.from(article.querySelectorAll(native + ", [tabindex]"))
     .filter(e => (e.matches(native) || e.getAttribute("tabindex") !== "-1") && !e.disabled &&
