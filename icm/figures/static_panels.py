@@ -344,24 +344,21 @@ def sweep_panel(grid, cell=52):
              f"{', '.join(f'{v:g}' for v in spec.sliders['window'])}), each cell labelled "
              f"with its number")
     slider = f"The slider under it chooses the {spec.setting('new_task_factor').label}."
+    # Side by side where the page is wide enough (about cells + axis + legend each),
+    # else one below the other, each as wide as the column allows (the page's script
+    # reads usermeta.icmMinWidth).
+    wide = len(heatmaps) * (cell * len(spec.sliders["epsilon"]) + 170) + 20
+    body = {"title": _lines(title), "hconcat": heatmaps,
+            "resolve": {"scale": {"color": "independent"}},
+            "usermeta": {"icmMinWidth": wide, "icmMargin": 90}}
     if len(heatmaps) == 1:  # red first is the same everywhere: said, not drawn
         share = f"{100 * red_first.pop():.0f}%"
         said = (f"Red is mastered first by {share} of the seeds in every cell, at every "
                 f"{spec.setting('new_task_factor').label}")
-        body = {**heatmaps[0], "title": {
-            "text": _lines(title),
-            "subtitle": _lines(f"{said}. Each cell: the mean mastery gap (green - red, "
-                               f"trials).", 42)}}
+        body["title"] = {"text": _lines(title), "subtitle": _lines(said + ".", 36)}
         description = (f"{title}. A heatmap {cells}: the mean mastery gap, green minus "
                        f"red, in trials. {said}, so that share is not drawn. {slider}")
     else:
-        # Side by side where the page is wide enough (about 2 x (cells + axis +
-        # legend)), else one below the other (the page's script reads
-        # usermeta.icmMinWidth).
-        wide = 2 * (cell * len(spec.sliders["epsilon"]) + 170) + 20
-        body = {"title": _lines(title), "hconcat": heatmaps,
-                "resolve": {"scale": {"color": "independent"}},
-                "usermeta": {"icmMinWidth": wide, "icmMargin": 90}}
         description = (f"{title}. Two heatmaps {cells}: the mean mastery gap, green minus "
                        f"red, in trials, and the share of seeds that master red first. "
                        f"{slider}")
