@@ -318,8 +318,8 @@ def test_a_sweep_map_at_the_same_number_everywhere_is_said_not_drawn():
     one = static_panels.sweep_panel(grid)
     assert [view["layer"][0]["encoding"]["color"]["field"] for view in one.spec["hconcat"]] \
         == ["gap"]
-    assert "Red is mastered first by 100% of the seeds in every cell, at every " \
-        "share of the mean interest a new task gets" in " ".join(one.spec["title"]["subtitle"])
+    assert "Red mastered first: 100% of the seeds in every cell, at every share of " \
+        "the mean interest a new task gets." in " ".join(one.spec["title"])
     cells = tuple({**c, "red_first": 0.5 + 0.1 * (i % 3)} for i, c in enumerate(grid.cells))
     two = static_panels.sweep_panel(panel_data.PanelGrid("figure5", grid.settings,
                                                          grid.curves, cells))

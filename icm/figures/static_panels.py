@@ -287,8 +287,8 @@ def sweep_panel(grid, cell=52):
     heatmaps over epsilon and window, the mean mastery gap (green - red, trials) and
     the share of seeds that master red first, each cell labelled with its number.
     A heatmap whose every cell, at every setting of the slider, holds the same number
-    says nothing: the share of red first is then said in the panel's subtitle instead
-    of drawn (in the book's grid, every seed of every setting masters red first).
+    says nothing: the share of red first is then said in the panel's title instead of
+    drawn (in the book's grid, every seed of every setting masters red first).
 
     Args:
       grid: the "figure5" `PanelGrid` (the sweep reuses its runs).
@@ -353,9 +353,9 @@ def sweep_panel(grid, cell=52):
             "usermeta": {"icmMinWidth": wide, "icmMargin": 90}}
     if len(heatmaps) == 1:  # red first is the same everywhere: said, not drawn
         share = f"{100 * red_first.pop():.0f}%"
-        said = (f"Red is mastered first by {share} of the seeds in every cell, at every "
+        said = (f"Red mastered first: {share} of the seeds in every cell, at every "
                 f"{spec.setting('new_task_factor').label}")
-        body["title"] = {"text": _lines(title), "subtitle": _lines(said + ".", 36)}
+        body["title"] = _lines(title) + _lines(said + ".")
         description = (f"{title}. A heatmap {cells}: the mean mastery gap, green minus "
                        f"red, in trials. {said}, so that share is not drawn. {slider}")
     else:
