@@ -312,6 +312,23 @@ def _grid_without_runs(name):
     return panel_data.PanelGrid(name, settings, tuple(curves for _ in settings), cells)
 
 
+def test_a_sweep_map_at_the_same_number_everywhere_is_said_not_drawn():
+    import altair as alt  # a test requirement (requirements.txt)
+    grid = _grid_without_runs("figure5")  # red first in every seed of every setting
+    one = static_panels.sweep_panel(grid)
+    assert [view["layer"][0]["encoding"]["color"]["field"] for view in one.spec["hconcat"]] \
+        == ["gap"]
+    assert "Red mastered first: 100% of the seeds in every cell, at every share of " \
+        "the mean interest a new task gets." in " ".join(one.spec["title"])
+    cells = tuple({**c, "red_first": 0.5 + 0.1 * (i % 3)} for i, c in enumerate(grid.cells))
+    two = static_panels.sweep_panel(panel_data.PanelGrid("figure5", grid.settings,
+                                                         grid.curves, cells))
+    assert [view["layer"][0]["encoding"]["color"]["field"] for view in two.spec["hconcat"]] \
+        == ["gap", "red_first_percent"]
+    for panel in (one, two):
+        alt.HConcatChart.from_dict({k: v for k, v in panel.spec.items() if k != "$schema"})
+
+
 def _positions(binding):
     """The values an HTML range input can take: min + k * step, up to max.
 

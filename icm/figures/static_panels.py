@@ -90,16 +90,17 @@ _EMBED = """(function () {
     if (spec.hconcat && wide && element.clientWidth < wide) {  // a phone: one below the other
       spec.vconcat = spec.hconcat;
       delete spec.hconcat;
-      var room = element.clientWidth - (spec.usermeta.icmMargin || 0);
-      spec.config = Object.assign({}, spec.config);  // legends under the maps
-      spec.config.legend = Object.assign({}, spec.config.legend,
-                                         {orient: "bottom", gradientLength: room});
-      spec.vconcat.forEach(function (view) {  // and each as wide as the column allows
+      var room = element.clientWidth - (spec.usermeta.icmMargin || 0), narrowest = room;
+      spec.vconcat.forEach(function (view) {  // each as wide as the column allows
         if (view.width > room) {
           view.height = Math.round(view.height * room / view.width);
           view.width = room;
         }
+        narrowest = Math.min(narrowest, view.width);
       });
+      spec.config = Object.assign({}, spec.config);  // legends under the maps, as long
+      spec.config.legend = Object.assign({}, spec.config.legend,  // as the maps are wide
+                                         {orient: "bottom", gradientLength: narrowest});
     }
     vegaEmbed("#" + id, spec, {actions: false, renderer: "svg"}).then(function (result) {
       (window.icmPanels = window.icmPanels || {})[id] = result.view;
@@ -285,6 +286,9 @@ def sweep_panel(grid, cell=52):
     """The static epsilon x window sweep: for the new-task factor its slider shows, two
     heatmaps over epsilon and window, the mean mastery gap (green - red, trials) and
     the share of seeds that master red first, each cell labelled with its number.
+    A heatmap whose every cell, at every setting of the slider, holds the same number
+    says nothing: the share of red first is then said in the panel's title instead of
+    drawn (in the book's grid, every seed of every setting masters red first).
 
     Args:
       grid: the "figure5" `PanelGrid` (the sweep reuses its runs).
@@ -303,10 +307,12 @@ def sweep_panel(grid, cell=52):
             "y": {"field": "window", "type": "ordinal", "title": "window k",
                   "sort": "descending"}}
     gaps = [r["gap"] for r in rows if r["gap"] is not None]
+    maps = [("gap", "Mean mastery gap (green - red, trials)", [min(gaps), max(gaps)], ".1f")]
+    red_first = {r["red_first"] for r in rows}
+    if len(red_first) > 1:
+        maps.append(("red_first_percent", "Seeds mastering red first (%)", [0, 100], ".0f"))
     heatmaps = []
-    for field, title, domain, fmt in (
-            ("gap", "Mean mastery gap (green - red, trials)", [min(gaps), max(gaps)], ".1f"),
-            ("red_first_percent", "Seeds mastering red first (%)", [0, 100], ".0f")):
+    for field, title, domain, fmt in maps:
         tooltip = [{"field": "epsilon", "type": "ordinal"},
                    {"field": "window", "type": "ordinal"},
                    {"field": field, "type": "quantitative", "format": fmt}]
@@ -331,20 +337,30 @@ def sweep_panel(grid, cell=52):
                          "layer": [rect, text]})
     title = (f"The epsilon x window sweep, {spec.fixed['n_seeds']} seeds per cell, "
              f"{spec.fixed['n_trials']} trials")
-    # Side by side where the page is wide enough (about 2 x (cells + axis + legend)),
-    # else one below the other (the page's script reads usermeta.icmMinWidth).
-    wide = 2 * (cell * len(spec.sliders["epsilon"]) + 170) + 20
+    transform = [{"filter": "abs(datum.new_task_factor - new_task_factor) < 1e-6"},
+                 {"calculate": "100 * datum.red_first", "as": "red_first_percent"}]
+    cells = (f"over epsilon (columns: {', '.join(f'{v:g}' for v in spec.sliders['epsilon'])})"
+             f" and the window k (rows: "
+             f"{', '.join(f'{v:g}' for v in spec.sliders['window'])}), each cell labelled "
+             f"with its number")
+    slider = f"The slider under it chooses the {spec.setting('new_task_factor').label}."
+    # Side by side where the page is wide enough (about cells + axis + legend each),
+    # else one below the other, each as wide as the column allows (the page's script
+    # reads usermeta.icmMinWidth).
+    wide = len(heatmaps) * (cell * len(spec.sliders["epsilon"]) + 170) + 20
     body = {"title": _lines(title), "hconcat": heatmaps,
             "resolve": {"scale": {"color": "independent"}},
             "usermeta": {"icmMinWidth": wide, "icmMargin": 90}}
-    transform = [{"filter": "abs(datum.new_task_factor - new_task_factor) < 1e-6"},
-                 {"calculate": "100 * datum.red_first", "as": "red_first_percent"}]
-    description = (
-        f"{title}. Two heatmaps over epsilon (columns: "
-        f"{', '.join(f'{v:g}' for v in spec.sliders['epsilon'])}) and the window k (rows: "
-        f"{', '.join(f'{v:g}' for v in spec.sliders['window'])}), each cell labelled with "
-        f"its number: the mean mastery gap, green minus red, in trials, and the share of "
-        f"seeds that master red first. The slider under them chooses the "
-        f"{spec.setting('new_task_factor').label}.")
+    if len(heatmaps) == 1:  # red first is the same everywhere: said, not drawn
+        share = f"{100 * red_first.pop():.0f}%"
+        said = (f"Red mastered first: {share} of the seeds in every cell, at every "
+                f"{spec.setting('new_task_factor').label}")
+        body["title"] = _lines(title) + _lines(said + ".")
+        description = (f"{title}. A heatmap {cells}: the mean mastery gap, green minus "
+                       f"red, in trials. {said}, so that share is not drawn. {slider}")
+    else:
+        description = (f"{title}. Two heatmaps {cells}: the mean mastery gap, green minus "
+                       f"red, in trials, and the share of seeds that master red first. "
+                       f"{slider}")
     return StaticPanel(_specification(rows, params, transform, body, description), title,
                        _print_note(spec, params))
