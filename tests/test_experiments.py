@@ -237,7 +237,7 @@ def test_the_trace_is_the_run_press_by_press():
             n_seeds, n_trials, 5) / run.settings["presses_per_trial"], run.button_share)
     # "most interesting": the pressed button's predicted task is the only best one.
     for row in trace[trace.why == "most interesting"].itertuples():
-        worth = [{"R": row.red, "G": row.green, ".": row.nothing}[p]
+        worth = [{"R": row.red, "G": row.green, "-": row.nothing}[p]
                  for p in row.predicts]
         assert worth[row.button] == max(worth) and worth.count(max(worth)) == 1
     assert set(trace.why) <= {"most interesting", "tie", "random"}

@@ -421,8 +421,8 @@ def trace(n_trials=2, n_seeds=1, seed=0):
     (the library's settings), press by press: what the learner knew, chose and
     learned. Row k is the same run as seed k of `run_goal_oriented` (a test checks it).
 
-    Lights and predictions are written one letter a button: "R" red, "G" green, "."
-    off; under `predicts`, the box the predictor expects the press to open ("." none),
+    Lights and predictions are written one letter a button: "R" red, "G" green, "-"
+    off; under `predicts`, the box the predictor expects the press to open ("-" none),
     so that it is right about a layout where `predicts` reads like `lights`.
 
     Returns:
@@ -449,8 +449,8 @@ def trace(n_trials=2, n_seeds=1, seed=0):
         [s[1] for s in seeds], np.array(buttons.layouts()), env.effects, env.n_actions,
         settings=learner)
     agent.streams = _RecordedDraws(agent.streams)
-    lights = np.array([".", "R", "G"])[np.array(buttons.layouts())]  # by light value
-    letters = np.array([".", "G", "R"])  # by effect index
+    lights = np.array(["-", "R", "G"])[np.array(buttons.layouts())]  # by light value
+    letters = np.array(["-", "G", "R"])  # by effect index
     effects = np.array(buttons.EFFECTS)
     truth = effects[buttons.outcome_table().reshape(-1)]  # [pair, box]
     names = ["nothing", "green", "red"]  # by effect index
