@@ -208,3 +208,40 @@ def test_the_fewest_seeds_in_words_stay_true():
             in_seeds(bad)
     with pytest.raises(TypeError, match="lowest"):
         in_seeds("all")
+
+
+def test_the_trace_is_the_run_press_by_press():
+    """`goal_oriented.trace` records seed k of `run_goal_oriented`: the interest the
+    run keeps after a trial is the one the next trial's first press sees, the boxes
+    opened and the buttons pressed are the run's, and the predictor's wrong pairs
+    after a trial's last press are the run's prediction error."""
+    from icm.experiments import goal_oriented
+
+    n_seeds, n_trials = 4, 12
+    run = run_goal_oriented(n_seeds=n_seeds, n_trials=n_trials, seed=7, progress=False)
+    trace = goal_oriented.trace(n_trials=n_trials, n_seeds=n_seeds, seed=7)
+    assert len(trace) == n_seeds * n_trials * run.settings["presses_per_trial"]
+    first = trace[trace.press == 1].sort_values(["seed", "trial"])
+    for i, task in enumerate(("red", "green")):
+        seen = first[task].to_numpy().reshape(n_seeds, n_trials)[:, 1:]
+        np.testing.assert_array_equal(seen, run.interest[:, :-1, i])
+        opened = (trace.opened == task).groupby([trace.seed, trace.trial]).sum()
+        np.testing.assert_array_equal(opened.to_numpy().reshape(n_seeds, n_trials),
+                                      run.practice[:, :, i])
+        last = trace[trace.press == run.settings["presses_per_trial"]]
+        wrong = last[f"wrong_{task}"].to_numpy().reshape(n_seeds, n_trials) / 20
+        np.testing.assert_allclose(wrong, run.prediction_error[:, :, i])
+    pressed = trace.groupby(["seed", "trial"]).button.value_counts().unstack(fill_value=0)
+    np.testing.assert_array_equal(
+        pressed.reindex(columns=range(5), fill_value=0).to_numpy().reshape(
+            n_seeds, n_trials, 5) / run.settings["presses_per_trial"], run.button_share)
+    # "most interesting": the pressed button's predicted task is the only best one.
+    for row in trace[trace.why == "most interesting"].itertuples():
+        worth = [{"R": row.red, "G": row.green, "-": row.nothing}[p]
+                 for p in row.predicts]
+        assert worth[row.button] == max(worth) and worth.count(max(worth)) == 1
+    assert set(trace.why) <= {"most interesting", "tie", "random"}
+    assert (trace.error[trace.opened == "nothing"] >= 0).all()
+    for bad in ({"n_trials": 0}, {"n_seeds": 1.5}, {"seed": -1}):
+        with pytest.raises(ValueError, match=next(iter(bad))):
+            goal_oriented.trace(**bad)

@@ -405,6 +405,81 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progres
                               action_interest)
 
 
+class _RecordedDraws:
+    """A learner's streams that keep the last numbers drawn (`trace` reads them)."""
+
+    def __init__(self, streams):
+        self.streams, self.last = streams, None
+
+    def draw(self, rows=None, k=1):
+        self.last = self.streams.draw(rows, k).copy()
+        return self.last
+
+
+def trace(n_trials=2, n_seeds=1, seed=0):
+    """The first `n_trials` trials of `run_goal_oriented(n_seeds=n_seeds, seed=seed)`
+    (the library's settings), press by press: what the learner knew, chose and
+    learned. Row k is the same run as seed k of `run_goal_oriented` (a test checks it).
+
+    Lights and predictions are written one letter a button: "R" red, "G" green, "-"
+    off; under `predicts`, the box the predictor expects the press to open ("-" none),
+    so that it is right about a layout where `predicts` reads like `lights`.
+
+    Returns:
+      A pandas DataFrame, one row per press: `seed`, `trial` and `press` (from 1);
+      `lights`; `predicts`; the interest of each task before the press (`nothing`,
+      `red`, `green`); `button`, the button pressed; `why`: "most interesting", "tie"
+      (the most interesting buttons tie, one is drawn at random) or "random" (an
+      epsilon press); `opened`, the task that happened, whose history gets `error`,
+      the prediction error; `wrong_red`, `wrong_green`: after the press, of the 20
+      (layout, button) pairs, those whose box the predictor gets wrong (0: mastered).
+
+    Raises:
+      ValueError: for an argument `run_goal_oriented` refuses.
+    """
+    import pandas as pd  # here: pandas is slow to import
+
+    learner = goal_oriented.GoalOrientedSettings()
+    settings = _check_run_arguments(n_seeds, n_trials, buttons.DEFAULT_PRESSES_PER_TRIAL,
+                                    buttons.DEFAULT_RED_BUTTON, False, False, seed,
+                                    learner)
+    seeds = run_seeds(settings["seed"], settings["n_seeds"], 2)
+    env = buttons.ButtonConsoleBatch([s[0] for s in seeds])
+    agent = goal_oriented.GoalOrientedBatch(
+        [s[1] for s in seeds], np.array(buttons.layouts()), env.effects, env.n_actions,
+        settings=learner)
+    agent.streams = _RecordedDraws(agent.streams)
+    lights = np.array(["-", "R", "G"])[np.array(buttons.layouts())]  # by light value
+    letters = np.array(["-", "G", "R"])  # by effect index
+    effects = np.array(buttons.EFFECTS)
+    truth = effects[buttons.outcome_table().reshape(-1)]  # [pair, box]
+    names = ["nothing", "green", "red"]  # by effect index
+    rows, n = [], len(env)
+    for trial in range(1, n_trials + 1):
+        layout = env.new_trials()
+        for press in range(1, buttons.DEFAULT_PRESSES_PER_TRIAL + 1):
+            interest = agent.interest.values().copy()
+            predicted = agent.predicted_effects(layout)
+            values = agent.action_interests(layout)
+            chosen = agent.select_actions(layout)
+            ties = (values == values.max(axis=1, keepdims=True)).sum(axis=1) > 1
+            explore = agent.streams.last[:, 0] < agent.epsilon
+            why = np.where(explore, "random", np.where(ties, "tie", "most interesting"))
+            observed = env.press(chosen)
+            errors = agent.learn(layout, chosen, observed)
+            wrong = (effects[agent.predictor.effect] != truth).sum(axis=1)
+            for k in range(n):
+                rows.append({
+                    "seed": k, "trial": trial, "press": press,
+                    "lights": "".join(lights[layout[k]]),
+                    "predicts": "".join(letters[predicted[k]]),
+                    "nothing": interest[k, 0], "red": interest[k, 2],
+                    "green": interest[k, 1], "button": int(chosen[k]), "why": why[k],
+                    "opened": names[observed[k]], "error": float(errors[k]),
+                    "wrong_red": int(wrong[k, 0]), "wrong_green": int(wrong[k, 1])})
+    return pd.DataFrame(rows).sort_values(["seed", "trial", "press"], ignore_index=True)
+
+
 def comparison_table(results):
     """A Markdown table of the numbers that tell runs apart, one column per run.
 
