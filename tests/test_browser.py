@@ -116,6 +116,7 @@ def browser_pages(built_book):
                         "expected_sliders": expected_sliders(path.read_text()),
                         "math": page.locator("mjx-container").count(),
                         "files": sorted({str(_file_of(url)) for url in files}),
+                        "code_scrolling": page.evaluate(CODE_SCROLLING),
                     })
                     # axe-core last: it is not the book's, and it reads the page as it is.
                     page.add_script_tag(path=str(AXE))
@@ -179,6 +180,57 @@ OVERFLOWING = """() => {
   }
   return out;
 }"""
+
+
+CODE_SCROLLING = """() => {
+  // Code blocks (a cell's input or output, a code block of the text) that scroll
+  // sideways: a reader sees their lines cut at the block's edge ("unless you chose
+  // otherw"). Blocks in a closed fold are not shown, so not measured.
+  const article = document.querySelector(".bd-article");
+  if (!article) { return []; }
+  const out = [];
+  for (const pre of article.querySelectorAll("pre")) {
+    const box = pre.getBoundingClientRect();
+    if (box.width === 0 || box.height === 0) { continue; }
+    // The block itself, or the box around it (a cell's output area), scrolls.
+    const scrolling = [pre, pre.parentElement, pre.closest(".cell_output, .output")]
+      .filter(e => e && e.scrollWidth > e.clientWidth + 1 &&
+              ["auto", "scroll"].includes(getComputedStyle(e).overflowX));
+    if (!scrolling.length) { continue; }
+    const style = getComputedStyle(pre);
+    const probe = document.createElement("span");  // the width of a character here
+    probe.textContent = "0".repeat(100);
+    pre.appendChild(probe);
+    const character = probe.getBoundingClientRect().width / 100;
+    probe.remove();
+    const inner = pre.clientWidth - parseFloat(style.paddingLeft) - parseFloat(style.paddingRight);
+    const longest = pre.textContent.split("\\n").reduce((a, b) => (b.length > a.length ? b : a), "");
+    out.push({kind: pre.closest(".cell_output, .output") ? "output"
+                    : pre.closest(".cell_input, .cell") ? "input" : "code block",
+              fits: Math.floor(inner / character), longest: longest.length,
+              line: longest.slice(0, 100)});
+  }
+  return out;
+}"""
+
+
+@pytest.mark.xfail(strict=False, reason="62 code blocks scroll sideways at 1366 px today "
+                   "(issue 26); the chapters' rewrite makes their lines fit. Remove this "
+                   "mark once it is merged.")
+def test_no_code_block_scrolls_sideways_at_laptop_width(browser_pages, capsys):
+    # At 1366 px, every line of a code cell, of its output and of a code block in the
+    # text fits its block (82 to 86 characters in the text column, fewer in a box).
+    found = {name: browser_pages[name]["laptop"]["code_scrolling"] for name in toc_files()}
+    found = {name: blocks for name, blocks in found.items() if blocks}
+    if found:
+        with capsys.disabled():
+            print(f"\ncode blocks that scroll sideways at 1366 px: "
+                  f"{sum(map(len, found.values()))}; " + "; ".join(
+                      f"{name.split('/')[-1]} {len(blocks)} (fit "
+                      f"{'/'.join(map(str, sorted({b['fits'] for b in blocks})))} characters)"
+                      for name, blocks in found.items()))
+    assert found == {}, {name: [(b["kind"], b["longest"], b["fits"], b["line"][:60])
+                                for b in blocks] for name, blocks in found.items()}
 
 
 @pytest.mark.parametrize("device", WIDTHS)
@@ -269,7 +321,8 @@ def _png_measures(built_book, page, src):
     path = (built_book / page).parent / src
     text = Image.open(path).text
     return {key: float(text[key]) for key in ("icm:smallest-text-px", "icm:legend-overlaps",
-                                              "icm:text-overlaps")} if text else {}
+                                              "icm:text-overlaps", "icm:text-outside-box")
+            } if text else {}
 
 
 def test_no_text_in_a_figure_is_smaller_than_the_captions(browser_pages, built_book):
@@ -297,13 +350,15 @@ def test_no_text_in_a_figure_is_smaller_than_the_captions(browser_pages, built_b
     assert too_small == [], (caption, sorted(too_small)[:10])
 
 
-def test_no_legend_covers_data_and_no_text_in_a_figure_overlaps(browser_pages, built_book):
+def test_no_legend_covers_data_and_no_text_in_a_figure_overlaps_or_leaves_its_box(
+        browser_pages, built_book):
     for name in toc_files():
         for image in browser_pages[name]["laptop"]["figures"]:
             measures = _png_measures(built_book, f"{name}.html", image["src"])
             if measures:
                 assert measures["icm:legend-overlaps"] == 0, (name, image["alt"][:80])
                 assert measures["icm:text-overlaps"] == 0, (name, image["alt"][:80])
+                assert measures["icm:text-outside-box"] == 0, (name, image["alt"][:80])
 
 
 PROGRESS = re.compile(r"\d+%\|[^|]*\|\s*\d+/\d+|\d+(\.\d+)?(it|[a-z]+)/s\]|"
