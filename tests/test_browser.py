@@ -217,18 +217,16 @@ CODE_SCROLLING = """() => {
 @pytest.mark.xfail(strict=False, reason="62 code blocks scroll sideways at 1366 px today "
                    "(issue 26); the chapters' rewrite makes their lines fit. Remove this "
                    "mark once it is merged.")
-def test_no_code_block_scrolls_sideways_at_laptop_width(browser_pages, capsys):
+def test_no_code_block_scrolls_sideways_at_laptop_width(browser_pages, note):
     # At 1366 px, every line of a code cell, of its output and of a code block in the
     # text fits its block (82 to 86 characters in the text column, fewer in a box).
     found = {name: browser_pages[name]["laptop"]["code_scrolling"] for name in toc_files()}
     found = {name: blocks for name, blocks in found.items() if blocks}
     if found:
-        with capsys.disabled():
-            print(f"\ncode blocks that scroll sideways at 1366 px: "
-                  f"{sum(map(len, found.values()))}; " + "; ".join(
-                      f"{name.split('/')[-1]} {len(blocks)} (fit "
-                      f"{'/'.join(map(str, sorted({b['fits'] for b in blocks})))} characters)"
-                      for name, blocks in found.items()))
+        note(f"code blocks that scroll sideways at 1366 px: {sum(map(len, found.values()))}; "
+             + "; ".join(f"{name.split('/')[-1]} {len(blocks)} (fit "
+                         f"{'/'.join(map(str, sorted({b['fits'] for b in blocks})))} characters)"
+                         for name, blocks in found.items()))
     assert found == {}, {name: [(b["kind"], b["longest"], b["fits"], b["line"][:60])
                                 for b in blocks] for name, blocks in found.items()}
 
@@ -280,7 +278,7 @@ def test_formulas_are_typeset_offline(browser_pages):
 SERIOUS = ("serious", "critical")
 
 
-def test_axe_finds_no_serious_or_critical_violation_on_any_page(browser_pages, capsys):
+def test_axe_finds_no_serious_or_critical_violation_on_any_page(browser_pages, note):
     serious, others = {}, {}
     for name in toc_files():
         for violation in browser_pages[name]["laptop"]["axe"]:
@@ -288,10 +286,9 @@ def test_axe_finds_no_serious_or_critical_violation_on_any_page(browser_pages, c
             key = (violation["impact"], violation["id"])
             bucket.setdefault(key, []).append((name, len(violation["nodes"]),
                                                violation["nodes"][:2]))
-    with capsys.disabled():  # the rest, for the record (as the book's times are shown)
-        print("\naxe-core, the violations below serious, elements per page: " + "; ".join(
-            f"{impact} {rule}: " + ", ".join(f"{page.split('/')[-1]} {n}" for page, n, _ in where)
-            for (impact, rule), where in sorted(others.items())))
+    note("axe-core, the violations below serious, elements per page: " + "; ".join(
+        f"{impact} {rule}: " + ", ".join(f"{page.split('/')[-1]} {n}" for page, n, _ in where)
+        for (impact, rule), where in sorted(others.items())))  # the rest, for the record
     assert serious == {}, serious
 
 
@@ -384,7 +381,7 @@ a panel, the widget manager (3.2 MB) only where a page saved widgets."""
 OPTIONAL_SCRIPTS = {"mathjax": "tex-mml-chtml.js", "vega": "vega", "widgets": "html-manager"}
 
 
-def test_the_pages_are_light_and_load_what_they_need_only(browser_pages, built_book, capsys):
+def test_the_pages_are_light_and_load_what_they_need_only(browser_pages, built_book, note):
     rows = []
     for name in toc_files():
         seen = browser_pages[name]["laptop"]
@@ -402,11 +399,10 @@ def test_the_pages_are_light_and_load_what_they_need_only(browser_pages, built_b
         assert not [f for f in files if f.parent.name in ("mujoco", "three", "axe")], name
         base = sum(f.stat().st_size for f in scripts) - sum(optional.values())
         rows.append((name.split("/")[-1], total, base, optional))
-    with capsys.disabled():
-        print("\npage weight on opening (MB: all; scripts every page loads; MathJax, Vega): "
-              + ", ".join(f"{page} {total / 1e6:.2f}; {base / 1e6:.2f}; "
-                          f"{extra['mathjax'] / 1e6:.2f}, {extra['vega'] / 1e6:.2f}"
-                          for page, total, base, extra in rows))
+    note("page weight on opening (MB: all; scripts every page loads; MathJax, Vega): "
+         + ", ".join(f"{page} {total / 1e6:.2f}; {base / 1e6:.2f}; "
+                     f"{extra['mathjax'] / 1e6:.2f}, {extra['vega'] / 1e6:.2f}"
+                     for page, total, base, extra in rows))
     assert all(extra["widgets"] == 0 for *_, extra in rows)  # no page saved widgets
     for page, total, base, _ in rows:
         assert total <= PAGE_BUDGET_BYTES, (page, total)
