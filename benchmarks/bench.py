@@ -253,8 +253,10 @@ def slowest_tests_report(reference, count=10):
              f"of {record['finished']}, `{record['command']}`, {record['tests']} tests in "
              f"{record['wall_seconds']:.0f} s; reference workload then {then:.4f} s, now "
              f"{reference:.4f} s; ratio = seconds / reference then):"]
-    lines += [f"  {seconds:7.1f} s  {seconds / then:7.0f}  {nodeid}"
-              for nodeid, seconds in record["durations"][:count]]
+    lines.append(f"  {'seconds':>9}  {'ratio':>7}  {'CPU s':>7}  test")
+    lines += [f"  {entry[1]:7.1f} s  {entry[1] / then:7.0f}  "
+              f"{entry[2] if len(entry) > 2 else float('nan'):7.1f}  {entry[0]}"
+              for entry in record["durations"][:count]]
     return lines
 
 

@@ -98,7 +98,7 @@ class _LongestFirst:
     def pytest_collection_modifyitems(self, config, items):
         recorded = {}
         try:
-            for nodeid, seconds in json.loads(DURATIONS_RECORD.read_text())["durations"]:
+            for nodeid, seconds, *_ in json.loads(DURATIONS_RECORD.read_text())["durations"]:
                 module = nodeid.split("::")[0]
                 recorded[module] = recorded.get(module, 0.0) + seconds
         except (OSError, ValueError, KeyError, TypeError):
@@ -264,15 +264,43 @@ def note(request):
     return lambda text: request.node.user_properties.append(("icm-note", str(text)))
 
 
+_CPU_MARK = pytest.StashKey[float]()
 _DURATIONS = {}
+_CPU = {}
 _NOTES = []
 _STARTED = time.time()
 
 
+def _cpu_seconds():
+    """CPU time used so far by this process and by the processes it has waited for."""
+    import resource
+
+    return sum(resource.getrusage(who).ru_utime + resource.getrusage(who).ru_stime
+               for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_setup(item):
+    item.stash[_CPU_MARK] = _cpu_seconds()
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    """Each phase's report carries the CPU time it used (a time that, unlike wall
+    time, barely grows when the machine is busy: what the record orders by)."""
+    report = (yield).get_result()
+    now = _cpu_seconds()
+    report.user_properties = list(report.user_properties) + [  # the item's list kept
+        ("icm-cpu", now - item.stash.get(_CPU_MARK, now))]
+    item.stash[_CPU_MARK] = now
+
+
 def pytest_runtest_logreport(report):
-    """Adds up each test's setup, call and teardown, and keeps its notes (on the
-    controller, the workers' reports too)."""
+    """Adds up each test's setup, call and teardown (wall and CPU time), and keeps its
+    notes (on the controller, the workers' reports too)."""
     _DURATIONS[report.nodeid] = _DURATIONS.get(report.nodeid, 0.0) + report.duration
+    _CPU[report.nodeid] = _CPU.get(report.nodeid, 0.0) + sum(
+        value for key, value in report.user_properties if key == "icm-cpu")
     if report.when == "call":
         _NOTES.extend(f"{report.nodeid.split('::')[-1]}: {text}"
                       for key, text in report.user_properties if key == "icm-note")
@@ -302,7 +330,8 @@ def pytest_sessionfinish(session, exitstatus):
               "wall_seconds": round(time.time() - _STARTED, 1),
               "tests": len(durations), "exit_status": int(exitstatus),
               "reference_seconds": round(reference_seconds(5), 4),
-              "durations": [[nodeid, round(seconds, 2)] for nodeid, seconds in durations]}
+              "durations": [[nodeid, round(seconds, 2), round(_CPU.get(nodeid, 0.0), 2)]
+                            for nodeid, seconds in durations]}
     RECORDS.mkdir(exist_ok=True)
     temporary = DURATIONS_RECORD.with_suffix(".tmp")
     temporary.write_text(json.dumps(record, indent=0))

@@ -201,6 +201,26 @@ def test_a_lost_wakeup_costs_a_second_not_the_whole_timeout():
     assert reply == b"execute_reply" and elapsed < 1.5
 
 
+def test_no_output_is_lost_when_the_client_reads_them_slowly(tmp_path, monkeypatch):
+    # After a cell's reply nbclient waits 4 s (iopub_timeout) for its outputs, then
+    # drops the rest: on a busy machine a chapter lost the last of its glued numbers.
+    # Here the client reads each message 10 ms late, so that 800 outputs take 8 s.
+    import threading
+
+    path = notebook(tmp_path / "many.ipynb", "from IPython.display import display\n"
+                    "for i in range(800):\n    display(i)")
+    process = execute_book.BookClient.process_message
+
+    def slowly(self, msg, cell, cell_index):
+        time.sleep(0.01)
+        return process(self, msg, cell, cell_index)
+
+    monkeypatch.setattr(execute_book.BookClient, "process_message", slowly)
+    executed, _ = execute_book.execute(path, threading.Event())
+    outputs = executed.cells[0].outputs
+    assert [o["data"]["text/plain"] for o in outputs] == [str(i) for i in range(800)]
+
+
 def test_cells_tagged_skip_execution_are_not_executed(tmp_path):
     path = notebook(tmp_path / "skips.ipynb", "raise SystemExit('this cell must not run')",
                     "print('ran')", tags={0: ["skip-execution", "remove-cell"]})

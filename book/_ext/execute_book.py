@@ -30,6 +30,12 @@ here, not inside Sphinx, gives:
   polling would leave it waiting for that whole timeout. Here every wait on the
   kernel's shell and iopub channels is cut into one-second polls, each of which ends
   with a non-blocking poll, so a lost wakeup costs at most a second.
+- **No output lost.** After a cell's reply, nbclient waits only 4 s (`iopub_timeout`)
+  for the cell's remaining outputs, then drops them with a warning nobody sees: on a
+  busy machine a cell that glues many numbers lost its last ones, and the strict
+  build failed on the missing keys (seen here at a load of 15 on 2 cores). Here the
+  client waits for every output, however slow; the stall rule still fails a kernel
+  that sends nothing and computes nothing.
 - **Fail fast, stop at once.** The first notebook that fails stops the others (their
   kernels are shut down within about a second) unless `--keep-going` is given; so does
   Ctrl-C. Notebooks that finished before are kept in the cache: the next run executes
@@ -111,6 +117,9 @@ KERNEL_ENVIRONMENT = {"ICM_STATIC_PANELS": "1", "ICM_BOOK_BUILD": "1",
                       "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1",
                       "MKL_NUM_THREADS": "1"}
 """Set for the kernels (which inherit this process's environment): see above."""
+IOPUB_WAIT_SECONDS = 10 ** 9
+"""How long to wait for a cell's outputs after its reply: in effect for ever (see "No
+output lost"); the stall rule ends a wait for a kernel that is gone."""
 KERNEL_ARGUMENTS = ["--IPKernelApp.capture_fd_output=False"]
 """The kernels' standard error stays this process's (see "Progress on the terminal")."""
 SKIP_TAG = "skip-execution"
@@ -311,6 +320,7 @@ def execute(path, stop, stall_seconds=DEFAULT_STALL_SECONDS, cpu_limit=DEFAULT_C
     with tempfile.TemporaryDirectory(prefix="icm-kernel-") as sockets:
         client = BookClient(nb, path, stop, stall_seconds, cpu_limit, pathlib.Path(sockets),
                             timeout=None, allow_errors=False, record_timing=False,
+                            iopub_timeout=IOPUB_WAIT_SECONDS, raise_on_iopub_timeout=True,
                             skip_cells_with_tag=SKIP_TAG, extra_arguments=KERNEL_ARGUMENTS,
                             resources={"metadata": {"path": str(path.parent)}})
         start = time.perf_counter()
