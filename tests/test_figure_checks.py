@@ -84,16 +84,24 @@ def test_the_rules_tables_labels_fit_their_cells():
 
 def test_a_png_is_one_drawing_with_its_measures(monkeypatch):
     # The PNG is drawn once: the text fitted before, the measures read from the same
-    # renderer, the pixels written as drawn. A second or third drawing (as savefig
-    # after an inspection's own drawing) costs a redraw each time a slider moves.
-    drawn = []
+    # renderer, the pixels written as drawn; a figure with a constrained layout gets
+    # the layout pass without rendering that savefig makes first. Each further drawing
+    # (savefig after an inspection's own, as before) costs a redraw.
+    drawn, rendered = [], []
     draw = _common.Figure.draw
-    monkeypatch.setattr(_common.Figure, "draw",
-                        lambda self, renderer: (drawn.append(renderer), draw(self, renderer))[1])
+
+    def spy(self, renderer):
+        drawn.append(renderer)
+        if "draw_path" not in vars(renderer):  # not a layout pass (draws disabled)
+            rendered.append(renderer)
+        return draw(self, renderer)
+
+    monkeypatch.setattr(_common.Figure, "draw", spy)
     run = icm.experiments.run_goal_oriented(n_seeds=4, n_trials=12, seed=1)
     fig = figures.figure5(run)
     png = fig.png()
-    assert len(drawn) == 1
+    assert len(rendered) == 1  # one drawing into pixels
+    assert len(drawn) == 2  # and the layout pass before it (constrained layout)
     image = Image.open(io.BytesIO(png))
     # At png_dpi: the PNG's size is the figure's at that resolution, the figure's own
     # dpi is left as it was.
@@ -104,6 +112,8 @@ def test_a_png_is_one_drawing_with_its_measures(monkeypatch):
                 "icm:text-overlaps", "icm:text-outside-box"):
         assert key in image.text, key
     drawn.clear()
-    fig.quick_png = True
-    fig.png()
-    assert len(drawn) == 1
+    rendered.clear()
+    panel = figures.figure5_panel_figure(run)  # a live panel: quick, a fixed layout
+    assert panel.quick_png and panel.get_layout_engine() is None
+    panel.png()
+    assert len(rendered) == 1 and len(drawn) == 1

@@ -9,6 +9,7 @@ import matplotlib.axes
 import matplotlib.collections
 import matplotlib.figure
 import matplotlib.image
+import matplotlib.layout_engine
 import matplotlib.patches
 import matplotlib.text
 import numpy as np
@@ -27,6 +28,10 @@ SERIES_STYLES = {"red": {"linestyle": "-", "marker": "o"},
 """How each task or rod's line looks besides its colour: a line style and a marker, so
 that a figure reads the same in grey or to a reader who does not see red and green
 apart (checked with a simulation of colour blindness)."""
+
+_LAYOUT_ENGINES = (matplotlib.layout_engine.ConstrainedLayoutEngine,
+                   matplotlib.layout_engine.TightLayoutEngine)
+"""The layouts that savefig runs a pass of before drawing (as `Figure.png` does)."""
 
 DISPLAY_WIDTH_PX = 740
 """The widest a figure is shown: the book's text column at a 1366 px laptop screen
@@ -69,9 +74,11 @@ class Figure(matplotlib.figure.Figure):
     which the book's browser test reads, and how many texts written on a box (a patch
     such as a box, a cell or a button) run out of it (`icm:text-outside-box`).
 
-    **One drawing.** `png()` draws the figure once: the text is fitted before the
-    drawing (tick labels need no drawing to be known), the measures are read from that
-    drawing's renderer, and the PNG is written from its pixels.
+    **One drawing.** `png()` draws the figure once (after a layout pass without
+    rendering, as savefig makes, for a figure with a layout engine): the text is
+    fitted before (tick labels need no drawing to be known), the measures are read
+    from that drawing's renderer, at the PNG's resolution, and the PNG is written
+    from its pixels.
     """
 
     png_dpi = 110
@@ -149,6 +156,11 @@ class Figure(matplotlib.figure.Figure):
         self.dpi = self.png_dpi  # as savefig(dpi=png_dpi) does, for this drawing
         try:
             canvas = FigureCanvasAgg(self)
+            if isinstance(self.get_layout_engine(), _LAYOUT_ENGINES):
+                # As savefig does: a layout pass without rendering first, so that the
+                # constrained layout places what it learned from the first (a figure
+                # legend, wrapped titles); without it a figure's top titles were cut.
+                self.draw_without_rendering()
             canvas.draw()
             metadata = None if self.quick_png else {
                 "Description": self.alt_text(), **self.measures(canvas.get_renderer())}
