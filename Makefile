@@ -42,8 +42,8 @@ PYTEST := $(BIN)/python -m pytest -n auto --dist loadscope --no-loadscope-reorde
 test: check-system $(STAMP)  ## every test, the whole book built with warnings and errors fatal
 	$(PYTEST)
 
-test-quick: $(STAMP)  ## the unit tests, often: no book, no browser, no fresh launch
-	$(PYTEST) -m "not book and not browser and not launch"
+test-quick: $(STAMP)  ## the unit tests, often: no book, no browser, no fresh launch, none of minutes
+	$(PYTEST) -m "not book and not browser and not launch and not slow"
 
 lab: $(STAMP)  ## open the notebooks in JupyterLab
 	$(BIN)/jupyter lab book/

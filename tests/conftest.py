@@ -58,7 +58,24 @@ def cpu_burners(count=None):
 
 # --- markers and order -----------------------------------------------------------------
 
+SLOW = ("tests/test_remedies.py::test_the_study_file_is_what_the_library_computes",
+        "tests/test_goal_babbling.py::test_the_study_file_is_what_the_library_computes",
+        "tests/test_goal_babbling.py::test_the_chapters_claims_hold_on_the_tests_own_seeds",
+        "tests/test_physics.py::test_thousands_of_random_actions_stay_stable",
+        "tests/test_memory.py::test_memory_bound_holds_and_is_within_one_and_a_half_times_the_peak",
+        "tests/test_build_under_load.py::")
+"""Tests (node ids, or their start) that take minutes: the reruns of the stored studies
+and the chapters' claims on many seeds, the physics' thousands of random actions, the
+memory bounds (a large run each, in a process of its own), the slowest chapter under
+load. `make test` runs them; `make test-quick` leaves them out (marker `slow`). In the
+run of 2026-12-02 (a machine under heavy load) they took 1,400 of the 2,900 s that
+the unit tests took summed."""
+
+
 def pytest_configure(config):
+    config.addinivalue_line(
+        "markers", "slow: takes minutes (conftest.SLOW); make test runs it, make "
+                   "test-quick does not")
     config.addinivalue_line(
         "markers", "browser: drives headless Chromium (marked from the fixtures a test "
                    "uses: `browser`, or a test of tests/test_browser.py or tests/test_pdf.py "
@@ -77,6 +94,8 @@ def pytest_collection_modifyitems(config, items):
         module = getattr(getattr(item, "module", None), "__name__", "")
         if "built_book" in names:
             item.add_marker(pytest.mark.book)
+        if item.nodeid.startswith(SLOW):
+            item.add_marker(pytest.mark.slow)
         if "browser" in names or (module in ("test_browser", "test_pdf")
                                   and "built_book" in names):
             item.add_marker(pytest.mark.browser)
