@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: book book-students pdf test lab bench clean check-system repository
+.PHONY: book book-students pdf test test-quick lab bench clean check-system repository
 
 # Before anything slow: what the system must provide besides Python packages
 # (icm/_system.py: Python 3.11+, Mesa's EGL on Linux), with the command that installs it.
@@ -35,8 +35,15 @@ book-students: check-system $(STAMP)  ## the book without the exercises' solutio
 pdf: book  ## the book as one PDF (_build/pdf/book.pdf), printed offline by headless Chromium
 	$(BIN)/python book/_ext/print_book.py --html _build/html --out _build/pdf/book.pdf
 
-test: check-system $(STAMP)  ## unit tests, then a full book build with warnings and errors fatal
-	$(BIN)/python -m pytest
+# The tests run on every core (pytest-xdist), a test module at a time, longest first
+# (tests/conftest.py orders them); the book builds in the background meanwhile.
+PYTEST := $(BIN)/python -m pytest -n auto --dist loadscope --no-loadscope-reorder
+
+test: check-system $(STAMP)  ## every test, the whole book built with warnings and errors fatal
+	$(PYTEST)
+
+test-quick: $(STAMP)  ## the unit tests, often: no book, no browser, no fresh launch, none of minutes
+	$(PYTEST) -m "not book and not browser and not launch and not slow"
 
 lab: $(STAMP)  ## open the notebooks in JupyterLab
 	$(BIN)/jupyter lab book/

@@ -297,15 +297,37 @@ class Settings:
     @classmethod
     def stack(cls, blocks, n_rows):
         """One settings object for a grid: settings `blocks` (each a settings object of
-        one value per setting) side by side, each repeated for its `n_rows` rows."""
+        one value per setting) side by side, each repeated for its `n_rows` rows.
+
+        A setting that is not per row (`Setting.per_row`) is one value for the whole
+        batch: it must be the same in every block, and a grid whose blocks differ in
+        it is refused, naming it and its values (never run with the first block's).
+
+        Raises:
+          ArgumentTypeError: if `blocks` is not a non-empty list of `cls` objects.
+          ValueError: if `n_rows` is not an integer >= 1, a block holds several
+            values of a setting, or a setting that is not per row differs between
+            blocks.
+        """
+        if not isinstance(blocks, (list, tuple)) or not blocks or \
+                not all(isinstance(block, cls) for block in blocks):
+            raise _validate.ArgumentTypeError(
+                f"blocks must be a non-empty list of {cls.__name__} objects, got "
+                f"{_validate.show(blocks)}")
+        n_rows = _validate.integer_at_least("n_rows", n_rows, 1)
         values = {}
         for name, spec in cls._specs.items():
             column = [getattr(block, name) for block in blocks]
+            several = [i for i, v in enumerate(column) if isinstance(v, np.ndarray)]
+            if several:
+                raise ValueError(f"{name} must be one value in each block of a grid, got "
+                                 f"{_validate.show(column[several[0]])} in block "
+                                 f"{several[0]}")
             if spec.per_row:
                 values[name] = np.repeat(np.array(column, dtype=object), n_rows)
-            elif len({repr(v) for v in column}) > 1:
-                raise ValueError(f"{name} must be the same in every setting of a grid, got "
-                                 f"{column}")
+            elif any(v != column[0] for v in column[1:]):
+                raise ValueError(f"{name} must be the same in every setting of a grid (it "
+                                 f"is one value for the whole batch), got {column}")
             else:
                 values[name] = column[0]
         return cls(**values)

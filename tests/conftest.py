@@ -1,11 +1,15 @@
-"""Shared fixtures: the book, built once per test session as CI builds it, on a
-machine made slow on purpose."""
+"""Shared fixtures and the suite's own bookkeeping: the book, built once per test
+session as CI builds it; the markers that `make test-quick` leaves out; and the record
+of the run's durations that `make bench` reports."""
 
 import contextlib
+import json
 import os
 import pathlib
+import shutil
 import subprocess
 import sys
+import time
 
 import pytest
 import yaml
@@ -13,6 +17,13 @@ import yaml
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 BUILD_BOOK = ROOT / "book" / "_ext" / "build_book.py"
 EXECUTE_BOOK = ROOT / "book" / "_ext" / "execute_book.py"
+RECORDS = ROOT / "_build"
+"""Where the last test run leaves its records (`make bench` reads them)."""
+DURATIONS_RECORD = RECORDS / "icm-test-durations.json"
+"""The last run's durations per test, with the reference workload timed at its end."""
+EXECUTION_RECORD = "icm-execution-record.json"
+"""The book build's record of execution times (book/_ext/execute_book.py), copied into
+RECORDS by the session that built the book."""
 
 
 def toc_files():
@@ -45,32 +56,304 @@ def cpu_burners(count=None):
             burner.wait()
 
 
+# --- markers and order -----------------------------------------------------------------
+
+SLOW = ("tests/test_remedies.py::test_the_study_file_is_what_the_library_computes",
+        "tests/test_remedies.py::test_the_chapters_claims_hold_on_the_tests_own_seeds",
+        "tests/test_goal_babbling.py::test_the_study_file_is_what_the_library_computes",
+        "tests/test_goal_babbling.py::test_the_chapters_claims_hold_on_the_tests_own_seeds",
+        "tests/test_physics.py::test_thousands_of_random_actions_stay_stable",
+        "tests/test_memory.py::test_memory_bound_holds_and_is_within_one_and_a_half_times_the_peak",
+        "tests/test_build_under_load.py::")
+"""Tests (node ids, or their start) that take minutes: the reruns of the stored studies
+and the chapters' claims on many seeds, the physics' thousands of random actions, the
+memory bounds (a large run each, in a process of its own), the slowest chapter under
+load. `make test` runs them; `make test-quick` leaves them out (marker `slow`). In the
+run of 2026-12-02 (a machine under heavy load) they took 1,400 of the 2,900 s that
+the unit tests took summed; the remedies' claims alone 218 of the other unit tests'
+490 CPU-seconds."""
+
+
+def pytest_configure(config):
+    config.addinivalue_line(
+        "markers", "slow: takes minutes (conftest.SLOW); make test runs it, make "
+                   "test-quick does not")
+    config.addinivalue_line(
+        "markers", "browser: drives headless Chromium (marked from the fixtures a test "
+                   "uses: `browser`, or a test of tests/test_browser.py or tests/test_pdf.py "
+                   "that reads the built book)")
+    config.pluginmanager.register(_LongestFirst(), "icm-longest-first")
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(config, items):
+    """Marks what a test needs from the fixtures it uses, before `-m` selects, so that
+    no test can forget its marker: `book` for every test that reads the built book,
+    `browser` for every test that drives Chromium. `make test-quick` leaves out both
+    (and `launch`)."""
+    for item in items:
+        names = getattr(item, "fixturenames", ())
+        module = getattr(getattr(item, "module", None), "__name__", "")
+        if "built_book" in names:
+            item.add_marker(pytest.mark.book)
+        if item.nodeid.startswith(SLOW):
+            item.add_marker(pytest.mark.slow)
+        if "browser" in names or (module in ("test_browser", "test_pdf")
+                                  and "built_book" in names):
+            item.add_marker(pytest.mark.browser)
+
+
+def _needs_book(item):
+    return "built_book" in getattr(item, "fixturenames", ())
+
+
+class _LongestFirst:
+    """Orders the selected tests so that two workers (pytest-xdist, `make test`) finish
+    together: whole modules (a worker takes a module at a time: `--dist loadscope`),
+    the longest first by the last run's record of durations; the modules that read
+    the built book last, each with its other tests first, so that the book builds in
+    the background while everything else runs. Without a record, the modules keep
+    their order (the book's still last)."""
+
+    @pytest.hookimpl(trylast=True)
+    def pytest_collection_modifyitems(self, config, items):
+        recorded = {}
+        try:
+            for nodeid, seconds, *_ in json.loads(DURATIONS_RECORD.read_text())["durations"]:
+                module = nodeid.split("::")[0]
+                recorded[module] = recorded.get(module, 0.0) + seconds
+        except (OSError, ValueError, KeyError, TypeError):
+            pass
+        modules = {}
+        for item in items:
+            modules.setdefault(item.nodeid.split("::")[0], []).append(item)
+        order = sorted(modules, key=lambda m: (any(map(_needs_book, modules[m])),
+                                                -recorded.get(m, 0.0)))
+        items[:] = [item for module in order
+                    for item in sorted(modules[module], key=_needs_book)]
+
+
+# --- the book ---------------------------------------------------------------------------
+
+BUILD_IN_BACKGROUND = """
+import os, signal, subprocess, sys, time
+build_book, out, log, status = sys.argv[1:5]
+parent, asked_to_stop, code = os.getppid(), [], 130
+signal.signal(signal.SIGTERM, lambda *_: asked_to_stop.append(True))
+try:
+    with open(log, "w") as handle:
+        build = subprocess.Popen([sys.executable, build_book, "--force", "--strict",
+                                  "--path-output", out], stdout=handle,
+                                 stderr=subprocess.STDOUT)
+        try:
+            while build.poll() is None:
+                if asked_to_stop or os.getppid() != parent:  # the test run is gone
+                    break
+                time.sleep(0.5)
+        except KeyboardInterrupt:  # Ctrl-C: the build has it too
+            pass
+        if build.poll() is None:
+            build.send_signal(signal.SIGINT)  # build_book stops its kernels at once
+            try:
+                build.wait(60)
+            except subprocess.TimeoutExpired:
+                build.kill()
+                build.wait()
+        else:
+            code = build.returncode
+finally:
+    with open(status + ".tmp", "w") as handle:
+        handle.write(str(code))
+    os.replace(status + ".tmp", status)
+"""
+"""Runs build_book.py into `out`, its log to `log`, then writes its exit status to
+`status` (130 if stopped); stops the build when asked (SIGTERM) or when the test run
+that started it is gone."""
+
+
+class BookBuild:
+    """The one build of the book in a test run, in `folder`: started in the background
+    as soon as the run has a test that needs it, so that it runs while the unit tests
+    do; with pytest-xdist, the workers share it through `folder` (the first to ask
+    starts it, a lock keeps it to one)."""
+
+    def __init__(self, folder):
+        self.folder = pathlib.Path(folder)
+        self.out = self.folder / "book"
+        self.log = self.folder / "book-build.log"
+        self.status = self.folder / "book-build.status"
+        self.process = None
+
+    def start(self):
+        """Starts the build unless it was started before (here or by another worker);
+        returns whether this call started it."""
+        import fcntl
+
+        self.folder.mkdir(parents=True, exist_ok=True)
+        with open(self.folder / "book-build.lock", "a") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            if self.log.exists():
+                return False
+            self.log.touch()
+            self.process = subprocess.Popen(
+                [sys.executable, "-c", BUILD_IN_BACKGROUND, str(BUILD_BOOK), str(self.out),
+                 str(self.log), str(self.status)], cwd=ROOT)
+            return True
+
+    def wait(self):
+        """The build's exit status, once it has ended (however long a slow machine
+        takes: the build itself fails a cell that stalls or runs away)."""
+        while not self.status.exists():
+            if self.process is not None and self.process.poll() is not None \
+                    and not self.status.exists():
+                return self.process.returncode or 1  # its runner ended without a word
+            time.sleep(1)
+        return int(self.status.read_text())
+
+    def stop(self):
+        """Stops a build this process started, if it still runs."""
+        if self.process is not None and self.process.poll() is None:
+            self.process.terminate()
+            self.process.wait()
+
+
+def _shared_folder(tmp_path_factory):
+    """A folder all the run's pytest-xdist workers share (the run's own otherwise)."""
+    base = tmp_path_factory.getbasetemp()
+    return base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base
+
+
+def _needs_the_book(session):
+    return not os.environ.get("ICM_BUILT_BOOK") and any(
+        "built_book" in getattr(item, "fixturenames", ()) for item in session.items)
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _book_built_in_the_background(request, tmp_path_factory):
+    """Starts the book's build as the run starts, if any of its tests needs the book."""
+    if not _needs_the_book(request.session):
+        yield None
+        return
+    build = BookBuild(_shared_folder(tmp_path_factory))
+    build.start()
+    yield build
+    if request.session.shouldfail or request.session.shouldstop:
+        build.stop()  # the run stops early (-x, Ctrl-C): no need for the book
+    elif build.process is not None:
+        build.wait()  # other workers may still need it
+
+
 @pytest.fixture(scope="session")
-def built_book(tmp_path_factory, request):
-    """Builds the whole book once, as CI does, with `book/_ext/build_book.py --force
-    --strict`: every notebook executed afresh into this build's own cache, then
+def built_book(_book_built_in_the_background, request):
+    """The whole book, built once per run as CI builds it, with `book/_ext/build_book.py
+    --force --strict`: every notebook executed afresh into this build's own cache, then
     jupyter-book build with -W (warnings fatal), which must take every notebook from
     that cache; returns the folder of the HTML.
 
-    The notebooks are executed while a CPU burner runs on every core (`cpu_burners`):
-    the build must not fail because the machine is slow (see the rule in
-    book/_ext/execute_book.py).
+    Built at the machine's own speed, in the background while the unit tests run:
+    that the build holds on a machine made slow on purpose is tested on the slowest
+    chapter (tests/test_build_under_load.py). The build's record of execution times
+    is copied to `_build/` for `make bench`.
 
     While working on the browser checks, ICM_BUILT_BOOK=<folder of the HTML> reuses a
     book built before (CI never sets it)."""
     reuse = os.environ.get("ICM_BUILT_BOOK")
     if reuse:
         return pathlib.Path(reuse)
-    out = tmp_path_factory.mktemp("book")
-    with cpu_burners() as burning:
-        completed = subprocess.run(
-            [sys.executable, str(BUILD_BOOK), "--force", "--strict", "--path-output", str(out)],
-            capture_output=True, text=True, cwd=ROOT)
-    log = completed.stdout + completed.stderr
-    assert completed.returncode == 0, "book build failed:\n" + log[-8000:]
+    build = _book_built_in_the_background
+    status = build.wait()
+    log = build.log.read_text()
+    assert status == 0, "book build failed:\n" + log[-8000:]
+    assert "book execution:" in log, log[-8000:]
     reporter = request.config.pluginmanager.get_plugin("terminalreporter")
-    for line in completed.stdout.splitlines():
+    for line in log.splitlines():
         if reporter is not None and line.startswith(("executed", "book execution")):
-            reporter.write_line(line + (f" [{burning} CPU burners running]"
-                                        if line.startswith("book execution") else ""))
-    return out / "_build" / "html"
+            reporter.write_line(line)
+    record = build.out / "_build" / EXECUTION_RECORD
+    if record.exists():
+        RECORDS.mkdir(exist_ok=True)
+        shutil.copyfile(record, RECORDS / EXECUTION_RECORD)
+    return build.out / "_build" / "html"
+
+
+# --- notes and the record of durations ------------------------------------------------
+
+@pytest.fixture
+def note(request):
+    """`note(text)`: a line for the run's summary (what a test measured, for the
+    record), shown at the end of the run, also from pytest-xdist's workers."""
+    return lambda text: request.node.user_properties.append(("icm-note", str(text)))
+
+
+_CPU_MARK = pytest.StashKey[float]()
+_DURATIONS = {}
+_CPU = {}
+_NOTES = []
+_STARTED = time.time()
+
+
+def _cpu_seconds():
+    """CPU time used so far by this process and by the processes it has waited for."""
+    import resource
+
+    return sum(resource.getrusage(who).ru_utime + resource.getrusage(who).ru_stime
+               for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_setup(item):
+    item.stash[_CPU_MARK] = _cpu_seconds()
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    """Each phase's report carries the CPU time it used (a time that, unlike wall
+    time, barely grows when the machine is busy: what the record orders by)."""
+    report = (yield).get_result()
+    now = _cpu_seconds()
+    report.user_properties = list(report.user_properties) + [  # the item's list kept
+        ("icm-cpu", now - item.stash.get(_CPU_MARK, now))]
+    item.stash[_CPU_MARK] = now
+
+
+def pytest_runtest_logreport(report):
+    """Adds up each test's setup, call and teardown (wall and CPU time), and keeps its
+    notes (on the controller, the workers' reports too)."""
+    _DURATIONS[report.nodeid] = _DURATIONS.get(report.nodeid, 0.0) + report.duration
+    _CPU[report.nodeid] = _CPU.get(report.nodeid, 0.0) + sum(
+        value for key, value in report.user_properties if key == "icm-cpu")
+    if report.when == "call":
+        _NOTES.extend(f"{report.nodeid.split('::')[-1]}: {text}"
+                      for key, text in report.user_properties if key == "icm-note")
+
+
+def pytest_terminal_summary(terminalreporter):
+    if _NOTES:
+        terminalreporter.section("measured along the way")
+        for line in _NOTES:
+            terminalreporter.write_line(line)
+
+
+def pytest_sessionfinish(session, exitstatus):
+    """Writes the run's durations, slowest first, with the reference workload timed
+    now (`make bench` prints the ten slowest): `_build/icm-test-durations.json`. Only
+    a run of at least 100 tests writes it (a run of a few tests says little)."""
+    if hasattr(session.config, "workerinput") or len(_DURATIONS) < 100:
+        return
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    try:
+        from reference import reference_seconds
+    finally:
+        sys.path.remove(str(ROOT / "benchmarks"))
+    durations = sorted(_DURATIONS.items(), key=lambda item: -item[1])
+    record = {"finished": time.strftime("%Y-%m-%d %H:%M:%S"),
+              "command": " ".join(["pytest"] + list(session.config.invocation_params.args)),
+              "wall_seconds": round(time.time() - _STARTED, 1),
+              "tests": len(durations), "exit_status": int(exitstatus),
+              "reference_seconds": round(reference_seconds(5), 4),
+              "durations": [[nodeid, round(seconds, 2), round(_CPU.get(nodeid, 0.0), 2)]
+                            for nodeid, seconds in durations]}
+    RECORDS.mkdir(exist_ok=True)
+    temporary = DURATIONS_RECORD.with_suffix(".tmp")
+    temporary.write_text(json.dumps(record, indent=0))
+    os.replace(temporary, DURATIONS_RECORD)

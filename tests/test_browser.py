@@ -92,7 +92,7 @@ def browser_pages(built_book):
                 page.on("pageerror", lambda error: errors.append(str(error)))
                 page.goto(path.as_uri(), wait_until="load")
                 page.wait_for_function(PANELS_DRAWN, timeout=30000)
-                page.wait_for_timeout(1500)  # widgets and formulas render after load
+                page.evaluate(RENDERED)  # formulas typeset, fonts loaded: laid out
                 record = seen.setdefault(name, {}).setdefault(device, {})
                 record.update({
                     "overflowing": page.evaluate(OVERFLOWING),
@@ -116,6 +116,7 @@ def browser_pages(built_book):
                         "expected_sliders": expected_sliders(path.read_text()),
                         "math": page.locator("mjx-container").count(),
                         "files": sorted({str(_file_of(url)) for url in files}),
+                        "code_scrolling": page.evaluate(CODE_SCROLLING),
                     })
                     # axe-core last: it is not the book's, and it reads the page as it is.
                     page.add_script_tag(path=str(AXE))
@@ -138,6 +139,16 @@ def _benchmark(name):
 
 page_load = _benchmark("page_load")
 PANELS_DRAWN = page_load.PANELS_DRAWN  # the benchmark waits for the same moment
+
+RENDERED = """async () => {
+  // After the load event, MathJax typesets the formulas (MathJax 3 resolves
+  // startup.promise once it has) and the web fonts may still arrive: both change the
+  // layout the checks read. (No page saves widgets: a test checks it.)
+  await document.fonts.ready;
+  if (window.MathJax && window.MathJax.startup && window.MathJax.startup.promise) {
+    await window.MathJax.startup.promise;
+  }
+}"""
 
 AXE_RUN = """async () => {
   // Every rule of axe-core's WCAG 2.0, 2.1 and 2.2 A and AA sets and its best practices;
@@ -179,6 +190,56 @@ OVERFLOWING = """() => {
   }
   return out;
 }"""
+
+
+CODE_SCROLLING = """() => {
+  // Code blocks (a cell's input or output, a code block of the text) that scroll
+  // sideways: a reader sees their lines cut at the block's edge ("unless you chose
+  // otherw"). Blocks in a closed fold are not shown, so not measured.
+  const article = document.querySelector(".bd-article");
+  if (!article) { return []; }
+  const out = [];
+  for (const pre of article.querySelectorAll("pre")) {
+    const box = pre.getBoundingClientRect();
+    if (box.width === 0 || box.height === 0) { continue; }
+    // The block itself, or the box around it (a cell's output area), scrolls.
+    const scrolling = [pre, pre.parentElement, pre.closest(".cell_output, .output")]
+      .filter(e => e && e.scrollWidth > e.clientWidth + 1 &&
+              ["auto", "scroll"].includes(getComputedStyle(e).overflowX));
+    if (!scrolling.length) { continue; }
+    const style = getComputedStyle(pre);
+    const probe = document.createElement("span");  // the width of a character here
+    probe.textContent = "0".repeat(100);
+    pre.appendChild(probe);
+    const character = probe.getBoundingClientRect().width / 100;
+    probe.remove();
+    const inner = pre.clientWidth - parseFloat(style.paddingLeft) - parseFloat(style.paddingRight);
+    const longest = pre.textContent.split("\\n").reduce((a, b) => (b.length > a.length ? b : a), "");
+    out.push({kind: pre.closest(".cell_output, .output") ? "output"
+                    : pre.closest(".cell_input, .cell") ? "input" : "code block",
+              fits: Math.floor(inner / character), longest: longest.length,
+              line: longest.slice(0, 100)});
+  }
+  return out;
+}"""
+
+
+@pytest.mark.xfail(strict=False, raises=AssertionError,
+                   reason="62 code blocks scroll sideways at 1366 px today "
+                   "(issue 26); the chapters' rewrite makes their lines fit. Remove this "
+                   "mark once it is merged.")
+def test_no_code_block_scrolls_sideways_at_laptop_width(browser_pages, note):
+    # At 1366 px, every line of a code cell, of its output and of a code block in the
+    # text fits its block (82 to 86 characters in the text column, fewer in a box).
+    found = {name: browser_pages[name]["laptop"]["code_scrolling"] for name in toc_files()}
+    found = {name: blocks for name, blocks in found.items() if blocks}
+    if found:
+        note(f"code blocks that scroll sideways at 1366 px: {sum(map(len, found.values()))}; "
+             + "; ".join(f"{name.split('/')[-1]} {len(blocks)} (fit "
+                         f"{'/'.join(map(str, sorted({b['fits'] for b in blocks})))} characters)"
+                         for name, blocks in found.items()))
+    assert found == {}, {name: [(b["kind"], b["longest"], b["fits"], b["line"][:60])
+                                for b in blocks] for name, blocks in found.items()}
 
 
 @pytest.mark.parametrize("device", WIDTHS)
@@ -228,7 +289,7 @@ def test_formulas_are_typeset_offline(browser_pages):
 SERIOUS = ("serious", "critical")
 
 
-def test_axe_finds_no_serious_or_critical_violation_on_any_page(browser_pages, capsys):
+def test_axe_finds_no_serious_or_critical_violation_on_any_page(browser_pages, note):
     serious, others = {}, {}
     for name in toc_files():
         for violation in browser_pages[name]["laptop"]["axe"]:
@@ -236,10 +297,9 @@ def test_axe_finds_no_serious_or_critical_violation_on_any_page(browser_pages, c
             key = (violation["impact"], violation["id"])
             bucket.setdefault(key, []).append((name, len(violation["nodes"]),
                                                violation["nodes"][:2]))
-    with capsys.disabled():  # the rest, for the record (as the book's times are shown)
-        print("\naxe-core, the violations below serious, elements per page: " + "; ".join(
-            f"{impact} {rule}: " + ", ".join(f"{page.split('/')[-1]} {n}" for page, n, _ in where)
-            for (impact, rule), where in sorted(others.items())))
+    note("axe-core, the violations below serious, elements per page: " + "; ".join(
+        f"{impact} {rule}: " + ", ".join(f"{page.split('/')[-1]} {n}" for page, n, _ in where)
+        for (impact, rule), where in sorted(others.items())))  # the rest, for the record
     assert serious == {}, serious
 
 
@@ -269,7 +329,8 @@ def _png_measures(built_book, page, src):
     path = (built_book / page).parent / src
     text = Image.open(path).text
     return {key: float(text[key]) for key in ("icm:smallest-text-px", "icm:legend-overlaps",
-                                              "icm:text-overlaps")} if text else {}
+                                              "icm:text-overlaps", "icm:text-outside-box")
+            } if text else {}
 
 
 def test_no_text_in_a_figure_is_smaller_than_the_captions(browser_pages, built_book):
@@ -297,13 +358,15 @@ def test_no_text_in_a_figure_is_smaller_than_the_captions(browser_pages, built_b
     assert too_small == [], (caption, sorted(too_small)[:10])
 
 
-def test_no_legend_covers_data_and_no_text_in_a_figure_overlaps(browser_pages, built_book):
+def test_no_legend_covers_data_and_no_text_in_a_figure_overlaps_or_leaves_its_box(
+        browser_pages, built_book):
     for name in toc_files():
         for image in browser_pages[name]["laptop"]["figures"]:
             measures = _png_measures(built_book, f"{name}.html", image["src"])
             if measures:
                 assert measures["icm:legend-overlaps"] == 0, (name, image["alt"][:80])
                 assert measures["icm:text-overlaps"] == 0, (name, image["alt"][:80])
+                assert measures["icm:text-outside-box"] == 0, (name, image["alt"][:80])
 
 
 PROGRESS = re.compile(r"\d+%\|[^|]*\|\s*\d+/\d+|\d+(\.\d+)?(it|[a-z]+)/s\]|"
@@ -329,7 +392,7 @@ a panel, the widget manager (3.2 MB) only where a page saved widgets."""
 OPTIONAL_SCRIPTS = {"mathjax": "tex-mml-chtml.js", "vega": "vega", "widgets": "html-manager"}
 
 
-def test_the_pages_are_light_and_load_what_they_need_only(browser_pages, built_book, capsys):
+def test_the_pages_are_light_and_load_what_they_need_only(browser_pages, built_book, note):
     rows = []
     for name in toc_files():
         seen = browser_pages[name]["laptop"]
@@ -347,11 +410,10 @@ def test_the_pages_are_light_and_load_what_they_need_only(browser_pages, built_b
         assert not [f for f in files if f.parent.name in ("mujoco", "three", "axe")], name
         base = sum(f.stat().st_size for f in scripts) - sum(optional.values())
         rows.append((name.split("/")[-1], total, base, optional))
-    with capsys.disabled():
-        print("\npage weight on opening (MB: all; scripts every page loads; MathJax, Vega): "
-              + ", ".join(f"{page} {total / 1e6:.2f}; {base / 1e6:.2f}; "
-                          f"{extra['mathjax'] / 1e6:.2f}, {extra['vega'] / 1e6:.2f}"
-                          for page, total, base, extra in rows))
+    note("page weight on opening (MB: all; scripts every page loads; MathJax, Vega): "
+         + ", ".join(f"{page} {total / 1e6:.2f}; {base / 1e6:.2f}; "
+                     f"{extra['mathjax'] / 1e6:.2f}, {extra['vega'] / 1e6:.2f}"
+                     for page, total, base, extra in rows))
     assert all(extra["widgets"] == 0 for *_, extra in rows)  # no page saved widgets
     for page, total, base, _ in rows:
         assert total <= PAGE_BUDGET_BYTES, (page, total)

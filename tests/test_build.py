@@ -9,6 +9,7 @@ import asyncio
 import importlib.util
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -49,8 +50,10 @@ def notebook(path, *cells, tags=None):
     return path
 
 
-def run(out, *arguments, timeout=300, env=None):
-    """Runs execute_book.py into `out`; returns (status, stdout, stderr, seconds)."""
+def run(out, *arguments, timeout=900, env=None):
+    """Runs execute_book.py into `out`; returns (status, stdout, stderr, seconds).
+    `timeout` (s) only guards against a hang of the test itself: generous, since a
+    loaded machine (a load of 15 on 2 cores, seen here) starts a kernel in a minute."""
     start = time.monotonic()
     completed = subprocess.run(
         [sys.executable, str(EXECUTE_BOOK), "--path-output", str(out)] + [str(a) for a in arguments],
@@ -77,11 +80,16 @@ def test_a_stuck_cell_fails_within_the_bound_naming_the_notebook_and_the_cell_ev
         tmp_path):
     path = notebook(tmp_path / "hangs.ipynb", "x = 1", "import time\ntime.sleep(600)")
     with cpu_burners():
-        status, _, stderr, seconds = run(tmp_path / "out", "--stall", 3, path, timeout=120)
+        status, _, stderr, seconds = run(tmp_path / "out", "--stall", 3, path)
     assert status == 1
     assert "hangs.ipynb: cell 1 stalled (no output and" in stderr
     assert "time.sleep(600)" in stderr  # the cell's code is shown
-    assert seconds < 60  # 3 s of stall, plus starting and stopping a loaded kernel
+    # Failed once 3 s had passed without progress, at the first check after them (a
+    # second apart, later if the loaded machine is slow to wake the executor): the
+    # bound is the executor's own, not the wall time of starting a loaded kernel.
+    waited = float(re.search(r"CPU in the last (\d+) s", stderr).group(1))
+    assert 3 <= waited <= 3 + 10, stderr
+    assert seconds < 600  # not the sleep's 600 s
 
 
 def test_a_cell_that_computes_silently_is_never_killed_even_on_a_loaded_machine(tmp_path):
@@ -103,25 +111,61 @@ def test_a_runaway_cell_fails_on_cpu_time_and_its_kernel_is_killed_cleanly(tmp_p
                     "    while time.process_time() - t < 0.01:\n        pass")
     status, _, stderr, seconds = run(tmp_path / "out", "--cpu-limit", 2, path)
     assert status == 1 and "runaway.ipynb: cell 0 ran away (more than 2 CPU-seconds)" in stderr
-    assert seconds < 120
+    assert seconds < 600  # not the cell's 10,000 CPU-seconds
     assert "ZMQError" not in stderr and "Exception in message handler" not in stderr
 
 
 def test_the_stall_rule_reads_cpu_time_of_the_kernel_and_its_children():
     # A process that computes in a child (as joblib's workers do) counts as computing.
+    # The test waits for the child's CPU time, not for wall time: on a loaded machine
+    # the child may get a small share of a core, and that must not fail the test.
     parent = subprocess.Popen([sys.executable, "-c", "import subprocess, sys; subprocess.run("
                                "[sys.executable, '-c', 'while True: pass'])"])
     try:
-        time.sleep(0.5)
         process = psutil.Process(parent.pid)
-        first = execute_book.cpu_seconds(process)
-        time.sleep(2)
-        assert execute_book.cpu_seconds(process) - first > execute_book.PROGRESS_CPU_SECONDS
+        deadline = time.monotonic() + 600
+        while not process.children(recursive=True):
+            assert time.monotonic() < deadline, "the child never started"
+            time.sleep(0.05)
+        (child,) = process.children(recursive=True)
+        own = lambda p: sum(p.cpu_times()[:2])  # user + system
+        first, child_first = execute_book.cpu_seconds(process), own(child)
+        parent_first = own(process)
+        while own(child) - child_first < 2 * execute_book.PROGRESS_CPU_SECONDS:
+            assert time.monotonic() < deadline, "the child got no CPU time in 10 minutes"
+            time.sleep(0.1)
+        child_used = own(child) - child_first
+        used = execute_book.cpu_seconds(process) - first  # read after: at least as much
+        parent_used = own(process) - parent_first
+        assert used >= child_used + parent_used - 0.02
+        assert used - parent_used > execute_book.PROGRESS_CPU_SECONDS  # the child's part
     finally:
         for child in psutil.Process(parent.pid).children(recursive=True):
             child.kill()
         parent.kill()
         parent.wait()
+
+
+def test_the_runaway_limit_is_the_30_cpu_minutes_the_readme_promises(monkeypatch):
+    # README: a cell fails when it "has used 30 CPU-minutes". Both command lines
+    # (build_book.py passes its own on) default to that limit in CPU-seconds.
+    import argparse
+    import re
+
+    promised = re.findall(r"has used (\d+) CPU-minutes", (ROOT / "README.md").read_text())
+    assert promised == ["30"], promised
+    parse = argparse.ArgumentParser.parse_args
+    seen = []
+
+    def defaults_only(self, args=None, namespace=None):
+        seen.append(parse(self, [], namespace).cpu_limit)
+        raise SystemExit(0)  # read, not run
+
+    monkeypatch.setattr(argparse.ArgumentParser, "parse_args", defaults_only)
+    for script in (execute_book, build_book):
+        with pytest.raises(SystemExit):
+            script.main([])
+    assert seen == [30 * 60, 30 * 60]
 
 
 def test_a_lost_wakeup_costs_a_second_not_the_whole_timeout():
@@ -162,7 +206,27 @@ def test_a_lost_wakeup_costs_a_second_not_the_whole_timeout():
     reply, elapsed = asyncio.run(reply_after_lost_wakeup(lambda f: f, 4.0))
     assert reply == b"execute_reply" and elapsed > 3.5  # silent: no error, just late
     reply, elapsed = asyncio.run(reply_after_lost_wakeup(execute_book.sliced, 60.0))
-    assert reply == b"execute_reply" and elapsed < 1.5
+    assert reply == b"execute_reply" and elapsed < 15  # a poll of 1 s, not the 60 s
+
+
+def test_no_output_is_lost_when_the_client_reads_them_slowly(tmp_path, monkeypatch):
+    # After a cell's reply nbclient waits 4 s (iopub_timeout) for its outputs, then
+    # drops the rest: on a busy machine a chapter lost the last of its glued numbers.
+    # Here the client reads each message 10 ms late, so that 800 outputs take 8 s.
+    import threading
+
+    path = notebook(tmp_path / "many.ipynb", "from IPython.display import display\n"
+                    "for i in range(800):\n    display(i)")
+    process = execute_book.BookClient.process_message
+
+    def slowly(self, msg, cell, cell_index):
+        time.sleep(0.01)
+        return process(self, msg, cell, cell_index)
+
+    monkeypatch.setattr(execute_book.BookClient, "process_message", slowly)
+    executed, _ = execute_book.execute(path, threading.Event())
+    outputs = executed.cells[0].outputs
+    assert [o["data"]["text/plain"] for o in outputs] == [str(i) for i in range(800)]
 
 
 def test_cells_tagged_skip_execution_are_not_executed(tmp_path):
@@ -219,11 +283,11 @@ def test_the_first_failure_stops_the_other_notebooks_at_once(tmp_path):
     long = notebook(tmp_path / "long.ipynb", BUSY.format(300))
     fails = notebook(tmp_path / "fails.ipynb", "import time\ntime.sleep(2)",
                      "raise ValueError('a cell that raises')")
-    status, _, stderr, seconds = run(tmp_path / "out", long, fails, timeout=200)
+    status, _, stderr, seconds = run(tmp_path / "out", long, fails)
     assert status == 1
     assert "fails.ipynb: cell 1 failed" in stderr and "a cell that raises" in stderr
     assert "stopping the other notebooks" in stderr
-    assert seconds < 90  # not the 300 CPU-seconds of the long notebook
+    assert seconds < 300  # not the 300 CPU-seconds of the long notebook
     assert "long.ipynb" not in stderr.split("stopping the other notebooks")[1]  # not reported
 
 
@@ -242,7 +306,7 @@ def test_ctrl_c_stops_at_once_and_the_next_run_keeps_what_was_executed(tmp_path)
     process = subprocess.Popen(
         [sys.executable, str(EXECUTE_BOOK), "--path-output", str(out), str(long), str(quick)],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT)
-    deadline = time.monotonic() + 120
+    deadline = time.monotonic() + 600
     lines = []
     while time.monotonic() < deadline:  # wait until the quick one is cached
         line = process.stdout.readline()
@@ -255,9 +319,10 @@ def test_ctrl_c_stops_at_once_and_the_next_run_keeps_what_was_executed(tmp_path)
     assert kernels_of(process.pid), "the long notebook's kernel should be running"
     process.send_signal(signal.SIGINT)
     start = time.monotonic()
-    _, stderr = process.communicate(timeout=60)
+    _, stderr = process.communicate(timeout=600)
     assert process.returncode == 130
-    assert time.monotonic() - start < 30, "Ctrl-C did not stop the build at once"
+    # At once: not after the long notebook's remaining CPU-seconds (most of its 300).
+    assert time.monotonic() - start < 120, "Ctrl-C did not stop the build at once"
     assert "interrupted: 1 notebooks executed and kept in the cache" in stderr
     assert not psutil.pid_exists(process.pid) or not kernels_of(process.pid)
     status, stdout, stderr, _ = run(out, quick)
@@ -344,7 +409,7 @@ def test_two_builds_in_one_folder_take_turns_and_both_succeed(tmp_path):
     first = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     time.sleep(1.0)
     second = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    results = [p.communicate(timeout=240) for p in (first, second)]
+    results = [p.communicate(timeout=900) for p in (first, second)]
     assert first.returncode == 0 and second.returncode == 0, results
     assert "waiting: another build of the book is running in" in results[1][1]
     assert all("2 of 2 notebooks executed" in r[0] for r in results)
@@ -397,9 +462,10 @@ def test_a_live_panel_never_makes_the_notebook_client_write_on_the_shell_channel
                                                     send(msg))[1]
 
     # The Output case can itself lose the reply's wakeup: the wait then ends only at the
-    # timeout, where the reply is found (301 s of a test run here with 300). A minute
-    # is ample for these two small cells on a loaded machine.
-    client = NotebookClient(nb, timeout=60, kernel_name="python3",
+    # timeout, where the reply is found (301 s of a test run here with 300): a minute
+    # there. icm's panel imports icm and runs 4 seeds: a loaded machine may take
+    # minutes (a wall-clock limit only, against a hang of the test).
+    client = NotebookClient(nb, timeout=60 if sends else 600, kernel_name="python3",
                             on_notebook_start=spy_on_the_shell,
                             resources={"metadata": {"path": str(tmp_path)}})
     client.execute()

@@ -272,7 +272,7 @@ def _run(command, **kwargs):
 
 @pytest.mark.launch
 def test_a_fresh_launch_installs_icm_with_the_first_cell_and_runs_a_notebook(
-        tmp_path, capsys):
+        tmp_path, note):
     times = {}
     clock = time.perf_counter()
     env = _without_python_path() | {"PIP_DISABLE_PIP_VERSION_CHECK": "1"}
@@ -345,8 +345,7 @@ def test_a_fresh_launch_installs_icm_with_the_first_cell_and_runs_a_notebook(
     assert "dm-control" in resolved
     times["what pip resolves for icm on a bare Python"] = time.perf_counter() - clock
 
-    with capsys.disabled():  # shown in the test run's output, as the book's times are
-        print("\nfresh launch: " + ", ".join(f"{k} {v:.0f} s" for k, v in times.items()))
+    note("fresh launch: " + ", ".join(f"{k} {v:.0f} s" for k, v in times.items()))
 
 
 # --- icm's dependencies, as the install cell asks for them ---------------------------
@@ -410,7 +409,7 @@ nbformat.write(nb, out)
                     reason="the Colab check runs with ICM_COLAB_CHECK=1 and python3.13 on "
                            "the PATH (it installs about 110 packages)")
 def test_a_colab_like_python_installs_icm_and_runs_a_chapter_with_and_without_physics(
-        tmp_path, capsys):
+        tmp_path, note):
     env = _without_python_path() | {"PIP_DISABLE_PIP_VERSION_CHECK": "1",
                                     "PYDEVD_DISABLE_FILE_VALIDATION": "1"}
     env.pop("VIRTUAL_ENV", None)
@@ -441,6 +440,5 @@ def test_a_colab_like_python_installs_icm_and_runs_a_chapter_with_and_without_ph
         pinned = [line for line in shipped.splitlines() if line.lower().startswith(package + "==")]
         assert pinned and pinned[0] in after.splitlines(), package
     added = sorted(set(after.splitlines()) - set(shipped.splitlines()))
-    with capsys.disabled():
-        print("\nColab-like launch: the install cell added " + ", ".join(
-            line.split(" @ ")[0] for line in added))
+    note("Colab-like launch: the install cell added " + ", ".join(
+        line.split(" @ ")[0] for line in added))

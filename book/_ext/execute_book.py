@@ -30,6 +30,12 @@ here, not inside Sphinx, gives:
   polling would leave it waiting for that whole timeout. Here every wait on the
   kernel's shell and iopub channels is cut into one-second polls, each of which ends
   with a non-blocking poll, so a lost wakeup costs at most a second.
+- **No output lost.** After a cell's reply, nbclient waits only 4 s (`iopub_timeout`)
+  for the cell's remaining outputs, then drops them with a warning nobody sees: on a
+  busy machine a cell that glues many numbers lost its last ones, and the strict
+  build failed on the missing keys (seen here at a load of 15 on 2 cores). Here the
+  client waits for every output, however slow; the stall rule still fails a kernel
+  that sends nothing and computes nothing.
 - **Fail fast, stop at once.** The first notebook that fails stops the others (their
   kernels are shut down within about a second) unless `--keep-going` is given; so does
   Ctrl-C. Notebooks that finished before are kept in the cache: the next run executes
@@ -41,9 +47,12 @@ here, not inside Sphinx, gives:
   notebook or a damaged record of times is reported in one line and repaired (the
   cache emptied, the notebook executed again, the times forgotten). `--force` (the
   tests, CI) executes everything.
-- **The execution time, printed**: per notebook and in total; the times of the last
-  run order the next one, longest first (with two at a time, a long notebook started
-  last would finish alone).
+- **The execution time, printed and recorded**: per notebook and in total; the times
+  of the last run order the next one, longest first (with two at a time, a long
+  notebook started last would finish alone). Each run that executes notebooks also
+  writes `_build/icm-execution-record.json`: per notebook its wall and CPU seconds
+  and those of each cell (the kernel with its children), and the reference workload
+  of `benchmarks/reference.py` timed before and after, which `make bench` reports.
 - **The book's versions of the panels**: the kernels run with `ICM_STATIC_PANELS=1`,
   so `icm.widgets` panels are drawn as their static, precomputed versions, which move
   in the HTML without a kernel (in Jupyter they are the live ipywidgets panels).
@@ -108,6 +117,9 @@ KERNEL_ENVIRONMENT = {"ICM_STATIC_PANELS": "1", "ICM_BOOK_BUILD": "1",
                       "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1",
                       "MKL_NUM_THREADS": "1"}
 """Set for the kernels (which inherit this process's environment): see above."""
+IOPUB_WAIT_SECONDS = 10 ** 9
+"""How long to wait for a cell's outputs after its reply: in effect for ever (see "No
+output lost"); the stall rule ends a wait for a kernel that is gone."""
 KERNEL_ARGUMENTS = ["--IPKernelApp.capture_fd_output=False"]
 """The kernels' standard error stays this process's (see "Progress on the terminal")."""
 SKIP_TAG = "skip-execution"
@@ -118,6 +130,11 @@ EXECUTED = []
 pages must be read again by Sphinx (build_book.py), whose own record of what changed
 knows only the notebooks' sources."""
 TIMES_FILE = "icm-notebook-seconds.json"
+RECORD_FILE = "icm-execution-record.json"
+"""Beside TIMES_FILE: the last run's times per notebook and per cell (`main`)."""
+CELL_TIMES = {}
+"""{notebook path: [(cell index, wall seconds, CPU seconds), ...]}, per executed cell,
+filled by `execute` in this process."""
 
 
 def notebooks():
@@ -208,6 +225,7 @@ class BookClient(NotebookClient):
         self.stall_seconds = stall_seconds
         self.cpu_limit = cpu_limit
         self._last_output = time.monotonic()
+        self.cell_times = []  # (cell index, wall seconds, CPU seconds) per executed cell
 
     def _slice_channels(self, notebook, **_):
         for channel in (self.kc.shell_channel, self.kc.iopub_channel):
@@ -237,10 +255,12 @@ class BookClient(NotebookClient):
         task = asyncio.ensure_future(super().async_execute_cell(
             cell, cell_index, execution_count=execution_count, store_history=store_history))
         start_cpu = mark_cpu = cpu_seconds(process) if process else 0.0
-        mark_time = self._last_output = time.monotonic()
+        start_time = mark_time = self._last_output = time.monotonic()
         while True:
             done, _ = await asyncio.wait({task}, timeout=CHECK_SECONDS)
             if task in done:
+                self.cell_times.append((cell_index, time.monotonic() - start_time,
+                                        (cpu_seconds(process) if process else 0.0) - start_cpu))
                 return task.result()
             problem = None
             now, used = time.monotonic(), cpu_seconds(process) if process else 0.0
@@ -300,6 +320,7 @@ def execute(path, stop, stall_seconds=DEFAULT_STALL_SECONDS, cpu_limit=DEFAULT_C
     with tempfile.TemporaryDirectory(prefix="icm-kernel-") as sockets:
         client = BookClient(nb, path, stop, stall_seconds, cpu_limit, pathlib.Path(sockets),
                             timeout=None, allow_errors=False, record_timing=False,
+                            iopub_timeout=IOPUB_WAIT_SECONDS, raise_on_iopub_timeout=True,
                             skip_cells_with_tag=SKIP_TAG, extra_arguments=KERNEL_ARGUMENTS,
                             resources={"metadata": {"path": str(path.parent)}})
         start = time.perf_counter()
@@ -315,6 +336,8 @@ def execute(path, stop, stall_seconds=DEFAULT_STALL_SECONDS, cpu_limit=DEFAULT_C
                 raise NotebookFailed(f"{where} failed:\n{error}") from None
             what = "lost its kernel" if isinstance(error, DeadKernelError) else str(error)
             raise NotebookFailed(f"{where} {what}:\n{_code_of(nb, client.cell_index)}") from None
+        finally:
+            CELL_TIMES[path] = client.cell_times
     return nb, time.perf_counter() - start
 
 
@@ -419,6 +442,40 @@ def read_times(path):
         return {}
 
 
+def _reference_seconds():
+    """The reference workload of benchmarks/reference.py, best of 5 (s), or None where
+    the benchmarks are not beside the book."""
+    import importlib.util
+
+    path = ROOT / "benchmarks" / "reference.py"
+    if not path.exists():
+        return None
+    spec = importlib.util.spec_from_file_location("icm_reference", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return round(module.reference_seconds(5), 4)
+
+
+def _record(executed, times, jobs, wall, references):
+    """The record of a run's times (RECORD_FILE): when, the reference workload before
+    and after, and per notebook executed its seconds, CPU seconds and cells (index,
+    seconds, CPU seconds, the first line of its code), in table-of-contents order."""
+    notebooks = {}
+    for path in executed:
+        nb = nbformat.read(path, as_version=4)
+        cells = CELL_TIMES.get(path, [])
+        notebooks[str(_name(path))] = {
+            "seconds": times[str(_name(path))],
+            "cpu_seconds": round(sum(cpu for _, _, cpu in cells), 1),
+            "cells": [[index, round(seconds, 2), round(cpu, 2),
+                       (nb.cells[index].source.strip().splitlines() or [""])[0][:80]]
+                      for index, seconds, cpu in cells]}
+    return {"finished": time.strftime("%Y-%m-%d %H:%M:%S"), "jobs": jobs,
+            "wall_seconds": round(wall, 1),
+            "reference_seconds": {"before": references[0], "after": references[1]},
+            "notebooks": notebooks}
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -454,6 +511,7 @@ def main(argv=None):
 
     times_path = cache_path.parent / TIMES_FILE
     times = read_times(times_path)
+    reference_before = _reference_seconds()
     todo.sort(key=lambda path: -times.get(str(_name(path)), float("inf")))
     os.environ.update(KERNEL_ENVIRONMENT)
     stop = threading.Event()
@@ -493,6 +551,10 @@ def main(argv=None):
         pool.shutdown(wait=True)
     wall = time.perf_counter() - start
     _write_atomic(times_path, json.dumps(times, indent=1, sort_keys=True))
+    if done:
+        _write_atomic(cache_path.parent / RECORD_FILE, json.dumps(_record(
+            [path for path in todo if path in EXECUTED], times, args.jobs, wall,
+            (reference_before, _reference_seconds())), indent=1))
     print(f"book execution: {done} of {len(todo)} notebooks executed in {total:.1f} s "
           f"(sum over notebooks; {wall:.1f} s wall, {args.jobs} at a time), "
           f"{len(cached)} from the cache")

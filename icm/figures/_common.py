@@ -8,6 +8,9 @@ import re
 import matplotlib.axes
 import matplotlib.collections
 import matplotlib.figure
+import matplotlib.image
+import matplotlib.layout_engine
+import matplotlib.patches
 import matplotlib.text
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -25,6 +28,10 @@ SERIES_STYLES = {"red": {"linestyle": "-", "marker": "o"},
 """How each task or rod's line looks besides its colour: a line style and a marker, so
 that a figure reads the same in grey or to a reader who does not see red and green
 apart (checked with a simulation of colour blindness)."""
+
+_LAYOUT_ENGINES = (matplotlib.layout_engine.ConstrainedLayoutEngine,
+                   matplotlib.layout_engine.TightLayoutEngine)
+"""The layouts that savefig runs a pass of before drawing (as `Figure.png` does)."""
 
 DISPLAY_WIDTH_PX = 740
 """The widest a figure is shown: the book's text column at a 1366 px laptop screen
@@ -64,7 +71,14 @@ class Figure(matplotlib.figure.Figure):
     `DISPLAY_WIDTH_PX` wide. The PNG records the smallest text it holds, in its own
     pixels (`icm:smallest-text-px`), and how many data points its legends cover
     (`icm:legend-overlaps`) and how many of its texts overlap (`icm:text-overlaps`),
-    which the book's browser test reads.
+    which the book's browser test reads, and how many texts written on a box (a patch
+    such as a box, a cell or a button) run out of it (`icm:text-outside-box`).
+
+    **One drawing.** `png()` draws the figure once (after a layout pass without
+    rendering, as savefig makes, for a figure with a layout engine): the text is
+    fitted before (tick labels need no drawing to be known), the measures are read
+    from that drawing's renderer, at the PNG's resolution, and the PNG is written
+    from its pixels.
     """
 
     png_dpi = 110
@@ -104,9 +118,8 @@ class Figure(matplotlib.figure.Figure):
 
     def fit_text(self):
         """Raises every visible text smaller than `min_text_points()` to it (tick
-        labels, which matplotlib makes as it draws, included)."""
+        labels included: asking an axis for them makes them, without a drawing)."""
         floor = self.min_text_points()
-        FigureCanvasAgg(self).draw()  # makes the tick labels
         for ax in self.axes:
             for axis, name in ((ax.xaxis, "x"), (ax.yaxis, "y")):
                 for which, labels in (("major", axis.get_majorticklabels()),
@@ -120,29 +133,46 @@ class Figure(matplotlib.figure.Figure):
 
     def measures(self, renderer=None):
         """What the browser test reads from the PNG: the smallest text in the PNG's
-        pixels, and the data points (line vertices, marker and scatter positions) that
-        a legend covers."""
+        pixels, the data points (line vertices, marker and scatter positions) that
+        a legend covers, the pairs of texts that overlap, and the texts that run out of
+        the box they are written on (`texts_outside_boxes`). `renderer`: that of the
+        drawing the PNG is made of (without one, nothing is placed: 0 overlaps)."""
         sizes = [text.get_fontsize() for text in _texts(self)]
         smallest = min(sizes) * self.png_dpi / 72.0 if sizes else 0.0
         return {"icm:smallest-text-px": f"{smallest:.4f}",
                 "icm:legend-overlaps": str(_legend_overlaps(self, renderer)),
-                "icm:text-overlaps": str(_text_overlaps(self, renderer))}
+                "icm:text-overlaps": str(_text_overlaps(self, renderer)),
+                "icm:text-outside-box": str(len(texts_outside_boxes(self, renderer)))}
 
     def png(self):
-        """The figure as PNG bytes, with its text fitted (`fit_text`) and, in the PNG's
-        text chunks, its alternative text (`Description`) and `measures()`. A
-        `quick_png` figure (redrawn on every slider move) skips the fitting and the
-        measures, which cost two more drawings."""
-        buffer = io.BytesIO()
-        if self.quick_png:
-            self.savefig(buffer, format="png", dpi=self.png_dpi,
-                         pil_kwargs={"compress_level": 1})
-            return buffer.getvalue()
-        self.fit_text()
-        canvas = FigureCanvasAgg(self)
-        canvas.draw()  # the layout, so that the legends' places are known
-        metadata = {"Description": self.alt_text(), **self.measures(canvas.get_renderer())}
-        self.savefig(buffer, format="png", dpi=self.png_dpi, metadata=metadata)
+        """The figure as PNG bytes, drawn once at `png_dpi`, with its text fitted
+        (`fit_text`) and, in the PNG's text chunks, its alternative text
+        (`Description`) and `measures()` of that very drawing. A `quick_png` figure
+        (redrawn on every slider move) skips the fitting and the measures and is
+        compressed lightly."""
+        if not self.quick_png:
+            self.fit_text()
+        dpi = self.dpi
+        self.dpi = self.png_dpi  # as savefig(dpi=png_dpi) does, for this drawing
+        try:
+            canvas = FigureCanvasAgg(self)
+            if isinstance(self.get_layout_engine(), _LAYOUT_ENGINES):
+                # As savefig does: a layout pass without rendering first, so that the
+                # constrained layout places what it learned from the first (a figure
+                # legend, wrapped titles); without it a figure's top titles were cut.
+                self.draw_without_rendering()
+            canvas.draw()
+            metadata = None if self.quick_png else {
+                "Description": self.alt_text(), **self.measures(canvas.get_renderer())}
+            buffer = io.BytesIO()
+            # What savefig's PNG writer does after its own drawing (backend_agg's
+            # _print_pil): the pixels just drawn, written with their metadata.
+            matplotlib.image.imsave(
+                buffer, canvas.buffer_rgba(), format="png", origin="upper",
+                dpi=self.png_dpi, metadata=metadata,
+                pil_kwargs={"compress_level": 1} if self.quick_png else None)
+        finally:
+            self.dpi = dpi
         return buffer.getvalue()
 
     def _repr_png_(self):
@@ -203,6 +233,45 @@ def _text_overlaps(fig, renderer):
             if min(a.x1, b.x1) - max(a.x0, b.x0) > 2 and min(a.y1, b.y1) - max(a.y0, b.y0) > 2:
                 count += 1
     return count
+
+
+def texts_outside_boxes(fig, renderer):
+    """The texts written on a box that run out of it: for each text of an axes (its
+    `ax.text` and annotations) whose anchor lies on one of the axes' patches (a box, a
+    table cell, a button), the smallest such patch, which must hold the whole text
+    (the four corners of its extent, 1 px in from each side). A label wider than its
+    box reads cut short where it leaves it ("ope" for "open", white on white).
+    Returns [(text, patch)] of those that do not fit; [] without a `renderer`."""
+    if renderer is None:
+        return []
+    found = []
+    for ax in fig.axes:
+        if not ax.get_visible():
+            continue
+        patches = []
+        for patch in ax.patches:
+            if not (patch.get_visible() and isinstance(patch, matplotlib.patches.Patch)):
+                continue
+            path = patch.get_transform().transform_path(patch.get_path())
+            patches.append((path, abs(np.prod(np.ptp(path.vertices, axis=0))), patch))
+        if not patches:
+            continue
+        for text in ax.texts:
+            if not (text.get_visible() and text.get_text().strip()):
+                continue
+            anchor = text.get_transform().transform(text.get_unitless_position())
+            holding = [(area, path, patch) for path, area, patch in patches
+                       if path.contains_point(anchor)]
+            if not holding:
+                continue
+            _, path, patch = min(holding, key=lambda entry: entry[0])
+            box = text.get_window_extent(renderer)
+            x0, x1 = sorted((box.x0 + 1, box.x1 - 1))
+            y0, y1 = sorted((box.y0 + 1, box.y1 - 1))
+            corners = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
+            if not path.contains_points(corners).all():
+                found.append((text, patch))
+    return found
 
 
 def _legend_overlaps(fig, renderer):

@@ -44,14 +44,16 @@ def draw_console(ax, lights, boxes=(0, 0), pressed=None, title=None):
     if pressed is not None:
         ax.annotate("", xy=(pressed, 0.35), xytext=(pressed, 1.0),
                     arrowprops=dict(arrowstyle="-|>", color="black", linewidth=2))
-    for i, (name, x) in enumerate((("red", 0.6), ("green", 3.4))):
+    # The boxes are wide enough for their word at the smallest text the figure may
+    # show (`Figure.fit_text`) when a strip of four consoles is shown 740 px wide.
+    for i, (name, x) in enumerate((("red", 0.8), ("green", 3.2))):
         is_open = bool(boxes[i])
         colour = TASK_COLOURS[name]
-        ax.add_patch(matplotlib.patches.Rectangle((x - 0.45, 1.1), 0.9, 0.55,
+        ax.add_patch(matplotlib.patches.Rectangle((x - 0.8, 1.1), 1.6, 0.75,
                                                   facecolor=colour if is_open else "white",
                                                   edgecolor=colour, linewidth=2,
                                                   alpha=0.85 if is_open else 1.0))
-        ax.text(x, 1.375, "open" if is_open else "shut", ha="center", va="center",
+        ax.text(x, 1.475, "open" if is_open else "shut", ha="center", va="center",
                 fontsize=7.5, color="white" if is_open else colour, weight="bold")
     if title:
         ax.set_title(title, fontsize=9)

@@ -76,8 +76,9 @@ def signal_mastery_figure(comparison):
         ax.set_yticklabels([f"{_label(s)}, per {d}" for s, d in rows], fontsize=8)
         ax.set_xlabel("mastery trial")
         ax.grid(axis="x", alpha=0.3)
+        # On two lines: on one, the two titles ran into each other ("100 seedswith").
         ax.set_title(("with the noisy button" if noisy else "five buttons") +
-                     f", {comparison.settings['n_seeds']} seeds", fontsize=10)
+                     f",\n{comparison.settings['n_seeds']} seeds", fontsize=10)
     axes[0][0].set_xlim(0, 1.3 * right_end)  # the axes share x: room for every band
     axes[0][0].invert_yaxis()  # the axes share y: once for all
     for task in ("red", "green"):

@@ -252,7 +252,9 @@ def press_trace_figure(record):
     top.text(record["time"][0], buttons.PRESS_DEPTH * 1000, "press threshold",
              va="bottom", ha="left", fontsize=8, color="#555555")
     top.set_ylabel("depth (mm)")
-    top.legend(frameon=False, fontsize=8, loc="upper right")
+    # Upper left, over the wait before the press: at the upper right the legend lay
+    # on the release of the button (2 points of its curve, at the PNG's 110 dpi).
+    top.legend(frameon=False, fontsize=8, loc="upper left")
     for i, name in enumerate(buttons.BOX_NAMES):
         bottom.plot(record["time"], record["lids"][:, i], color=TASK_COLOURS[name],
                     linewidth=2, label=f"{name} lid",

@@ -56,7 +56,9 @@ def draw_curves(curves, height=3.2, width_per_group=4.6):
         ax.set_ylim(bottom=0)
         ax.set_xlabel(curves["xlabel"], fontsize=9)
         ax.set_ylabel(group["ylabel"], fontsize=9)
-        ax.set_title(group["title"], fontsize=9 if len(group["title"]) > 60 else 10)
+        # A fixed place for the title (matplotlib otherwise measures the axes at every
+        # drawing to keep it clear of top tick labels, which these axes have none of).
+        ax.set_title(group["title"], fontsize=9 if len(group["title"]) > 60 else 10, y=1.0)
         ax.tick_params(labelsize=8)
         ax.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(5, integer=True))
         ax.yaxis.set_major_locator(matplotlib.ticker.MaxNLocator(4))
