@@ -494,6 +494,11 @@ MALICIOUS = {
                          "    return float(np.mean(history)) if history else 0.0\n", None,
                          "import icm_no_such_module\nimport numpy as np\nimport otter\n"
                          f"grader = otter.Notebook(\"{CHAPTER}.ipynb\")\n"),
+    # Within the machine's memory, beyond the grader's limit (6 GiB of address space).
+    "hogs_memory": (INTEREST_OWN.replace(
+        "    if len(history) == 0:",
+        "    buffer = np.empty(2 ** 30)  # 8 GiB, never written\n    if len(history) == 0:"),
+        None, None),
     "deletes": (None, "import os\nimport shutil\n\nfor name in os.listdir('..'):\n"
                 "    path = os.path.join('..', name)\n"
                 "    shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)\n", None),
@@ -528,7 +533,7 @@ def test_a_submission_that_breaks_things_costs_only_its_own_points(graded, malic
     assert rows["correct.ipynb"] == first
     # An infinite loop in the answer, sys.exit in the answer, an error at import: 0 on
     # what they break, the rest graded.
-    for name in ("loops", "exits", "raises_at_import"):
+    for name in ("loops", "exits", "raises_at_import", "hogs_memory"):
         row = rows[f"{name}.ipynb"]
         assert row["ex-least-squares-slope"] == "10" and row["ex-task-interest"] == "0", row
     loops = malicious[1]["loops.ipynb"].tests["ex-task-interest"]
@@ -536,7 +541,10 @@ def test_a_submission_that_breaks_things_costs_only_its_own_points(graded, malic
     assert "SystemExit" in malicious[1]["exits.ipynb"].tests["ex-task-interest"][0]["message"]
     # A kernel that dies, a notebook that deletes the grader's files: 0, and why.
     assert rows["dies.ipynb"]["total"] == "0" and "died" in rows["dies.ipynb"]["problem"]
-    assert rows["deletes.ipynb"]["total"] == "0" and rows["deletes.ipynb"]["problem"]
+    assert "MemoryError" in \
+        malicious[1]["hogs_memory.ipynb"].tests["ex-task-interest"][0]["message"]
+    assert rows["deletes.ipynb"]["total"] == "0"
+    assert "deleted" in rows["deletes.ipynb"]["problem"]
     assert rows["not_a_notebook.ipynb"]["total"] == "0"
     assert "not a notebook" in rows["not_a_notebook.ipynb"]["problem"]
     feedback = malicious[0].parent / f"{malicious[0].stem}-feedback"

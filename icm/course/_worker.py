@@ -2,7 +2,11 @@
 `icm.course.grade`, which sets its time and memory limits and kills it and everything
 it started when it is done):
 
-    python -m icm.course._worker AUTOGRADER_ZIP NOTEBOOK RESULT_JSON CELL_TIMEOUT
+    python -m icm.course._worker AUTOGRADER_ZIP NOTEBOOK RESULT_JSON CELL_TIMEOUT \
+        MEMORY_BYTES CPU_SECONDS
+
+It first limits its own address space and CPU time (the kernel it starts inherits
+both), and kills every process it started before it ends.
 
 Otter executes the notebook in a Jupyter kernel (nbconvert's ExecutePreprocessor) and
 runs the tests in it. Otter gives the executor no time limit per cell, so a cell that
@@ -58,14 +62,44 @@ def summary(results):
             f"{type(error).__name__}: {error}"}
 
 
-def main(argv=None):
-    autograder, notebook, result, cell_timeout = (argv or sys.argv[1:])[:4]
-    _limited_executor(int(float(cell_timeout)))
-    from otter.api import grade_submission
+def limit(memory_bytes, cpu_seconds):
+    """Limits this process's address space and CPU time, and those of the processes it
+    starts (the kernel, and what the notebook starts)."""
+    import resource
 
-    results = grade_submission(notebook, autograder, quiet=True)
-    with open(result, "w") as file:
-        json.dump(summary(results), file)
+    resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
+    resource.setrlimit(resource.RLIMIT_CPU, (cpu_seconds, cpu_seconds + 5))
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+
+
+def kill_descendants(pid=None):
+    """Kills every process started by `pid` (default: this one), at any depth: a
+    kernel runs in a session of its own, out of reach of its parent's group."""
+    import psutil
+
+    try:
+        children = psutil.Process(pid).children(recursive=True)
+    except psutil.Error:
+        return
+    for child in children:
+        try:
+            child.kill()
+        except psutil.Error:
+            pass
+
+
+def main(argv=None):
+    autograder, notebook, result, cell_timeout, memory, cpu = (argv or sys.argv[1:])[:6]
+    limit(int(memory), int(cpu))
+    _limited_executor(int(float(cell_timeout)))
+    try:
+        from otter.api import grade_submission
+
+        results = grade_submission(notebook, autograder, quiet=True)
+        with open(result, "w") as file:
+            json.dump(summary(results), file)
+    finally:
+        kill_descendants()
     return 0
 
 

@@ -32,7 +32,6 @@ import dataclasses
 import json
 import os
 import pathlib
-import resource
 import shutil
 import signal
 import subprocess
@@ -157,19 +156,24 @@ def chapter_of(notebook_bytes):
     return name
 
 
-def _limits(memory_bytes, cpu_seconds):
-    def apply():
-        resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
-        resource.setrlimit(resource.RLIMIT_CPU, (cpu_seconds, cpu_seconds + 5))
-        resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
-    return apply
+def _kill_all(process):
+    """Kills a worker, every process it started (its kernel has a session of its own),
+    and whatever is left in its process group."""
+    from icm.course._worker import kill_descendants
 
-
-def _kill_group(process):
+    kill_descendants(process.pid)
     try:
         os.killpg(process.pid, signal.SIGKILL)
     except (ProcessLookupError, PermissionError):
         pass
+
+
+_PROBLEMS = (("DeadKernelError", "its kernel died: the notebook ended its own process "
+                                 "(os._exit, a crash) or ran out of memory"),
+             ("results.pkl", "it deleted or moved the grader's files around it"),
+             ("No such file or directory", "it deleted or moved the grader's files around "
+                                           "it"))
+"""Known ways a notebook stops otter, and what the feedback says of them."""
 
 
 def grade_one(name, notebook_bytes, assignments, time_limit=TIME_LIMIT,
@@ -212,18 +216,18 @@ def grade_one(name, notebook_bytes, assignments, time_limit=TIME_LIMIT,
         result = here / "result.json"
         log = here / "worker.log"
         command = [sys.executable, "-m", "icm.course._worker", str(autograder), str(notebook),
-                   str(result), str(cell_timeout)]
+                   str(result), str(cell_timeout), str(int(memory_limit * 2 ** 30)),
+                   str(int(time_limit) + 10)]
         with open(log, "wb") as output:
-            process = subprocess.Popen(
-                command, cwd=submission, stdin=subprocess.DEVNULL, stdout=output,
-                stderr=subprocess.STDOUT, start_new_session=True,
-                preexec_fn=_limits(int(memory_limit * 2 ** 30), int(time_limit) + 10))
+            process = subprocess.Popen(command, cwd=submission, stdin=subprocess.DEVNULL,
+                                       stdout=output, stderr=subprocess.STDOUT,
+                                       start_new_session=True)
             try:
                 status = process.wait(timeout=time_limit)
             except subprocess.TimeoutExpired:
                 status = None
             finally:
-                _kill_group(process)  # and whatever the notebook left running
+                _kill_all(process)  # and whatever the notebook left running
                 process.wait()
         graded.seconds = time.monotonic() - start
         if status is None:
@@ -234,9 +238,10 @@ def grade_one(name, notebook_bytes, assignments, time_limit=TIME_LIMIT,
         try:
             data = json.loads(result.read_text())
         except (OSError, ValueError):
-            tail = log.read_bytes()[-2000:].decode(errors="replace").strip().splitlines()
+            tail = log.read_bytes()[-4000:].decode(errors="replace").strip().splitlines()
             reason = tail[-1] if tail else f"exit status {status}"
-            graded.problem = f"the notebook stopped the grader ({reason})"
+            said = next((text for key, text in _PROBLEMS if key in reason), None)
+            graded.problem = f"the notebook stopped the grader: {said or reason}"
             return graded
     if data.get("error"):
         graded.problem = f"otter could not grade the notebook: {data['error']}"
