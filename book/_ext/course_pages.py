@@ -96,6 +96,12 @@ def chapter_exercises(notebook):
     return found
 
 
+def _literal(title):
+    """A title as the text of a numbered reference, whose "%s" Sphinx fills with the
+    number: its own "%" doubled ("how many seeds make 90%")."""
+    return title.replace("%", "%%")
+
+
 class ChapterObjectives(Directive):
     """The objectives block of a chapter, as its notebook states it."""
 
@@ -138,7 +144,7 @@ class ChapterExercises(Directive):
         lines = [":::{list-table}", ":header-rows: 1", ":widths: 70 18 12",
                  ":class: icm-exercise-table", "", "* - exercise", "  - kind", "  - time"]
         for label, kind, title in exercises:
-            lines += [f"* - {{numref}}`Exercise %s: {title} <{label}>`", f"  - {kind}",
+            lines += [f"* - {{numref}}`Exercise %s: {_literal(title)} <{label}>`", f"  - {kind}",
                       f"  - {times[label]}"]
         lines.append(":::")
         container = nodes.container(classes=["icm-chapter-exercises"])
@@ -159,7 +165,7 @@ def exref_role(name, rawtext, text, lineno, inliner, options=None, content=None)
         message = inliner.reporter.error(f"exref: no exercise labelled {label!r}",
                                          line=lineno)
         return [inliner.problematic(rawtext, rawtext, message)], [message]
-    text = f"Exercise %s: {titles[label]}"
+    text = f"Exercise %s: {_literal(titles[label])}"
     reference = addnodes.pending_xref(rawtext, refdoc=env.docname, refdomain="std",
                                       reftype="numref", reftarget=label, refexplicit=True,
                                       refwarn=True)

@@ -12,8 +12,10 @@ placeholder cells and their checks, and no solution.
    sphinx-exercise's `hide_solutions`, a second guard). The library holds the
    exercises' answers (its own implementation of each piece, and the references of
    `icm.exercises`), so the copy has no source pages (Sphinx's `viewcode` is left
-   out: no "[source]" link) and its API page leaves out the references and the
-   hidden cases' generators of `icm.exercises` (`students_api`).
+   out: no "[source]" link), its API page leaves out the references and the
+   hidden cases' generators of `icm.exercises` (`students_api`), and its
+   instructors' page only points to the full edition (the marking guides describe
+   the answers).
 2. **Strips the solutions** from every notebook (`strip_solutions`): the cells tagged
    `solution` go, which are a solution's `solution-start` and `solution-end` cells and
    everything between them. It refuses a notebook where a solution is left untagged,
@@ -53,6 +55,13 @@ GLUED = re.compile(r"\{glue(?::\w+)?\}`([A-Za-z0-9_]+)")
 GLUE_CALL = re.compile(r"""glue\(\s*f?["']([A-Za-z0-9_]*)(\{)?""")
 NO_STUDENTS_EXTENSIONS = ("sphinx.ext.viewcode",)
 """Extensions the students' edition goes without (viewcode shows the library's code)."""
+STUDENTS_INSTRUCTORS_PAGE = """# For instructors
+
+This is the students' edition of the book. The instructors' page (grading, course plans,
+marking guides) is in the book's full edition.
+"""
+"""The instructors' page of the students' edition: its marking guides say what the
+extend exercises' answers hold."""
 ANSWERS = ("reference_", "hidden_")
 """Prefixes of the functions of `icm.exercises` that the students' API page leaves out:
 the references (the answers) and the generators of the hidden cases."""
@@ -239,6 +248,9 @@ def prepare(source, root=ROOT):
     api = source / "book" / "api.md"
     if api.exists():
         api.write_text(students_api(api.read_text()))
+    instructors = source / "book" / "instructors.md"
+    if instructors.exists():  # its marking guides describe the extend exercises' answers
+        instructors.write_text(STUDENTS_INSTRUCTORS_PAGE)
     stripped = []
     for path in _notebooks(source / "book"):
         notebook = nbformat.read(path, as_version=4)

@@ -284,8 +284,10 @@ def master_notebook(name, path, seed, root=ROOT):
     for number, exercise in enumerate(exercises, 1):
         heading = f"## Exercise {number}. {exercise.kind.capitalize()}: {exercise.title}\n\n"
         if exercise.kind == "extend":
-            cells += [nbformat.v4.new_markdown_cell(heading + exercise.prompt +
-                                                    "\n\n*Marked by hand.*"),
+            cells += [nbformat.v4.new_markdown_cell(
+                heading + exercise.prompt + "\n\n*Marked by hand. Where the exercise "
+                "uses the chapter's runs, work in the chapter's notebook and write your "
+                "answer here.*"),
                       nbformat.v4.new_code_cell("# Your work here."),
                       nbformat.v4.new_markdown_cell("*Your answer here.*")]
             continue

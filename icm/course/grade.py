@@ -310,7 +310,7 @@ def grade(submissions, out, assignments="_build/assignments", feedback_dir=None,
     """Grades every notebook in a folder and writes the grade sheet and the feedback.
 
     Args:
-      submissions: the folder of submitted notebooks (*.ipynb).
+      submissions: the folder of submitted notebooks (their .ipynb files).
       out: the CSV to write.
       assignments: the folder `assign` wrote.
       feedback_dir: the folder of the feedback files (default: beside `out`, in
