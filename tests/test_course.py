@@ -267,6 +267,10 @@ def test_each_chapter_gets_a_students_notebook_and_an_autograder(assignments):
                 assert exercise.placeholder.strip() in text
         manifest = json.loads((folder / "autograder" / assign.MANIFEST).read_text())
         assert [e["label"] for e in manifest["exercises"]] == [e.label for e in implement]
+        assert manifest["number"] == [n for n, _ in assign.chapters()].index(name) + 1
+    # The grade sheet's columns follow the book.
+    loaded = grade.load_assignments(out)
+    assert list(loaded) == [name for name, _ in assign.chapters()]
         assert len(list((folder / "autograder").glob("*-autograder_*.zip"))) == 1
 
 

@@ -436,7 +436,9 @@ def manifest(name, path):
     Returns:
       A dict.
     """
-    return {"chapter": name, "title": _title(path),
+    number = [found for found, _ in chapters()].index(name) + 1 if name in \
+        dict(chapters()) else 0
+    return {"chapter": name, "number": number, "title": _title(path),
             "exercises": [{"label": e.label, "title": e.title,
                            "function": EXERCISES[e.label].function,
                            "points": EXERCISES[e.label].total}

@@ -110,15 +110,16 @@ def load_assignments(folder):
       folder: the assignments' folder.
 
     Returns:
-      {chapter: `Assignment`}.
+      {chapter: `Assignment`}, in the book's order.
 
     Raises:
       GradeError: if it holds none.
     """
     folder = pathlib.Path(folder)
-    found = {}
+    found, numbers = {}, {}
     for manifest_path in sorted(folder.glob(f"*/autograder/{MANIFEST}")):
         manifest = json.loads(manifest_path.read_text())
+        numbers[manifest["chapter"]] = manifest.get("number", 0)
         zips = sorted(manifest_path.parent.glob("*-autograder_*.zip"))
         if not zips:
             continue
@@ -129,7 +130,7 @@ def load_assignments(folder):
     if not found:
         raise GradeError(f"no assignment in {folder}: run `python -m icm.course assign "
                          f"{folder}` (or `make assignments`) first")
-    return found
+    return dict(sorted(found.items(), key=lambda item: (numbers[item[0]], item[0])))
 
 
 def chapter_of(notebook_bytes):
