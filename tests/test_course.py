@@ -268,10 +268,10 @@ def test_each_chapter_gets_a_students_notebook_and_an_autograder(assignments):
         manifest = json.loads((folder / "autograder" / assign.MANIFEST).read_text())
         assert [e["label"] for e in manifest["exercises"]] == [e.label for e in implement]
         assert manifest["number"] == [n for n, _ in assign.chapters()].index(name) + 1
+        assert len(list((folder / "autograder").glob("*-autograder_*.zip"))) == 1
     # The grade sheet's columns follow the book.
     loaded = grade.load_assignments(out)
     assert list(loaded) == [name for name, _ in assign.chapters()]
-        assert len(list((folder / "autograder").glob("*-autograder_*.zip"))) == 1
 
 
 def test_no_solution_and_no_hidden_test_reaches_a_student(assignments):
