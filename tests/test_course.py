@@ -777,34 +777,32 @@ def test_the_instructors_page_reads_objectives_and_exercises_from_the_chapters(t
     nbformat.write(nbformat.v4.new_notebook(cells=FIXTURE_CHAPTER["cells"]),
                    source / "chapter.ipynb")
     (source / "index.md").write_text(
-        "# Instructors\n\n```{toctree}\nchapter\n```\n\n"
+        "# Instructors\n\n```{toctree}\nchapter\nwrong\n```\n\n"
         ":::{chapter-objectives} chapter\n:::\n\n"
         ":::{chapter-exercises} chapter\nex-first: 10 min\nex-second: 20 min\n:::\n\n"
         "See {exref}`ex-second`.\n")
+    # A page whose times leave an exercise out: an error, and the only message.
+    (source / "wrong.md").write_text("# Wrong\n\n:::{chapter-exercises} chapter\n"
+                                     "ex-first: 10 min\n:::\n")
     (source / "conf.py").write_text(
         "import sys\n"
         f"sys.path.insert(0, {str(ROOT / 'book' / '_ext')!r})\n"
         "extensions = ['myst_nb', 'sphinx_exercise', 'course_pages']\n"
         "nb_execution_mode = 'off'\nmyst_enable_extensions = ['colon_fence']\n"
         "numfig = True\nexclude_patterns = ['_build']\n")
-    done = subprocess.run([sys.executable, "-m", "sphinx", "-b", "html", "-W", "-q",
+    done = subprocess.run([sys.executable, "-m", "sphinx", "-b", "html", "-q",
                            str(source), str(tmp_path / "html")], capture_output=True,
                           text=True)
-    assert done.returncode == 0, done.stdout + done.stderr
+    messages = [line for line in (done.stdout + done.stderr).splitlines()
+                if "WARNING" in line or "ERROR" in line]
+    assert len(messages) == 1 and "wrong.md" in messages[0], messages
+    assert "missing ['ex-second']" in messages[0]
     page = (tmp_path / "html" / "index.html").read_text()
     assert "icm-chapter-objectives" in page and "Compute a thing." in page
     assert "Explain it." in page and "Learning objectives" in page
-    assert 'class="table icm-exercise-table' in page or "icm-exercise-table" in page
+    assert "icm-exercise-table" in page
     assert re.search(r"Exercise 1: the first thing", page)
     assert "Exercise 2: the second thing, 90%" in page  # (a "%" in a title)
     assert page.count('href="chapter.html#ex-second"') == 2  # the table and the exref
     assert "20 min" in page and "icm-course.css" in page
     assert (tmp_path / "html" / "_static" / "icm-course.css").exists()
-    # The times must name the chapter's exercises, and no other.
-    (source / "index.md").write_text(
-        "# I\n\n```{toctree}\nchapter\n```\n\n:::{chapter-exercises} chapter\n"
-        "ex-first: 10 min\n:::\n")
-    done = subprocess.run([sys.executable, "-m", "sphinx", "-b", "html", "-W", "-q", "-E",
-                           str(source), str(tmp_path / "html2")], capture_output=True,
-                          text=True)
-    assert done.returncode != 0 and "missing ['ex-second']" in done.stdout + done.stderr
