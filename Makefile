@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: book book-students pdf test test-quick lab bench clean check-system repository
+.PHONY: book book-students pdf test test-quick lab bench clean check-system repository assignments slides
 
 # Before anything slow: what the system must provide besides Python packages
 # (icm/_system.py: Python 3.11+, Mesa's EGL on Linux), with the command that installs it.
@@ -31,6 +31,12 @@ book: check-system $(STAMP)  ## execute the notebooks (unless cached and the lib
 
 book-students: check-system $(STAMP)  ## the book without the exercises' solutions, into _build/students/_build/html
 	$(BIN)/python book/_ext/student_edition.py
+
+assignments: check-system $(STAMP)  ## each chapter's assignment (student's notebook, autograder) with otter, into _build/assignments
+	$(BIN)/python -m icm.course assign _build/assignments
+
+slides: book  ## one reveal.js deck per chapter from the built book, into _build/slides (open index.html)
+	$(BIN)/python -m icm.course slides _build/html --out _build/slides
 
 pdf: book  ## the book as one PDF (_build/pdf/book.pdf), printed offline by headless Chromium
 	$(BIN)/python book/_ext/print_book.py --html _build/html --out _build/pdf/book.pdf

@@ -1,7 +1,9 @@
-"""The exercises' checks: each passes its reference solution, fails typical wrong
-answers (a sign error, a window off by one, a forgotten edge case) naming the case,
-reports a placeholder as not implemented yet, refuses a wrong argument, and never
-shows the reference's code; the references agree with the library."""
+"""The exercises' checks: each passes the book's solution, fails typical wrong answers
+(a sign error, a window off by one, a forgotten edge case) naming the case and, where a
+check judges several quantities, the first one wrong; refuses an answer that calls the
+library's implementation or a reference; reports a placeholder as not implemented
+yet, refuses a wrong argument, and never shows the reference's code; the references
+agree with the library."""
 
 import inspect
 import math
@@ -71,6 +73,10 @@ def outcome_swapped(lights, button):
 
 def outcome_any_lit_opens_red(lights, button):
     return (int(lights[button] != 0), 0)
+
+
+def outcome_off_opens_red(lights, button):  # right on every lit button
+    return (int(lights[button] != 2), int(lights[button] == 2))
 
 
 def _distance(c1, a1, c2, a2, weight):
@@ -159,6 +165,24 @@ def q_step_error_after_update(q, predictions, state, action, observed, next_stat
     return reward
 
 
+def q_step_max_after_update(q, predictions, state, action, observed, next_state, done,
+                            alpha, gamma, lr):
+    old = predictions.get((state, action), [0.0] * len(observed))
+    predictions[(state, action)] = [p + lr * (o - p) for o, p in zip(observed, old)]
+    reward = sum(abs(o - p) for o, p in zip(observed, old))
+    q[state][action] += alpha * (reward - q[state][action])  # Q(s, a) changed first,
+    if not done:  # then max Q(s', .) read: with s' = s it may read the new Q(s, a)
+        q[state][action] += alpha * gamma * max(q[next_state])
+    return reward
+
+
+def q_step_never_updates_q(q, predictions, state, action, observed, next_state, done,
+                           alpha, gamma, lr):
+    old = predictions.get((state, action), [0.0] * len(observed))
+    predictions[(state, action)] = [p + lr * (o - p) for o, p in zip(observed, old)]
+    return sum(abs(o - p) for o, p in zip(observed, old))
+
+
 def q_step_bootstraps_at_the_end(q, predictions, state, action, observed, next_state, done,
                                  alpha, gamma, lr):
     old = predictions.get((state, action), [0.0] * len(observed))
@@ -207,6 +231,14 @@ def choose_returns_a_goal(interests, epsilon, rng):
     return rng.random(3)
 
 
+def choose_half_epsilon(interests, epsilon, rng):  # explores half as often as it should
+    return reference_goal_choice(interests, epsilon / 2, rng)
+
+
+def choose_global_generator(interests, epsilon, rng):  # numpy's global state, not rng
+    return reference_goal_choice(interests, epsilon, np.random.default_rng())
+
+
 def signal_raw_slope(history):
     return -_slope(history) if len(history) >= 2 else 0.0  # negative when errors go up
 
@@ -228,6 +260,10 @@ def signal_recent_error(history):
     return float(np.mean(history[-5:])) if history else 1.0
 
 
+def signal_constant(history):
+    return 0.0
+
+
 # --- the checks, their references and their wrong answers ------------------------------
 
 CHECKS = {
@@ -246,6 +282,7 @@ CHECKS = {
     "press_outcome": (buttons.check_press_outcome, buttons.reference_press_outcome, [
         (outcome_swapped, "button 2 (lit red)"),
         (outcome_any_lit_opens_red, "(lit green)"),
+        (outcome_off_opens_red, "(off)"),
     ]),
     "nearest_neighbour": (buttons.check_nearest_neighbour, buttons.reference_predict, [
         (predict_first_of_ties, "ties: two experiences at the same distance"),
@@ -268,6 +305,8 @@ CHECKS = {
     "q_learning_step": (rods.check_q_learning_step, rods.reference_q_learning_step, [
         (q_step_error_after_update, "an untried move topples the red rod"),
         (q_step_bootstraps_at_the_end, "the episode ended: no next value"),
+        (q_step_max_after_update, "the next state is the state itself"),
+        (q_step_never_updates_q, "an untried move topples the red rod"),
     ]),
     "state_confidence": (rods.check_state_confidence, rods.reference_state_confidence, [
         (confidence_untried_as_right, "a cell never visited"),
@@ -282,6 +321,8 @@ CHECKS = {
         (choose_without_epsilon, "epsilon 1: uniform"),
         (choose_divides_by_zero, "every interest 0"),
         (choose_returns_a_goal, "every interest 0"),
+        (choose_half_epsilon, "epsilon 1: uniform"),
+        (choose_global_generator, "the generator it is given"),
     ]),
     "curiosity_signal": (lambda f: interest.check_curiosity_signal(f, experiment=False),
                          signal_recent_error, [
@@ -289,6 +330,7 @@ CHECKS = {
         (signal_last_error, "empty history"),
         (signal_sorts_in_place, "two elements"),  # the first history it changes
         (signal_random, "empty history"),
+        (signal_constant, "the same interest for every history"),
     ]),
 }
 
@@ -301,12 +343,34 @@ def reference_goal_choice(interests, epsilon, rng):
     return int(rng.choice(len(values), p=values / values.sum()))
 
 
+def _book_solutions():
+    """The book's solutions of the implement exercises (the code under each one in the
+    chapters' notebooks), as functions: the student's own code, which the checks take."""
+    from icm.course.assign import chapter_exercises, chapters
+
+    namespace = {"np": np}
+    for _, path in chapters():
+        for exercise in chapter_exercises(path):
+            if exercise.kind == "implement":
+                exec(exercise.solution, namespace)
+    return namespace
+
+
+SOLUTIONS = _book_solutions()
+SOLUTION_OF = {"least_squares_slope": "least_squares_slope", "task_interest": "task_interest",
+               "press_outcome": "press_outcome", "nearest_neighbour": "predict",
+               "minimum_jerk": "minimum_jerk", "softmax": "softmax", "td_update": "td_update",
+               "q_learning_step": "q_learning_step", "state_confidence": "state_confidence",
+               "red_first": "red_first", "goal_choice": "choose_region",
+               "curiosity_signal": "my_interest"}
+
+
 def _reference(name):
-    return reference_goal_choice if name == "goal_choice" else CHECKS[name][1]
+    return SOLUTIONS[SOLUTION_OF[name]]
 
 
 @pytest.mark.parametrize("name", sorted(CHECKS))
-def test_the_reference_solution_passes(name):
+def test_the_books_solution_passes(name):
     check = CHECKS[name][0]
     result = check(_reference(name))
     assert result.passed, repr(result)
@@ -342,10 +406,7 @@ def test_each_check_has_at_least_two_wrong_answers(name):
 @pytest.mark.parametrize("name, wrong, case", WRONG,
                          ids=[f"{n}-{w.__name__}" for n, w, _ in WRONG])
 def test_a_report_never_shows_the_reference_code(name, wrong, case):
-    reference = _reference(name)
-    sources = [reference]
-    if name != "goal_choice":
-        sources.append(CHECKS[name][1])
+    sources = [reference_goal_choice if name == "goal_choice" else CHECKS[name][1]]
     report = repr(CHECKS[name][0](wrong))
     for function in sources:
         for line in inspect.getsource(function).splitlines():
@@ -403,12 +464,150 @@ def test_a_function_that_forgets_return_is_told_so():
 
 def test_inputs_are_copied_so_a_function_that_changes_them_changes_nothing_else():
     def mutates(history, others, window, new_task_factor):
-        answer = interest.reference_task_interest(list(history), list(others), window,
-                                                  new_task_factor)
+        answer = SOLUTIONS["task_interest"](list(history), list(others), window,
+                                            new_task_factor)
         history.clear()
         others.clear()
         return answer
     assert interest.check_task_interest(mutates, experiment=False).passed
+
+
+# --- the first quantity wrong, the generator, a constant -------------------------------
+
+def test_the_hint_names_the_first_quantity_that_is_wrong():
+    # A step that never updates Q has the right reward: the hint is about Q.
+    never = rods.check_q_learning_step(q_step_never_updates_q)
+    assert never.hint.startswith("Q is wrong (the reward and the prediction right).")
+    assert "Equation 3" in never.hint and "predictor's error" not in never.hint
+    # One whose reward is the error after learning: the hint is about the reward, even
+    # on a case whose own hint is about Q.
+    late = rods.check_q_learning_step(q_step_error_after_update)
+    assert late.hint.startswith("The reward is wrong.") and "before it learns" in late.hint
+    ended = rods.check_q_learning_step(q_step_bootstraps_at_the_end)
+    assert ended.hint.startswith("Q is wrong") and "done" in ended.hint
+
+    def q_step_prediction_not_learned(q, predictions, state, action, observed, next_state,
+                                      done, alpha, gamma, lr):
+        reward = SOLUTIONS["q_learning_step"](q, dict(predictions), state, action, observed,
+                                              next_state, done, alpha, gamma, lr)
+        return reward  # the prediction is left as it was
+    unlearned = rods.check_q_learning_step(q_step_prediction_not_learned)
+    assert unlearned.hint.startswith("The prediction is wrong (the reward right).")
+    # The TD update: the TD error, then the critic, then the actor.
+    td = actor_critic.check_td_update(td_sign_error)
+    assert td.hint.startswith("The TD error is wrong.")
+
+    def td_forgets_the_actor(critic, actor, state, action, reward, next_state, td_form,
+                             lr_actor, lr_critic, gamma):
+        return SOLUTIONS["td_update"](critic, {k: list(v) for k, v in actor.items()}, state,
+                                      action, reward, next_state, td_form, lr_actor, lr_critic,
+                                      gamma)
+    actor_left = actor_critic.check_td_update(td_forgets_the_actor)
+    assert actor_left.hint.startswith("The actor is wrong (the TD error and the critic right).")
+
+
+def test_a_goal_choice_rule_must_draw_from_the_generator_it_is_given():
+    result = goal_choice.check_goal_choice(choose_global_generator)
+    assert result.case.name == goal_choice.GENERATOR
+    assert "from `rng`" in result.hint and "global" in result.hint
+    # A rule whose choices repeat whatever generator it is given.
+    calls = []
+
+    def ignores_rng(interests, epsilon, rng):
+        calls.append(1)
+        return reference_goal_choice(interests, epsilon,
+                                     np.random.default_rng(len(calls) % goal_choice.SEQUENCE))
+    cases = goal_choice._cases()
+    names = [case.name for case in cases] + [goal_choice.GENERATOR]
+    result = goal_choice._generator_verdict(ignores_rng, cases, names, 5)
+    assert not result.passed and "whatever generator" in result.hint
+    assert goal_choice._generator_verdict(reference_goal_choice, cases, names, 5).passed
+
+
+def test_the_curiosity_check_refuses_a_constant_and_takes_a_signal_that_varies():
+    for constant in (0.0, 1.0, 0.25):
+        result = interest.check_curiosity_signal(lambda history: constant, experiment=False)
+        assert result.case.name == interest.CONSTANT and "constant" in result.hint
+    novelty = interest.check_curiosity_signal(lambda history: 1.0 / (1 + len(history)),
+                                              experiment=False)
+    assert novelty.passed
+
+
+# --- answers that are not the student's own ---------------------------------------------
+
+def _calls(module, name):
+    def call(*args):
+        import importlib
+
+        return getattr(importlib.import_module(module), name)(*args)
+    return call
+
+
+CHEATS = {
+    "least_squares_slope": [_calls("icm.learners.interest", "least_squares_slope")],
+    "task_interest": [_calls("icm.exercises.interest", "reference_task_interest"),
+                      lambda h, o, w, f: 0.0 if not h else (f * sum(o) / len(o) if o else 0.0)
+                      if len(h) == 1 else max(0.0, -_calls("icm.learners.interest",
+                                                           "least_squares_slope")(h[-w:]))],
+    "press_outcome": [_calls("icm.envs.buttons", "press_outcome"),
+                      _calls("icm.exercises.buttons", "reference_press_outcome")],
+    "nearest_neighbour": [_calls("icm.exercises.buttons", "reference_predict")],
+    "minimum_jerk": [_calls("icm.envs.icub", "minimum_jerk")],
+    "softmax": [_calls("icm.learners", "softmax")],
+    "td_update": [_calls("icm.exercises.actor_critic", "reference_td_update")],
+    "q_learning_step": [_calls("icm.exercises.rods", "reference_q_learning_step")],
+    "state_confidence": [_calls("icm.exercises.rods", "reference_state_confidence")],
+    "red_first": [_calls("icm.stats", "comes_first")],
+    "goal_choice": [lambda i, e, r: _calls("icm.learners.goal_choice", "choose_region")(
+        np.asarray(i, dtype=float), e, r)],
+    "curiosity_signal": [lambda h: _calls("icm.learners.interest", "least_squares_slope")(h)
+                         if len(h) > 1 else 0.0],
+}
+
+
+@pytest.mark.parametrize("name", sorted(CHECKS))
+def test_an_answer_that_calls_the_library_or_a_reference_is_not_the_students(name):
+    assert CHEATS[name]
+    for cheat in CHEATS[name]:
+        result = CHECKS[name][0](cheat)
+        assert not result.passed and result.borrowed is not None, repr(result)
+        assert f"`{result.borrowed.name}`" in result.hint and "gets 0" in result.hint
+        assert result.borrowed.name.startswith(("icm.learners", "icm.exercises", "icm.envs",
+                                                "icm.stats"))
+
+
+def test_an_answer_that_reads_the_checkers_frames_is_not_the_students():
+    import inspect
+    import sys
+
+    def peeks(values):
+        return sys._getframe(1).f_locals.get("expected")
+
+    def stacks(values):
+        return inspect.stack()[1].frame.f_locals.get("expected")
+
+    def unwatches(values):
+        sys.setprofile(None)
+        return SOLUTIONS["least_squares_slope"](values)
+    for cheat in (peeks, stacks, unwatches):
+        result = interest.check_least_squares_slope(cheat)
+        assert result.borrowed is not None and result.borrowed.why == "prying", repr(result)
+    # The standard library's own use of frames (here, namedtuple) is not a student's.
+    def uses_namedtuple(values):
+        import collections
+
+        collections.namedtuple("Point", "x y")
+        return SOLUTIONS["least_squares_slope"](values)
+    assert interest.check_least_squares_slope(uses_namedtuple).passed
+
+
+def test_the_own_answer_watch_is_off_once_the_check_returns():
+    import sys
+
+    before = sys.getprofile()
+    interest.check_least_squares_slope(CHEATS["least_squares_slope"][0])
+    interest.check_least_squares_slope(SOLUTIONS["least_squares_slope"])
+    assert sys.getprofile() is before
 
 
 # --- the references are the library's --------------------------------------------------
@@ -521,7 +720,7 @@ def test_reference_td_update_is_the_actor_critics_learn_step():
 # --- the experiments the checks run ----------------------------------------------------
 
 def test_check_task_interest_runs_your_figure5_beside_the_librarys():
-    result = interest.check_task_interest(interest.reference_task_interest, n_seeds=3,
+    result = interest.check_task_interest(SOLUTIONS["task_interest"], n_seeds=3,
                                           n_trials=15)
     assert result.passed and result.figure is not None
     assert "Your Figure 5" in result.notes[0]
@@ -547,7 +746,7 @@ def test_check_goal_choice_draws_the_shares_for_given_interests():
 
 def test_experiment_flag_must_be_a_bool():
     with pytest.raises(_validate.ArgumentTypeError, match="experiment"):
-        interest.check_task_interest(interest.reference_task_interest, experiment="yes")
+        interest.check_task_interest(SOLUTIONS["task_interest"], experiment="yes")
 
 
 # --- the "predict, then check" options -------------------------------------------------

@@ -166,18 +166,60 @@ def test_stripping_refuses_a_solution_left_untagged_or_half_tagged():
         student_edition.strip_solutions(outside)
 
 
-def test_the_instructors_page_lists_every_exercise_with_its_kind_and_time():
+def _instructors_sections():
+    """{chapter: its section of the instructors' page}, in order."""
+    page = (ROOT / "book" / "instructors.md").read_text()
+    part = page.split("\n## Chapter by chapter", 1)[1]
+    return {name: part.split(f"\n### {number}. ", 1)[1].split("\n### ", 1)[0]
+            for number, name in enumerate(CHAPTERS, 1)}
+
+
+def test_the_instructors_page_lists_every_exercise_with_its_time_and_the_objectives():
     page = (ROOT / "book" / "instructors.md").read_text()
     assert "book/instructors" in toc_files()
-    assert "make book-students" in page
-    listed = dict(re.findall(r"\| \{ref\}`(ex-[a-z0-9-]+)` \| ([a-z, ]+) \| \d+ min \|", page))
-    in_book = {label: kind for name in CHAPTERS for label, kind, _ in exercises(name)}
-    assert listed == in_book
-    for number, name in enumerate(CHAPTERS, 1):
-        section = page.split(f"\n## {number}. ", 1)[1].split("\n## ", 1)[0]
-        assert "**Objectives.**" in section and "**Prerequisites.**" in section, name
-        for label, _, _ in exercises(name):
-            assert f"{{ref}}`{label}`" in section, (name, label)
+    assert "make book-students" in page and "make assignments" in page
+    assert "**Objectives.**" not in page  # the chapters state them (chapter-objectives)
+    for name, section in _instructors_sections().items():
+        assert f":::{{chapter-objectives}} {name}\n:::" in section, name
+        assert "**Prerequisites.**" in section, name
+        block = section.split(f":::{{chapter-exercises}} {name}\n", 1)[1].split(":::")[0]
+        listed = dict(re.findall(r"(ex-[a-z0-9-]+): (\d+ min)", block))
+        assert sorted(listed) == sorted(label for label, _, _ in exercises(name)), name
+    for name in CHAPTERS:  # the kit: plans and a marking guide per extend exercise
+        for label, kind, _ in exercises(name):
+            if kind == "extend":
+                guide = page.split("## Marking guides", 1)[1].split("\n## ", 1)[0]
+                assert f"{{exref}}`{label}`" in guide, label
+    for heading in ("## What runs where", "## Course plans", "**Four weeks**",
+                    "**Eight weeks**", "## Slides", "## The questions for a learning platform",
+                    "### On Gradescope", "otter grade"):
+        assert heading in page, heading
+
+
+def test_the_students_api_page_leaves_the_answers_out():
+    api = (ROOT / "book" / "api.md").read_text()
+    students = student_edition.students_api(api)
+    excluded = re.findall(r":exclude-members: (.*)", students)
+    names = {name.strip() for line in excluded for name in line.split(",")}
+    assert {"reference_task_interest", "reference_q_learning_step", "reference_softmax",
+            "hidden_slope_cases"} <= names
+    assert all(name.startswith(("reference_", "hidden_", "set")) for name in names)
+    assert students.count("automodule::") == api.count("automodule::")
+
+
+def test_the_students_edition_has_no_source_pages(tmp_path):
+    import yaml
+
+    student_edition.prepare(tmp_path / "source")
+    config = yaml.safe_load((tmp_path / "source" / "_config.yml").read_text())
+    assert "sphinx.ext.viewcode" not in config["sphinx"]["extra_extensions"]
+    assert "sphinx_exercise" in config["sphinx"]["extra_extensions"]
+    full = yaml.safe_load((ROOT / "_config.yml").read_text())
+    assert "sphinx.ext.viewcode" in full["sphinx"]["extra_extensions"]  # the full book's
+    assert ":exclude-members: hidden_outcome_cases" in \
+        (tmp_path / "source" / "book" / "api.md").read_text()
+    instructors = (tmp_path / "source" / "book" / "instructors.md").read_text()
+    assert "Marking guides" not in instructors and "full edition" in instructors
 
 
 def test_make_has_the_students_edition_target():
@@ -231,6 +273,16 @@ def test_the_students_edition_has_no_solution(students_edition):
                 assert line not in text, f"{path.name} holds a solution line of {name}: {line}"
     for path, text in texts.items():
         assert 'class="solution' not in text and "solution-start" not in text, path.name
+        # No hidden test, and no reference solution in the API pages or their sources.
+        assert not re.search(r"""hidden_test\(\s*['"]ex-""", text), path.name  # a test
+        assert "BEGIN TEST CONFIG" not in text, path.name
+        assert "viewcode" not in text and "_modules/" not in text, path.name
+    assert not (students_edition / "_modules").exists()
+    assert "Marking guides" not in (students_edition / "book" / "instructors.html").read_text()
+    api = (students_edition / "book" / "api.html").read_text()
+    assert 'id="icm.exercises.rods.reference_q_learning_step"' not in api
+    assert 'id="icm.exercises.interest.hidden_slope_cases"' not in api
+    assert 'id="icm.exercises.rods.check_q_learning_step"' in api
 
 
 @pytest.mark.book
@@ -265,6 +317,38 @@ def test_the_book_runs_every_check_on_its_solution_and_on_its_placeholder(built_
 @pytest.mark.book
 def test_the_instructors_page_links_every_exercise(built_book):
     page = (built_book / "book" / "instructors.html").read_text()
-    for name in CHAPTERS:
-        for label, _, _ in exercises(name):
+    page = page.replace("\u201c", '"').replace("\u201d", '"')  # (Sphinx's smart quotes)
+    for number, name in enumerate(CHAPTERS, 1):
+        for index, (label, _, title) in enumerate(exercises(name), 1):
             assert f'href="{name}.html#{label}"' in page, label
+            # Each exercise with its number and its title (issue 26).
+            assert f"Exercise {number}.{index}: {title}" in page, (label, title)
+    assert page.count('icm-exercise-table') >= len(CHAPTERS)
+    # The objectives, as the chapter that states them has them.
+    start = page.index("icm-chapter-objectives")
+    assert "Describe the console and its trials" in page[start:start + 3000]
+    assert page.count("icm-chapter-objectives") == sum(  # the chapters that state them
+        1 for name in CHAPTERS if ":class: icm-objectives" in "".join(
+            c.source for c in nbformat.read(ROOT / "book" / f"{name}.ipynb",
+                                            as_version=4).cells[:3]))
+
+
+@pytest.mark.book
+def test_the_instructors_tables_fill_the_text_column(built_book):
+    shutil_which = __import__("shutil").which
+    chromium = shutil_which("chromium") or shutil_which("chromium-browser")
+    playwright_api = pytest.importorskip("playwright.sync_api")
+    if chromium is None:
+        pytest.skip("Chromium is not installed")
+    with playwright_api.sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=chromium,
+                                             args=["--no-sandbox", "--disable-gpu"])
+        page = browser.new_page(viewport={"width": 1366, "height": 800})
+        page.goto((built_book / "book" / "instructors.html").as_uri())
+        widths = page.eval_on_selector_all(
+            "table.icm-exercise-table", "els => els.map(e => [e.getBoundingClientRect().width,"
+            " e.closest('article, main').getBoundingClientRect().width])")
+        browser.close()
+    assert len(widths) == len(CHAPTERS)
+    for table, column in widths:
+        assert table > 0.9 * column, (table, column)

@@ -9,7 +9,13 @@ placeholder cells and their checks, and no solution.
    (`_config.yml`, `_toc.yml`, `book/`; `icm/`, `assets/`, `requirements.txt` and
    `pyproject.toml` linked, so that the execution cache knows the library), and
    marks the copy's configuration as the students' edition (its title, and
-   sphinx-exercise's `hide_solutions`, a second guard).
+   sphinx-exercise's `hide_solutions`, a second guard). The library holds the
+   exercises' answers (its own implementation of each piece, and the references of
+   `icm.exercises`), so the copy has no source pages (Sphinx's `viewcode` is left
+   out: no "[source]" link), its API page leaves out the references and the
+   hidden cases' generators of `icm.exercises` (`students_api`), and its
+   instructors' page only points to the full edition (the marking guides describe
+   the answers).
 2. **Strips the solutions** from every notebook (`strip_solutions`): the cells tagged
    `solution` go, which are a solution's `solution-start` and `solution-end` cells and
    everything between them. It refuses a notebook where a solution is left untagged,
@@ -47,6 +53,18 @@ LINKED = ("icm", "assets", "requirements.txt", "pyproject.toml")
 COPIED = ("_config.yml", "_toc.yml", "book")
 GLUED = re.compile(r"\{glue(?::\w+)?\}`([A-Za-z0-9_]+)")
 GLUE_CALL = re.compile(r"""glue\(\s*f?["']([A-Za-z0-9_]*)(\{)?""")
+NO_STUDENTS_EXTENSIONS = ("sphinx.ext.viewcode",)
+"""Extensions the students' edition goes without (viewcode shows the library's code)."""
+STUDENTS_INSTRUCTORS_PAGE = """# For instructors
+
+This is the students' edition of the book. The instructors' page (grading, course plans,
+marking guides) is in the book's full edition.
+"""
+"""The instructors' page of the students' edition: its marking guides say what the
+extend exercises' answers hold."""
+ANSWERS = ("reference_", "hidden_")
+"""Prefixes of the functions of `icm.exercises` that the students' API page leaves out:
+the references (the answers) and the generators of the hidden cases."""
 
 
 class StripError(ValueError):
@@ -167,6 +185,33 @@ def strip_solutions(notebook, name="notebook"):
     return stripped
 
 
+def students_api(text):
+    """The API page of the students' edition: every `icm.exercises` module documented
+    with its members but the references and the hidden cases' generators (`ANSWERS`).
+
+    Args:
+      text: the book's API page (book/api.md).
+
+    Returns:
+      The students' page.
+    """
+    import importlib
+
+    lines = text.splitlines()
+    out = []
+    for i, line in enumerate(lines):
+        out.append(line)
+        module = re.match(r"\.\. automodule:: (icm\.exercises\.\w+)\s*$", line)
+        if module and i + 1 < len(lines) and lines[i + 1].strip() == ":members:":
+            imported = importlib.import_module(module.group(1))
+            names = sorted(name for name, value in vars(imported).items()
+                           if name.startswith(ANSWERS) and callable(value)
+                           and getattr(value, "__module__", None) == imported.__name__)
+            if names:
+                out.append(f"   :exclude-members: {', '.join(names)}")
+    return "\n".join(out) + "\n"
+
+
 def solutions_of(notebook):
     """The cells of a notebook's solutions (tagged `solution`), as a list of sources."""
     return [cell.source for cell in notebook.cells if _is_solution(cell)]
@@ -195,8 +240,17 @@ def prepare(source, root=ROOT):
     config = yaml.safe_load(config_path.read_text())
     config["title"] = config["title"] + " (students' edition)"
     config.setdefault("sphinx", {}).setdefault("config", {})["hide_solutions"] = True
+    config["sphinx"]["extra_extensions"] = [
+        extension for extension in config["sphinx"].get("extra_extensions", [])
+        if extension not in NO_STUDENTS_EXTENSIONS]
     config_path.write_text("# The students' edition: written by book/_ext/student_edition.py\n"
                            + yaml.safe_dump(config, sort_keys=False))
+    api = source / "book" / "api.md"
+    if api.exists():
+        api.write_text(students_api(api.read_text()))
+    instructors = source / "book" / "instructors.md"
+    if instructors.exists():  # its marking guides describe the extend exercises' answers
+        instructors.write_text(STUDENTS_INSTRUCTORS_PAGE)
     stripped = []
     for path in _notebooks(source / "book"):
         notebook = nbformat.read(path, as_version=4)

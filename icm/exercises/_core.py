@@ -13,6 +13,7 @@ import warnings
 import numpy as np
 
 from icm import _validate
+from icm.exercises._own import call_own
 
 PASSED, FAILED, NOT_IMPLEMENTED = "passed", "failed", "not implemented yet"
 """The three outcomes of a check."""
@@ -30,11 +31,15 @@ class Case:
       name: what the case is about, e.g. "one element: a task seen once".
       args: the arguments, a tuple.
       hint: what to look at when this case fails.
+      about: for a check that judges several quantities (e.g. the reward and Q), the
+        one `hint` is about; when another is the first one wrong, the report gives
+        that quantity's hint instead. None for a check of one result.
     """
 
     name: str
     args: tuple
     hint: str
+    about: str = None
 
 
 @dataclasses.dataclass
@@ -54,6 +59,8 @@ class CheckResult:
         the student's piece measured).
       figure: a figure the check drew (e.g. the paper's experiment with the student's
         piece beside the reference), or None.
+      borrowed: an `icm.exercises._own.Borrowed` when the student's function called
+        what the exercise forbids (the library's answer, a reference), else None.
     """
 
     exercise: str
@@ -66,6 +73,7 @@ class CheckResult:
     hint: str = ""
     notes: list = dataclasses.field(default_factory=list)
     figure: object = None
+    borrowed: object = None
 
     @property
     def passed(self):
@@ -256,11 +264,12 @@ def close(expected, given, tolerance=1e-9):
 
 
 def run_cases(exercise, name, function, parameters, cases, reference, compare=close,
-              returns=None, observe=None):
+              returns=None, observe=None, quantities=None, forbidden=None):
     """Runs `function` and `reference` on every case and compares their results.
 
     Both are given fresh copies of each case's arguments, so that a function that
-    changes its inputs changes neither the other's nor the next case's.
+    changes its inputs changes neither the other's nor the next case's. The student's
+    function runs first, and the reference only once the student's has returned.
 
     Args:
       exercise: the exercise's name, for the report.
@@ -274,6 +283,12 @@ def run_cases(exercise, name, function, parameters, cases, reference, compare=cl
         shown in the hint when it returns something else; None to skip that check.
       observe: observe(arguments, returned) -> what is compared, for functions that
         change their arguments in place (default: what they return).
+      quantities: for an `observe` that gives a dict of several quantities, their
+        [(key, label, hint)] in the order they are computed: the report names the
+        first one that is wrong and gives its hint (the case's own hint when the case
+        is `about` it).
+      forbidden: an `icm.exercises._own.Forbidden`: what the function must not call
+        (its first such call fails the check); None to call it unwatched.
 
     Returns:
       A `CheckResult`.
@@ -285,21 +300,24 @@ def run_cases(exercise, name, function, parameters, cases, reference, compare=cl
     names = [case.name for case in cases]
     for case in cases:
         arguments = copy.deepcopy(case.args)
-        expected = reference(*arguments)
-        if observe is not None:
-            expected = observe(arguments, expected)
-        arguments = copy.deepcopy(case.args)
         try:
             with warnings.catch_warnings(), np.errstate(all="ignore"):
                 warnings.simplefilter("ignore")  # the report says what went wrong
-                given = function(*arguments)
+                given, borrowed = call_own(function, arguments, forbidden)
         except NotImplementedError:
             return CheckResult(exercise, NOT_IMPLEMENTED, names)
         except Exception as error:  # the student's code failed: say where, and go on
             return CheckResult(exercise, FAILED, names, case,
-                               show_arguments(parameters, case.args), expected, error,
+                               show_arguments(parameters, case.args),
+                               _expected(reference, case, observe), error,
                                f"Your function raised {type(error).__name__} on this case. "
                                + _sentence(case.hint))
+        if borrowed is not None:
+            return CheckResult(exercise, FAILED, names, case,
+                               show_arguments(parameters, case.args), "your own code",
+                               f"a call to {borrowed.name}", borrowed.hint(exercise),
+                               borrowed=borrowed)
+        expected = _expected(reference, case, observe)
         hint = _sentence(case.hint)
         if given is None and (observe is not None or expected is not None):
             hint = "Your function returned None: did you forget `return`? " + hint
@@ -308,9 +326,36 @@ def run_cases(exercise, name, function, parameters, cases, reference, compare=cl
         if observe is not None:
             given = observe(arguments, given)
         if not compare(expected, given):
+            if quantities:
+                hint = _first_wrong(quantities, case, expected, given, hint)
             return CheckResult(exercise, FAILED, names, case,
                                show_arguments(parameters, case.args), expected, given, hint)
     return CheckResult(exercise, PASSED, names)
+
+
+def _expected(reference, case, observe):
+    """The reference's result on a fresh copy of the case's arguments."""
+    arguments = copy.deepcopy(case.args)
+    expected = reference(*arguments)
+    return expected if observe is None else observe(arguments, expected)
+
+
+def _first_wrong(quantities, case, expected, given, hint):
+    """The hint of a failed case of a check that judges several quantities: it names
+    the first quantity (in the order they are computed) that differs from the
+    reference's, and gives that quantity's hint (the case's, if the case is about
+    it)."""
+    right = []
+    for key, label, quantity_hint in quantities:
+        if isinstance(given, dict) and key in given and close(expected[key], given[key]):
+            right.append(label)
+            continue
+        said = f"{_sentence(label)} is wrong"
+        said += f" ({' and '.join(right)} right)." if right else "."
+        if case.about not in (None, key):
+            hint = hint[:len(hint) - len(_sentence(case.hint))] + _sentence(quantity_hint)
+        return f"{said} {hint}"
+    return hint
 
 
 def _sentence(text):

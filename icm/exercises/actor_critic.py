@@ -6,6 +6,7 @@ import numpy as np
 from icm import _validate
 from icm.exercises import _core
 from icm.exercises._core import Case
+from icm.exercises._own import Forbidden
 from icm.learners.actor_critic import ActorCritic, softmax
 
 SOFTMAX_PARAMETERS = ("preferences", "temperature")
@@ -14,6 +15,22 @@ TD_PARAMETERS = ("critic", "actor", "state", "action", "reward", "next_state", "
 TD_FORMS = ("standard", "printed")
 """The two readings of the TD error: "standard" r + gamma V(s') - V(s), and "printed"
 r + gamma (V(s) - V(s')), equation 2 as the paper prints it."""
+SOFTMAX_FORBIDDEN = Forbidden(("icm.learners.action_selection", "icm.learners.actor_critic"))
+"""What a softmax must not call: the library's."""
+TD_FORBIDDEN = Forbidden(("icm.learners.actor_critic",))
+"""What a TD update must not call: the actor-critic's own."""
+STANDARD_HINT = ("The standard TD error is r + gamma * V(s') - V(s): the value of where you "
+                 "are going, discounted, minus the value of where you are.")
+PRINTED_HINT = ("The printed form (equation 2) is r + gamma * (V(s) - V(s')): V(s) is "
+                "inside the parentheses, multiplied by gamma too.")
+TD_QUANTITIES = (
+    ("td_error", "the TD error", "Compute the TD error in the form `td_form` from the "
+     "values before any update (a state the critic does not hold is worth 0)."),
+    ("critic", "the critic", "Then V(s) += lr_critic * td, stored in `critic` (a state it "
+     "did not hold starts from 0); no other state's value changes."),
+    ("actor", "the actor", "Then actor[s][action] += lr_actor * td; the other preferences "
+     "do not change."))
+"""What a TD update is judged on, in the order it computes them."""
 
 
 def reference_softmax(preferences, temperature):
@@ -52,13 +69,15 @@ def _softmax_cases():
     ]
 
 
-def check_softmax(softmax_function):
+def check_softmax(softmax_function, cases=None):
     """Checks a student's softmax, `f(preferences, temperature)`: the probability of each
     action, exp(h_i / T) / sum_j exp(h_j / T), as a list or array, computed without
     overflow.
 
     Args:
       softmax_function: the student's function.
+      cases: the cases to try, a list of `Case` (default: the check's own, the ones
+        the book shows; the grader passes its hidden ones).
 
     Returns:
       A `CheckResult`.
@@ -67,9 +86,10 @@ def check_softmax(softmax_function):
       ArgumentTypeError: if the argument is not a function of (preferences,
         temperature).
     """
+    cases = _softmax_cases() if cases is None else cases
     return _core.run_cases("softmax", "softmax_function", softmax_function,
-                           SOFTMAX_PARAMETERS, _softmax_cases(), reference_softmax,
-                           returns="a list of probabilities")
+                           SOFTMAX_PARAMETERS, cases, reference_softmax,
+                           returns="a list of probabilities", forbidden=SOFTMAX_FORBIDDEN)
 
 
 def reference_td_update(critic, actor, state, action, reward, next_state, td_form,
@@ -105,10 +125,7 @@ def _after(args, returned):
 
 
 def _td_cases():
-    standard_hint = ("The standard TD error is r + gamma * V(s') - V(s): the value of "
-                     "where you are going, discounted, minus the value of where you are.")
-    printed_hint = ("The printed form (equation 2) is r + gamma * (V(s) - V(s')): V(s) is "
-                    "inside the parentheses, multiplied by gamma too.")
+    standard_hint, printed_hint = STANDARD_HINT, PRINTED_HINT
     s, t = "here", "there"
     cases = [
         Case("standard form, both states valued", ({s: 0.4, t: 0.2}, {s: [0.0, 0.1, 0.0]},
@@ -116,24 +133,24 @@ def _td_cases():
              standard_hint + " Then V(s) += lr_critic * td and actor[s][a] += lr_actor * td."),
         Case("printed form, both states valued", ({s: 0.4, t: 0.2}, {s: [0.0, 0.1, 0.0]},
                                                   s, 1, 1.0, t, "printed", 0.5, 0.5, 0.5),
-             printed_hint),
+             printed_hint, "td_error"),
         Case("a state the critic has never valued: V is 0",
              ({}, {s: [0.0, 0.0, 0.0]}, s, 2, 1.0, t, "standard", 0.5, 0.5, 0.5),
              "A state missing from `critic` has value 0: use critic.get(state, 0.0), and "
              "store the new V(s)."),
         Case("no reward: only the values move", ({s: 0.4, t: 0.8}, {s: [0.0, 0.0, 0.0]},
                                                  s, 0, 0.0, t, "standard", 0.5, 0.5, 0.5),
-             standard_hint),
+             standard_hint, "td_error"),
         Case("gamma 0: the TD error is the reward minus V(s)",
              ({s: 0.4, t: 0.8}, {s: [0.0, 0.0, 0.0]}, s, 0, 1.0, t, "standard", 0.5, 0.5, 0.0),
-             "With gamma 0 the next state's value does not count."),
+             "With gamma 0 the next state's value does not count.", "td_error"),
         Case("the next state is the state itself (standard)",
              ({s: 0.4}, {s: [0.0, 0.2, 0.0]}, s, 1, 0.0, s, "standard", 0.5, 0.5, 0.5),
              "Compute the TD error from the values before any update, then update the "
              "critic and the actor with that same TD error."),
         Case("the next state is the state itself (printed): V(s) - V(s') is 0",
              ({s: 0.4}, {s: [0.0, 0.2, 0.0]}, s, 1, 1.0, s, "printed", 0.5, 0.5, 0.5),
-             printed_hint),
+             printed_hint, "td_error"),
         Case("different learning rates for the actor and the critic",
              ({s: 0.1, t: 0.3}, {s: [0.0, 0.0, 0.0]}, s, 0, 1.0, t, "standard", 0.1, 0.9,
               0.5),
@@ -141,7 +158,8 @@ def _td_cases():
              "them."),
         Case("only the chosen action's preference moves",
              ({s: 0.0, t: 0.0}, {s: [0.3, 0.3, 0.3]}, s, 2, 1.0, t, "printed", 0.5, 0.5, 0.5),
-             "actor[s][action] += lr_actor * td; the other actions keep their preferences."),
+             "actor[s][action] += lr_actor * td; the other actions keep their preferences.",
+             "actor"),
     ]
     rng = np.random.default_rng(11)
     for i in range(6):
@@ -151,11 +169,89 @@ def _td_cases():
         cases.append(Case(f"random values, {form} form {i // 2 + 1}",
                           (critic, actor, s, int(rng.integers(3)), float(rng.integers(2)), t,
                            form, 0.5, 0.5, float(rng.choice([0.0, 0.5, 0.9]))),
-                          standard_hint if form == "standard" else printed_hint))
+                          standard_hint if form == "standard" else printed_hint, "td_error"))
     return cases
 
 
-def check_td_update(td_update):
+def hidden_td_cases(rng):
+    """Cases of the shapes of the public ones, with values drawn from `rng`.
+
+    Args:
+      rng: a `numpy.random.Generator`.
+
+    Returns:
+      A list of `Case`.
+    """
+    s, t = f"s{int(rng.integers(100))}", f"t{int(rng.integers(100))}"
+    n = int(rng.integers(2, 6))
+
+    def value():
+        return round(float(rng.normal()), 3)
+
+    def prefs():
+        return {s: rng.normal(size=n).round(3).tolist()}
+
+    def rates():
+        return (round(float(rng.uniform(0.05, 1.0)), 2), round(float(rng.uniform(0.05, 1.0)), 2),
+                round(float(rng.uniform(0.0, 0.99)), 2))
+
+    cases = []
+    for form, hint in (("standard", STANDARD_HINT), ("printed", PRINTED_HINT)):
+        cases += [
+            Case(f"{form} form, both states valued (hidden)",
+                 ({s: value(), t: value()}, prefs(), s, int(rng.integers(n)),
+                  value(), t, form) + rates(), hint),
+            Case(f"{form} form, a state the critic has never valued (hidden)",
+                 ({t: value()}, prefs(), s, int(rng.integers(n)), value(), t, form) + rates(),
+                 "A state missing from `critic` has value 0; store the new V(s)."),
+            Case(f"{form} form, the next state is the state itself (hidden)",
+                 ({s: value()}, prefs(), s, int(rng.integers(n)), value(), s, form) + rates(),
+                 "Compute the TD error from the values before any update.", "td_error"),
+        ]
+    cases.append(Case("different learning rates for the actor and the critic (hidden)",
+                      ({s: value(), t: value()}, prefs(), s, int(rng.integers(n)), value(), t,
+                       "standard", 0.05, 0.95, round(float(rng.uniform(0.1, 0.9)), 2)),
+                      "The critic moves by lr_critic * td, the actor by lr_actor * td."))
+    return cases
+
+
+def hidden_softmax_cases(rng):
+    """Cases of the shapes of the public ones, with values drawn from `rng`.
+
+    Args:
+      rng: a `numpy.random.Generator`.
+
+    Returns:
+      A list of `Case`.
+    """
+    n = int(rng.integers(2, 8))
+
+    def temperature():
+        return float(rng.choice([0.05, 0.2, 0.5, 1.0, 3.0]))
+
+    return [
+        Case("ties: every preference the same (hidden)",
+             ([round(float(rng.normal()), 3)] * n, temperature()),
+             "Equal preferences give equal probabilities."),
+        Case("one action (hidden)", ([round(float(rng.normal()), 3)], temperature()),
+             "With one action its probability is 1."),
+        Case("a high temperature (hidden)", (rng.normal(size=n).round(3).tolist(),
+                                             round(float(rng.uniform(50, 200)), 1)),
+             "p_i = exp(h_i / T) / sum_j exp(h_j / T)."),
+        Case("large preferences: exp would overflow (hidden)",
+             ((rng.normal(size=n) + float(rng.uniform(500, 2000))).round(2).tolist(),
+              round(float(rng.uniform(0.1, 0.5)), 2)),
+             "Subtract the largest preference before exponentiating."),
+        Case("negative preferences (hidden)",
+             ((-np.abs(rng.normal(size=n)) * 3).round(3).tolist(), temperature()),
+             "exp of a negative number is small, not negative."),
+        Case("random preferences (hidden)", (rng.normal(size=n).round(3).tolist(),
+                                             temperature()),
+             "p_i = exp(h_i / T) / sum_j exp(h_j / T)."),
+    ]
+
+
+def check_td_update(td_update, cases=None):
     """Checks a student's TD update of Figure 4, `td_update(critic, actor, state, action,
     reward, next_state, td_form, lr_actor, lr_critic, gamma)`: it computes the TD error
     in the form `td_form` ("standard": r + gamma V(s') - V(s); "printed": r + gamma
@@ -166,6 +262,8 @@ def check_td_update(td_update):
 
     Args:
       td_update: the student's function.
+      cases: the cases to try, a list of `Case` (default: the check's own, the ones
+        the book shows; the grader passes its hidden ones).
 
     Returns:
       A `CheckResult`.
@@ -173,5 +271,7 @@ def check_td_update(td_update):
     Raises:
       ArgumentTypeError: if the argument is not a function of those ten arguments.
     """
-    return _core.run_cases("td_update", "td_update", td_update, TD_PARAMETERS, _td_cases(),
-                           reference_td_update, observe=_after)
+    cases = _td_cases() if cases is None else cases
+    return _core.run_cases("td_update", "td_update", td_update, TD_PARAMETERS, cases,
+                           reference_td_update, observe=_after, quantities=TD_QUANTITIES,
+                           forbidden=TD_FORBIDDEN)

@@ -9,8 +9,9 @@ import operator
 import numpy as np
 
 from icm import _validate
-from icm.exercises import _core
+from icm.exercises import _core, _own
 from icm.exercises._core import Case
+from icm.exercises._own import Forbidden
 from icm.exercises._runs import EXERCISE_SEEDS, EXERCISE_TRIALS, run_goal_oriented_with
 from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW, slope_weights,
                                    least_squares_slope)
@@ -18,6 +19,9 @@ from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW, slop
 SLOPE_PARAMETERS = ("values",)
 INTEREST_PARAMETERS = ("history", "others", "window", "new_task_factor")
 SIGNAL_PARAMETERS = ("history",)
+INTEREST_FORBIDDEN = Forbidden(("icm.learners.interest",))
+"""What a slope, an interest or a curiosity signal must not call: the library's
+interest module (the slope, the four signals, their batched table)."""
 
 
 def _slope_cases():
@@ -52,13 +56,15 @@ def _slope_cases():
     return cases
 
 
-def check_least_squares_slope(least_squares_slope_function):
+def check_least_squares_slope(least_squares_slope_function, cases=None):
     """Checks a student's least-squares slope: `f(values)` returns the slope lambda_1 of
     the line lambda_0 + lambda_1 * x fitted by least squares to (0, values[0]), (1,
     values[1]), ... (2 values or more).
 
     Args:
       least_squares_slope_function: the student's function of (values).
+      cases: the cases to try, a list of `Case` (default: the check's own, the ones
+        the book shows; the grader passes its hidden ones).
 
     Returns:
       A `CheckResult` (displayed as a report; true if every case passed).
@@ -66,9 +72,40 @@ def check_least_squares_slope(least_squares_slope_function):
     Raises:
       ArgumentTypeError: if the argument is not a function of one argument.
     """
+    cases = _slope_cases() if cases is None else cases
     return _core.run_cases("least_squares_slope", "least_squares_slope_function",
-                           least_squares_slope_function, SLOPE_PARAMETERS, _slope_cases(),
-                           least_squares_slope, returns="a number")
+                           least_squares_slope_function, SLOPE_PARAMETERS, cases,
+                           least_squares_slope, returns="a number",
+                           forbidden=INTEREST_FORBIDDEN)
+
+
+def hidden_slope_cases(rng):
+    """Cases of the shapes of the public ones, with values drawn from `rng`.
+
+    Args:
+      rng: a `numpy.random.Generator`.
+
+    Returns:
+      A list of `Case`.
+    """
+    a, b = round(float(rng.uniform(-1, 1)), 2), round(float(rng.uniform(-0.3, 0.3)), 3)
+    n = int(rng.integers(3, 13))
+    line = [round(a + b * x, 6) for x in range(n)]
+    cases = [
+        Case("two values (hidden)", (rng.random(2).round(3).tolist(),),
+             "through two points the slope is the second minus the first."),
+        Case("a line (hidden)", (line,), "x is the position, y the value."),
+        Case("the same line, another length (hidden)",
+             ([round(a + b * x, 6) for x in range(n + int(rng.integers(2, 6)))],),
+             "the slope of a line does not depend on the number of points."),
+        Case("ties: every value the same (hidden)", ([round(float(rng.random()), 3)] * n,),
+             "flat values have slope 0."),
+    ]
+    for i in range(4):
+        values = rng.random(int(rng.integers(2, 14))).round(3).tolist()
+        cases.append(Case(f"random values (hidden {i + 1})", (values,),
+                          "fit every point with least squares, x = 0, 1, 2, ..."))
+    return cases
 
 
 def reference_task_interest(history, others, window=DEFAULT_WINDOW,
@@ -148,6 +185,50 @@ def _interest_cases():
     return cases
 
 
+def hidden_interest_cases(rng):
+    """Cases of the shapes of the public ones, with values drawn from `rng`.
+
+    Args:
+      rng: a `numpy.random.Generator`.
+
+    Returns:
+      A list of `Case`.
+    """
+    def errors(n):
+        return rng.random(n).round(3).tolist()
+
+    window = int(rng.integers(2, 9))
+    factor = round(float(rng.uniform(0.1, 0.9)), 2)
+    others = errors(int(rng.integers(1, 5)))
+    falling = sorted(errors(window + int(rng.integers(2, 6))), reverse=True)
+    cases = [
+        Case("empty history (hidden)", ([], others, window, factor),
+             "a task never witnessed has interest 0."),
+        Case("one element, no other known task (hidden)", (errors(1), [], window, factor),
+             "a task seen once with no other known task: 0."),
+        Case("one element: a share of the others' mean (hidden)",
+             (errors(1), others, window, factor),
+             "a task seen once gets new_task_factor times the mean of `others`."),
+        Case("two elements (hidden)", (errors(2), others, window, factor),
+             "with two errors the slope is their difference; interest max(0, -slope)."),
+        Case("fewer than k errors (hidden)", (errors(max(2, window - 1)), [], window + 1,
+                                              factor),
+             "with fewer than `window` errors, fit all of them."),
+        Case("more than k errors: only the last k count (hidden)",
+             (errors(3) + falling, others, window, factor),
+             "only the last `window` errors count."),
+        Case("errors going up (hidden)", (sorted(errors(window)), [], window, factor),
+             "interest is max(0, -slope): 0 when the errors grow."),
+    ]
+    for i in range(4):
+        cases.append(Case(f"random history (hidden {i + 1})",
+                          (errors(int(rng.integers(0, 16))), errors(int(rng.integers(0, 4))),
+                           int(rng.integers(2, 10)), round(float(rng.uniform(0, 1)), 2)),
+                          "empty 0; one element, the new-task share; else max(0, -slope of "
+                          "the last window errors)."))
+    return cases
+
+
 class FunctionInterest:
     """An interest module (`record(task, error)`, `interest(task)`) whose interest is a
     student's function of a task's error history, `task_interest(history, others,
@@ -202,7 +283,7 @@ class FunctionInterest:
 
 
 def check_task_interest(task_interest, experiment=True, n_seeds=EXERCISE_SEEDS,
-                        n_trials=EXERCISE_TRIALS):
+                        n_trials=EXERCISE_TRIALS, cases=None):
     """Checks a student's interest of a task, `task_interest(history, others, window,
     new_task_factor)`: 0 for an empty history; for a task seen once,
     new_task_factor times the mean of `others` (0 if `others` is empty); otherwise
@@ -216,6 +297,8 @@ def check_task_interest(task_interest, experiment=True, n_seeds=EXERCISE_SEEDS,
       task_interest: the student's function.
       experiment: whether to run the experiment after the cases pass.
       n_seeds, n_trials: the experiment's size.
+      cases: the cases to try, a list of `Case` (default: the check's own, the ones
+        the book shows; the grader passes its hidden ones).
 
     Returns:
       A `CheckResult`.
@@ -225,9 +308,10 @@ def check_task_interest(task_interest, experiment=True, n_seeds=EXERCISE_SEEDS,
         window, new_task_factor), or a bad `experiment`.
     """
     experiment = _validate.boolean("experiment", experiment)
+    cases = _interest_cases() if cases is None else cases
     result = _core.run_cases("task_interest", "task_interest", task_interest,
-                             INTEREST_PARAMETERS, _interest_cases(), reference_task_interest,
-                             returns="a number")
+                             INTEREST_PARAMETERS, cases, reference_task_interest,
+                             returns="a number", forbidden=INTEREST_FORBIDDEN)
     if result.passed and experiment:
         from icm.experiments import run_goal_oriented
         from icm.figures import figure5_grid
@@ -280,6 +364,92 @@ def _meets_contract(expected, given):
     return _validate.is_real(given) and math.isfinite(float(given)) and float(given) >= 0.0
 
 
+CONSTANT = "the same interest for every history"
+"""The name of the check's last case: a signal must not be a constant."""
+
+
+def signal_verdict(signal, cases):
+    """What any interest signal must be, on `cases` (one history each): a finite number
+    >= 0 on every history, the history left unchanged, the same number twice for the
+    same history, not the same number for every history, computed without calling
+    the library's signals.
+
+    Args:
+      signal: the student's function of (history).
+      cases: a list of `Case`.
+
+    Returns:
+      A `CheckResult`.
+    """
+    result = _core.run_cases("your curiosity signal", "signal", signal, SIGNAL_PARAMETERS,
+                             cases, _signal_contract, compare=_meets_contract,
+                             forbidden=INTEREST_FORBIDDEN)
+    if not result.passed:
+        return result
+    names = result.cases + [CONSTANT]
+    values = []
+    for case in cases:
+        history = list(case.args[0])
+        first, borrowed = _own.call_own(signal, (history,), INTEREST_FORBIDDEN)
+        if history != list(case.args[0]):
+            return _core.CheckResult(
+                "your curiosity signal", _core.FAILED, names, case,
+                _core.show_arguments(SIGNAL_PARAMETERS, case.args),
+                "the history unchanged", history,
+                "your signal changed the history it was given (append, pop, sort in "
+                "place?): the learner keeps that list; work on a copy.")
+        try:
+            second, borrowed = _own.call_own(signal, (list(case.args[0]),),
+                                             INTEREST_FORBIDDEN)
+            same = _core.close(float(first), float(second))
+        except Exception as error:
+            second, same = error, False
+        if not same:
+            return _core.CheckResult(
+                "your curiosity signal", _core.FAILED, names, case,
+                _core.show_arguments(SIGNAL_PARAMETERS, case.args), first, second,
+                "your signal gave two different numbers for the same history: an interest "
+                "must depend on the history only (no random numbers, no state kept "
+                "between calls).")
+        values.append(float(first))
+    if all(_core.close(values[0], value) for value in values):
+        case = Case(CONSTANT, ("every history above",), "")
+        return _core.CheckResult(
+            "your curiosity signal", _core.FAILED, names, case, "history=every history above",
+            "different interests for histories that differ",
+            f"{_core.show(values[0])} for every history",
+            "A constant interest makes every task exactly as interesting as every other: "
+            "the learner then presses at random, and there is no curiosity left. Make your "
+            "signal depend on the history (its errors, their trend, how many there are).")
+    return _core.CheckResult("your curiosity signal", _core.PASSED, names)
+
+
+def hidden_signal_cases(rng):
+    """Histories of the shapes of the public ones, drawn from `rng`.
+
+    Args:
+      rng: a `numpy.random.Generator`.
+
+    Returns:
+      A list of `Case`.
+    """
+    n = int(rng.integers(4, 12))
+    rising = np.sort(rng.random(n)).round(3)
+    hint = "return a finite number >= 0 on any history."
+    return [
+        Case("empty history (hidden)", ([],), hint),
+        Case("one element (hidden)", (rng.random(1).round(3).tolist(),), hint),
+        Case("two elements (hidden)", (rng.random(2).round(3).tolist(),), hint),
+        Case("errors going up (hidden)", (rising.tolist(),),
+             "interest must not be negative: clip at 0."),
+        Case("ties: flat errors (hidden)", ([round(float(rng.random()), 3)] * n,), hint),
+        Case("errors going down (hidden)", (rising[::-1].tolist(),), hint),
+        Case("a coin flip (hidden)", (rng.integers(0, 2, 3 * n).astype(float).tolist(),), hint),
+        Case("a long history (hidden)", ((rng.random() ** np.arange(10 * n)).round(6).tolist(),),
+             hint),
+    ]
+
+
 class SignalInterest:
     """An interest module whose interest of a task is a student's function of that
     task's error history alone, `signal(history)` (0 history entries for a task never
@@ -311,7 +481,7 @@ class SignalInterest:
 
 
 def check_curiosity_signal(signal, experiment=True, n_seeds=EXERCISE_SEEDS,
-                           n_trials=EXERCISE_TRIALS):
+                           n_trials=EXERCISE_TRIALS, cases=None):
     """Checks a curiosity signal of the student's own design, `signal(history)`, the
     interest of a task from its error history: there is no single right answer, so
     the check tries it on the paper's edge cases and asks what any interest must be
@@ -324,6 +494,8 @@ def check_curiosity_signal(signal, experiment=True, n_seeds=EXERCISE_SEEDS,
       signal: the student's function of (history).
       experiment: whether to run the learner after the cases pass.
       n_seeds, n_trials: the experiment's size.
+      cases: the cases to try, a list of `Case` (default: the check's own, the ones
+        the book shows; the grader passes its hidden ones).
 
     Returns:
       A `CheckResult`.
@@ -333,28 +505,10 @@ def check_curiosity_signal(signal, experiment=True, n_seeds=EXERCISE_SEEDS,
         bad `experiment`.
     """
     experiment = _validate.boolean("experiment", experiment)
-    result = _core.run_cases("your curiosity signal", "signal", signal, SIGNAL_PARAMETERS,
-                             _signal_cases(), _signal_contract, compare=_meets_contract)
+    cases = _signal_cases() if cases is None else cases
+    result = signal_verdict(signal, cases)
     if not result.passed:
         return result
-    for case in _signal_cases():
-        history = list(case.args[0])
-        first = signal(history)
-        if history != list(case.args[0]):
-            return _core.CheckResult(
-                "your curiosity signal", _core.FAILED, result.cases, case,
-                _core.show_arguments(SIGNAL_PARAMETERS, case.args),
-                "the history unchanged", history,
-                "your signal changed the history it was given (append, pop, sort in "
-                "place?): the learner keeps that list; work on a copy.")
-        second = signal(list(case.args[0]))
-        if not _core.close(float(first), float(second)):
-            return _core.CheckResult(
-                "your curiosity signal", _core.FAILED, result.cases, case,
-                _core.show_arguments(SIGNAL_PARAMETERS, case.args), first, second,
-                "your signal gave two different numbers for the same history: an interest "
-                "must depend on the history only (no random numbers, no state kept "
-                "between calls).")
     if experiment:
         from icm.experiments import run_goal_oriented
         from icm.figures import figure5_grid

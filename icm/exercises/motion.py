@@ -6,8 +6,11 @@ import numpy as np
 from icm.envs.icub import minimum_jerk
 from icm.exercises import _core
 from icm.exercises._core import Case
+from icm.exercises._own import Forbidden
 
 PARAMETERS = ("fraction",)
+FORBIDDEN = Forbidden(("icm.envs.icub", "icm.envs.buttons.movements"))
+"""What a minimum-jerk profile must not call: the arm's own."""
 
 
 def reference_minimum_jerk(fraction):
@@ -38,13 +41,15 @@ def _cases():
     return cases
 
 
-def check_minimum_jerk(minimum_jerk_function):
+def check_minimum_jerk(minimum_jerk_function, cases=None):
     """Checks a student's minimum-jerk profile, `f(fraction)`: the share of the way
     covered at `fraction` (0 to 1) of the motion's time, 10 s^3 - 15 s^4 + 6 s^5, which
     starts and ends with zero speed and zero acceleration.
 
     Args:
       minimum_jerk_function: the student's function.
+      cases: the cases to try, a list of `Case` (default: the check's own, the ones
+        the book shows; the grader passes its hidden ones).
 
     Returns:
       A `CheckResult`.
@@ -52,5 +57,24 @@ def check_minimum_jerk(minimum_jerk_function):
     Raises:
       ArgumentTypeError: if the argument is not a function of one argument.
     """
+    cases = _cases() if cases is None else cases
     return _core.run_cases("minimum_jerk", "minimum_jerk_function", minimum_jerk_function,
-                           PARAMETERS, _cases(), reference_minimum_jerk, returns="a number")
+                           PARAMETERS, cases, reference_minimum_jerk, returns="a number",
+                           forbidden=FORBIDDEN)
+
+
+def hidden_cases(rng):
+    """Fractions drawn from `rng`, the ends and the middle included (the shapes of
+    the public cases).
+
+    Args:
+      rng: a `numpy.random.Generator`.
+
+    Returns:
+      A list of `Case`.
+    """
+    cases = [Case("the start (hidden)", (0.0,), "At the start the profile is 0."),
+             Case("the end (hidden)", (1.0,), "At the end the profile is 1.")]
+    for s in np.sort(rng.uniform(0.01, 0.99, 6)).round(4).tolist():
+        cases.append(Case(f"a fraction of the time (hidden)", (s,), "10 s^3 - 15 s^4 + 6 s^5."))
+    return cases

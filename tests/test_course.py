@@ -1,0 +1,808 @@
+"""The course: each chapter's assignment written by otter from the chapter's own
+exercises (placeholders and public tests for the students, solutions and hidden tests
+for the autograder only), graded end to end from a folder of submissions (a correct
+one, one with typical mistakes, one that imports the library's answers, one that
+hard-codes the public cases; and notebooks that loop, exit, die, fail at import or
+delete the files around them), the tests' time limits and the own-answer rule, the
+questions exported to Moodle XML and read back, the slide decks opened offline in
+Chromium, and the instructors' page's directives."""
+
+import csv
+import dataclasses
+import json
+import pathlib
+import re
+import shutil
+import subprocess
+import sys
+import zipfile
+
+import nbformat
+import numpy as np
+import pytest
+
+from conftest import ROOT
+
+from icm.course import assign, grade, grading, lms, slides
+from icm.exercises.registry import EXERCISES
+
+SEED = 20261202
+"""The grading seed of the tests' assignments."""
+CHAPTER = "goal_oriented_interest"
+"""The chapter whose submissions are graded end to end (two implement exercises)."""
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+
+
+def _solutions():
+    namespace = {"np": np}
+    for _, path in assign.chapters():
+        for exercise in assign.chapter_exercises(path):
+            if exercise.kind == "implement":
+                exec(exercise.solution, namespace)
+    return namespace
+
+
+SOLUTIONS = _solutions()
+
+
+# --- the registry and the hidden cases ---------------------------------------------------
+
+def test_the_registry_holds_every_implement_exercise_of_the_book_and_no_other():
+    book = {}
+    for name, path in assign.chapters():
+        for exercise in assign.chapter_exercises(path):
+            if exercise.kind == "implement":
+                book[exercise.label] = exercise
+    assert sorted(book) == sorted(EXERCISES)
+    for label, exercise in EXERCISES.items():
+        assert f"def {exercise.function}(" in book[label].placeholder, label
+        assert exercise.total == exercise.points + sum(exercise.hidden_points) > 0
+        assert exercise.timeout > 0 and len(exercise.hidden_points) >= 2
+
+
+@pytest.mark.parametrize("label", sorted(EXERCISES))
+def test_the_books_solution_passes_the_public_and_every_hidden_test(label):
+    exercise = EXERCISES[label]
+    function = SOLUTIONS[exercise.function]
+    grading.public_test(label, function)
+    for seed in (SEED, 7):
+        for test in range(len(exercise.hidden_points)):
+            grading.hidden_test(label, function, seed, test)
+
+
+@pytest.mark.parametrize("label", sorted(EXERCISES))
+def test_hidden_cases_are_drawn_from_the_seed_in_the_public_cases_shapes(label):
+    exercise = EXERCISES[label]
+    public = exercise.public_cases()
+    first = exercise.hidden_cases(exercise.generator(SEED, 0))
+    again = exercise.hidden_cases(exercise.generator(SEED, 0))
+    assert [c.args for c in first] == [c.args for c in again]  # one seed, one draw
+    # Other seeds and other tests draw other cases (the console's few layouts may
+    # repeat now and then: among five draws, several differ).
+    draws = {repr([c.args for c in exercise.hidden_cases(exercise.generator(seed, test))])
+             for seed in (SEED, SEED + 1, SEED + 2) for test in (0, 1)}
+    assert len(draws) >= 3, label
+    assert all(c.name.endswith(")") and "hidden" in c.name for c in first)
+    # Of the same shapes: the same argument count and types as the public cases'.
+    shapes = {tuple(type(a).__name__ for a in c.args) for c in public}
+    assert {tuple(type(a).__name__ for a in c.args) for c in first} <= shapes, label
+    # A table of the public cases' answers fails every hidden test. (A goal-choice
+    # rule is random: its table, choices replayed, cannot pass the public generator
+    # case either.)
+    table = _lookup_table(exercise)
+    assert exercise.takes_generator or exercise.public(table).passed, label
+    for test in range(len(exercise.hidden_points)):
+        result = exercise.hidden(table, SEED, test)
+        assert not result.passed and result.borrowed is None, (label, test)
+
+
+def _lookup_table(exercise):
+    """An answer that returns the book's solution's results on the public cases only,
+    from a table, and a constant elsewhere: the cheat of the hard-coded submission."""
+    solution = SOLUTIONS[exercise.function]
+    if exercise.takes_generator:  # the choices made on the check's own generators
+        return _replaying(exercise, solution)
+    answers = {}
+    for case in exercise.public_cases():
+        arguments = _copy(case.args)
+        result = solution(*arguments)
+        answers[repr(case.args)] = (result, arguments)
+
+    def table(*args):
+        found = answers.get(repr(args))
+        if found is None:
+            return 0.0
+        result, changed = found
+        for given, wanted in zip(args, changed):  # in-place changes, replayed
+            if isinstance(given, list):
+                given[:] = _copy(wanted)
+            elif isinstance(given, dict):
+                given.clear()
+                given.update(_copy(wanted))
+        return result
+    return table
+
+
+def _replaying(exercise, solution):
+    """A goal-choice "table": the solution's choices recorded on the public check's
+    generators (seeds 1000, 1001, ...) and played back, whatever generator it is
+    given."""
+    from icm.exercises import goal_choice
+
+    recorded = {}
+    for i, case in enumerate(exercise.public_cases()):
+        rng = np.random.default_rng(1000 + i)
+        recorded[repr(case.args)] = [solution(list(case.args[0]), case.args[1], rng)
+                                     for _ in range(goal_choice.DRAWS)]
+    played = {}
+
+    def table(interests, epsilon, rng):
+        key = repr((list(interests), epsilon))
+        choices = recorded.get(key)
+        if choices is None:
+            return 0
+        position = played.get(key, 0)
+        played[key] = position + 1
+        return choices[position % len(choices)]
+    return table
+
+
+def _copy(value):
+    import copy
+
+    return copy.deepcopy(value)
+
+
+def test_a_hidden_tests_failure_shows_neither_the_input_nor_the_expected_result():
+    exercise = EXERCISES["ex-least-squares-slope"]
+    wrong = lambda values: (values[-1] - values[0]) / (len(values) - 1)  # the endpoints
+    result = exercise.hidden(wrong, SEED, 0)
+    assert not result.passed
+    with pytest.raises(AssertionError) as raised:
+        grading.hidden_test("ex-least-squares-slope", wrong, SEED, 0)
+    message = str(raised.value)
+    assert result.case.name in message and "Hint:" in message
+    assert str(list(result.case.args[0])[0]) not in message
+    assert "expected" not in message and f"{result.expected}" not in message
+    with pytest.raises(AssertionError) as raised:  # the public test: the full report
+        grading.public_test("ex-least-squares-slope", wrong)
+    assert "expected:" in str(raised.value) and "input:" in str(raised.value)
+
+
+def test_an_answer_that_calls_the_library_gets_zero_on_every_test_of_the_exercise():
+    from icm.learners.interest import least_squares_slope
+
+    cheats = [
+        lambda values: least_squares_slope(values),
+        # Right on the cases it was shown (a table), the library's elsewhere.
+        _table_or_library(EXERCISES["ex-least-squares-slope"], least_squares_slope),
+        # Wrong on an early case, the library's later.
+        lambda values: 0.0 if len(values) == 2 else least_squares_slope(values),
+    ]
+    exercise = EXERCISES["ex-least-squares-slope"]
+    for cheat in cheats:
+        for test in [None] + list(range(len(exercise.hidden_points))):
+            with pytest.raises(AssertionError, match="0 points for this exercise") as raised:
+                if test is None:
+                    grading.public_test(exercise.label, cheat)
+                else:
+                    grading.hidden_test(exercise.label, cheat, SEED, test)
+            assert "icm.learners.interest.least_squares_slope" in str(raised.value)
+
+
+def _table_or_library(exercise, library):
+    table = {repr(c.args): SOLUTIONS[exercise.function](*c.args)
+             for c in exercise.public_cases()}
+    return lambda values: table.get(repr((values,))) if repr((values,)) in table \
+        else library(values)
+
+
+def test_each_test_has_a_time_limit_a_loop_cannot_catch(monkeypatch):
+    import time
+
+    quick = dataclasses.replace(EXERCISES["ex-red-first"], timeout=1.0)
+    monkeypatch.setitem(EXERCISES, "ex-red-first", quick)
+
+    def loops(red_trial, green_trial):
+        while True:
+            try:
+                time.sleep(0.01)
+            except Exception:  # a student's catch-all does not swallow the limit
+                pass
+
+    start = time.monotonic()
+    with pytest.raises(AssertionError, match="more than 1 s"):
+        grading.public_test("ex-red-first", loops)
+    for test in range(len(quick.hidden_points)):  # not run again: each would wait
+        with pytest.raises(AssertionError, match="earlier test"):
+            grading.hidden_test("ex-red-first", loops, SEED, test)
+    assert time.monotonic() - start < 10
+
+    def exits(red_trial, green_trial):
+        raise SystemExit(3)
+    with pytest.raises(AssertionError, match="SystemExit"):
+        grading.public_test("ex-red-first", exits)
+
+
+def test_a_missing_or_unknown_function_fails_with_a_sentence():
+    with pytest.raises(AssertionError, match="`red_first` is not defined"):
+        grading.public_test("ex-red-first", None)
+    with pytest.raises(AssertionError, match="no implement exercise"):
+        grading.public_test("ex-nothing", SOLUTIONS["red_first"])
+
+
+# --- otter's assignments --------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def assignments(tmp_path_factory):
+    """Every chapter's assignment, as `make assignments` writes it (otter assign), but
+    without otter's run of the tests on the solutions (the tests above run them)."""
+    out = tmp_path_factory.mktemp("assignments")
+    written = assign.assign(out, seed=SEED, run_tests=False, jobs=2, progress=lambda _: None)
+    return out, written
+
+
+def _implement(path):
+    return [e for e in assign.chapter_exercises(path) if e.kind == "implement"]
+
+
+def test_each_chapter_gets_a_students_notebook_and_an_autograder(assignments):
+    out, written = assignments
+    with_implement = [name for name, path in assign.chapters() if _implement(path)]
+    assert sorted(written) == sorted(with_implement) and len(written) == 8
+    for name, path in assign.chapters():
+        folder = out / name
+        notebook = nbformat.read(folder / "student" / f"{name}.ipynb", as_version=4)
+        assert notebook.metadata["otter"]["assignment_name"] == name
+        text = "\n".join(cell.source for cell in notebook.cells)
+        code = "\n".join(cell.source for cell in notebook.cells if cell.cell_type == "code")
+        implement = _implement(path)
+        assert code.count("raise NotImplementedError") == len(implement)
+        for exercise in assign.chapter_exercises(path):
+            if exercise.kind == "predict":
+                continue
+            assert exercise.title in text, (name, exercise.label)
+            if exercise.kind == "implement":
+                assert f'grader.check("{exercise.label}")' in text
+                assert exercise.placeholder.strip() in text
+        manifest = json.loads((folder / "autograder" / assign.MANIFEST).read_text())
+        assert [e["label"] for e in manifest["exercises"]] == [e.label for e in implement]
+        assert manifest["number"] == [n for n, _ in assign.chapters()].index(name) + 1
+        assert len(list((folder / "autograder").glob("*-autograder_*.zip"))) == 1
+    # The grade sheet's columns follow the book.
+    loaded = grade.load_assignments(out)
+    assert list(loaded) == [name for name, _ in assign.chapters()]
+
+
+def test_no_solution_and_no_hidden_test_reaches_a_student(assignments):
+    out, _ = assignments
+    for name, path in assign.chapters():
+        notebook = nbformat.read(out / name / "student" / f"{name}.ipynb", as_version=4)
+        text = "\n".join(cell.source for cell in notebook.cells)
+        everything = text + json.dumps(notebook.metadata)
+        assert str(SEED) not in everything and "hidden_test" not in everything
+        assert "hidden=True" not in everything
+        for exercise in _implement(path):
+            for line in exercise.solution.splitlines():
+                if len(line.strip()) > 25 and line.strip() not in exercise.placeholder:
+                    assert line.strip() not in everything, (name, line)
+        public = notebook.metadata["otter"]["tests"]
+        assert sorted(public) == sorted(e.label for e in _implement(path))
+        for label, source in public.items():
+            assert "public_test" in source and source.count("@test_case") == 1
+
+
+def test_the_autograder_zip_holds_the_hidden_tests_and_what_gradescope_runs(assignments):
+    from otter.test_files.exception_test import ExceptionTestFile
+
+    out, _ = assignments
+    for name, path in assign.chapters():
+        (zip_path,) = (out / name / "autograder").glob("*-autograder_*.zip")
+        with zipfile.ZipFile(zip_path) as archive:
+            names = set(archive.namelist())
+            assert {"run_autograder", "setup.sh", "otter_config.json",
+                    "environment.yml"} <= names
+            config = json.loads(archive.read("otter_config.json"))
+            assert config["assignment_name"] == name and config["show_hidden"] is False
+            environment = archive.read("environment.yml").decode()
+            assert assign.pinned("otter-grader") in environment
+            assert "icm @ git+https://github.com/" in environment
+            for exercise in _implement(path):
+                source = archive.read(f"tests/{exercise.label}.py").decode()
+                test_file = ExceptionTestFile.from_string(source, exercise.label)
+                registered = EXERCISES[exercise.label]
+                cases = test_file.test_cases
+                assert [c.hidden for c in cases] == \
+                    [False] + [True] * len(registered.hidden_points)
+                assert [c.points for c in cases] == \
+                    [registered.points] + list(registered.hidden_points)
+                assert source.count(f"seed = {SEED}") == len(registered.hidden_points)
+
+
+def test_the_master_notebook_is_otters_format(tmp_path):
+    name, path = assign.chapters()[0]
+    master = assign.master_notebook(name, path, SEED)
+    raw = [cell.source.splitlines()[0] for cell in master.cells if cell.cell_type == "raw"]
+    assert raw[0] == "# ASSIGNMENT CONFIG"
+    assert raw.count("# BEGIN QUESTION") == raw.count("# END QUESTION") == len(_implement(path))
+    solution = [cell.source for cell in master.cells
+                if cell.source.startswith("# BEGIN SOLUTION NO PROMPT")]
+    assert len(solution) == len(_implement(path))
+    assert all("''' # BEGIN PROMPT" in cell for cell in solution)
+
+
+def test_bad_input_to_assign_is_refused(tmp_path):
+    with pytest.raises(assign.AssignError, match="unknown chapters"):
+        assign.assign(tmp_path, names=["no_such_chapter"], run_tests=False)
+    with pytest.raises(ValueError, match="seed"):
+        assign.assign(tmp_path, seed=-1, run_tests=False)
+    with pytest.raises(assign.AssignError, match="glued number"):
+        assign.markdown_of("```{exercise-start} Implement: x\n:label: ex-x\n```\n"
+                           "It took {glue:text}`n` tries.")
+    assert assign.markdown_of("See {ref}`the chapter <ch>` and {doc}`api`.") == \
+        "See the chapter and *api*."
+
+
+# --- grading end to end --------------------------------------------------------------
+
+def _fill(student_path, answers, folder, name, extra=None, setup=None):
+    """A submission: the student's notebook with its answer cells replaced (by function
+    name), `extra` code run right after the setup cell, the setup cell replaced."""
+    notebook = nbformat.read(student_path, as_version=4)
+    cells = []
+    for cell in notebook.cells:
+        defined = re.search(r"def (\w+)\(", cell.source) if cell.cell_type == "code" else None
+        if defined and "otter_answer_cell" in cell.metadata.get("tags", []) and \
+                defined.group(1) in answers:
+            cell.source = answers[defined.group(1)]
+        if "grader = otter.Notebook" in cell.source:
+            if setup is not None:
+                cell.source = setup
+            cells.append(cell)
+            if extra is not None:
+                cells.append(nbformat.v4.new_code_cell(extra))
+            continue
+        cells.append(cell)
+    notebook.cells = cells
+    folder.mkdir(parents=True, exist_ok=True)
+    nbformat.write(notebook, folder / f"{name}.ipynb")
+
+
+SLOPE_DIVIDED_BY_N = """def least_squares_slope(values):
+    n = len(values)
+    x_mean, y_mean = (n - 1) / 2, sum(values) / n
+    return sum((x - x_mean) * (y - y_mean) for x, y in enumerate(values)) / n
+"""
+INTEREST_FORGETS_NEW_TASKS = """def task_interest(history, others, window=5, new_task_factor=0.5):
+    if len(history) < 2:
+        return 0.0
+    recent = history[-window:]
+    n = len(recent)
+    x_mean, y_mean = (n - 1) / 2, sum(recent) / n
+    slope = sum((x - x_mean) * (y - y_mean) for x, y in enumerate(recent)) / sum(
+        (x - x_mean) ** 2 for x in range(n))
+    return max(0.0, -slope)
+"""
+INTEREST_OWN = """def task_interest(history, others, window=5, new_task_factor=0.5):
+    if len(history) == 0:
+        return 0.0
+    if len(history) == 1:
+        return new_task_factor * sum(others) / len(others) if others else 0.0
+    recent = history[-window:]
+    n = len(recent)
+    x_mean, y_mean = (n - 1) / 2, sum(recent) / n
+    slope = sum((x - x_mean) * (y - y_mean) for x, y in enumerate(recent)) / sum(
+        (x - x_mean) ** 2 for x in range(n))
+    return max(0.0, -slope)
+"""
+
+
+def _hard_coded(label, definition):
+    """An answer that looks its result up in a table of the public cases' answers."""
+    exercise = EXERCISES[label]
+    table = {repr(case.args): SOLUTIONS[exercise.function](*case.args)
+             for case in exercise.public_cases()}
+    arguments = definition.split("(", 1)[1].split(")")[0]
+    names = ", ".join(a.split("=")[0].strip() for a in arguments.split(","))
+    return (f"ANSWERS = {table!r}\n\n\n{definition}\n"
+            f"    return ANSWERS.get(repr(({names},)), 0.0)\n").replace(
+        "ANSWERS", f"ANSWERS_{exercise.function}")
+
+
+@pytest.fixture(scope="module")
+def graded(assignments, tmp_path_factory):
+    """The four submissions of the issue, graded as an instructor would."""
+    out, _ = assignments
+    student = out / CHAPTER / "student" / f"{CHAPTER}.ipynb"
+    folder = tmp_path_factory.mktemp("submissions")
+    solution = {e.function: s for e, s in
+                ((EXERCISES[x.label], x.solution) for x in
+                 _implement(ROOT / "book" / f"{CHAPTER}.ipynb"))}
+    _fill(student, solution, folder, "correct")
+    _fill(student, {"least_squares_slope": solution["least_squares_slope"],
+                    "task_interest": INTEREST_FORGETS_NEW_TASKS}, folder, "mistakes")
+    _fill(student, {"least_squares_slope": "from icm.learners.interest import "
+                                           "least_squares_slope\n",
+                    "task_interest": INTEREST_OWN}, folder, "imports")
+    _fill(student, {"least_squares_slope": _hard_coded(
+        "ex-least-squares-slope", "def least_squares_slope(values):"),
+                    "task_interest": _hard_coded(
+        "ex-task-interest", "def task_interest(history, others, window=5, "
+                            "new_task_factor=0.5):")}, folder, "hard_coded")
+    sheet = folder.parent / f"{folder.name}-grades.csv"
+    results = grade.grade(folder, sheet, assignments=out, jobs=2, time_limit=400,
+                          progress=lambda _: None)
+    return sheet, {r.submission: r for r in results}, folder
+
+
+def _rows(sheet):
+    with open(sheet, newline="") as file:
+        return {row["submission"]: row for row in csv.DictReader(file)}
+
+
+def test_four_submissions_graded_end_to_end(graded):
+    sheet, results, _ = graded
+    rows = _rows(sheet)
+    with open(sheet, newline="") as file:
+        header = next(csv.reader(file))
+    assert header == ["submission", "chapter", "ex-least-squares-slope", "ex-task-interest",
+                      "total", "possible", "problem"]
+    assert set(rows) == {"correct.ipynb", "mistakes.ipynb", "imports.ipynb",
+                         "hard_coded.ipynb"}
+    total = {name: float(row["total"]) for name, row in rows.items()}
+    assert all(row["chapter"] == CHAPTER and row["possible"] == "20" and not row["problem"]
+               for row in rows.values()), rows
+    # The correct one scores highest: every point.
+    assert total["correct.ipynb"] == 20 and max(total, key=total.get) == "correct.ipynb"
+    assert all(total[name] < 20 for name in total if name != "correct.ipynb")
+    # Typical mistakes: the slope right, the interest without its new-task rule.
+    assert rows["mistakes.ipynb"]["ex-least-squares-slope"] == "10"
+    assert rows["mistakes.ipynb"]["ex-task-interest"] == "0"
+    # The importing one gets 0 on the exercise it cheats, and every point on the other.
+    assert rows["imports.ipynb"]["ex-least-squares-slope"] == "0"
+    assert rows["imports.ipynb"]["ex-task-interest"] == "10"
+    # The hard-coded one passes the public tests and fails every hidden one.
+    for label in ("ex-least-squares-slope", "ex-task-interest"):
+        cases = results["hard_coded.ipynb"].tests[label]
+        assert [c["passed"] for c in cases if not c["hidden"]] == [True]
+        assert not any(c["passed"] for c in cases if c["hidden"]) and len(cases) == 5
+        assert rows["hard_coded.ipynb"][label] == "2"
+
+
+def test_each_student_gets_a_feedback_file_that_says_why(graded):
+    sheet = graded[0]
+    folder = sheet.parent / f"{sheet.stem}-feedback"
+    files = sorted(p.name for p in folder.glob("*.md"))
+    assert files == ["correct.md", "hard_coded.md", "imports.md", "mistakes.md"]
+    correct = (folder / "correct.md").read_text()
+    assert "**20 of 20 points**" in correct and "failed" not in correct
+    imports = (folder / "imports.md").read_text()
+    assert "`icm.learners.interest.least_squares_slope`" in imports
+    assert "the library's implementation" in imports and "gets 0" in imports
+    mistakes = (folder / "mistakes.md").read_text()
+    assert "one element" in mistakes and "new_task_factor" in mistakes  # the public report
+    assert "expected:" in mistakes  # the public test shows its case
+    hard = (folder / "hard_coded.md").read_text()
+    assert hard.count("hidden test (0 of 2)") == 8 and "values are not shown" in hard
+    for text in (correct, imports, mistakes, hard):
+        assert str(SEED) not in text and "seed =" not in text
+
+
+MALICIOUS = {
+    # name: (the task_interest answer, a cell after the setup, a replaced setup cell)
+    "loops": ("def task_interest(history, others, window=5, new_task_factor=0.5):\n"
+              "    while True:\n        pass\n", None, None),
+    "exits": ("import sys\n\n\ndef task_interest(history, others, window=5, "
+              "new_task_factor=0.5):\n    sys.exit(1)\n", None, None),
+    "dies": (None, "import os\nos._exit(3)\n", None),
+    "raises_at_import": ("def task_interest(history, others, window=5, new_task_factor=0.5):\n"
+                         "    return float(np.mean(history)) if history else 0.0\n", None,
+                         "import icm_no_such_module\nimport numpy as np\nimport otter\n"
+                         f"grader = otter.Notebook(\"{CHAPTER}.ipynb\")\n"),
+    # Within the machine's memory, beyond the grader's limit (6 GiB of address space).
+    "hogs_memory": (INTEREST_OWN.replace(
+        "    if len(history) == 0:",
+        "    buffer = np.empty(2 ** 30)  # 8 GiB, never written\n    if len(history) == 0:"),
+        None, None),
+    "deletes": (None, "import os\nimport shutil\n\nfor name in os.listdir('..'):\n"
+                "    path = os.path.join('..', name)\n"
+                "    shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)\n", None),
+}
+
+
+@pytest.fixture(scope="module")
+def malicious(assignments, graded, tmp_path_factory):
+    """A folder with the correct submission and five that break things, graded."""
+    out, _ = assignments
+    student = out / CHAPTER / "student" / f"{CHAPTER}.ipynb"
+    folder = tmp_path_factory.mktemp("malicious")
+    solution = {EXERCISES[x.label].function: x.solution
+                for x in _implement(ROOT / "book" / f"{CHAPTER}.ipynb")}
+    shutil.copy(graded[2] / "correct.ipynb", folder / "correct.ipynb")
+    for name, (interest_answer, extra, setup) in MALICIOUS.items():
+        answers = dict(solution)
+        if interest_answer is not None:
+            answers["task_interest"] = interest_answer
+        _fill(student, answers, folder, name, extra=extra, setup=setup)
+    (folder / "not_a_notebook.ipynb").write_text("{ this is not JSON")
+    sheet = folder.parent / f"{folder.name}-grades.csv"
+    results = grade.grade(folder, sheet, assignments=out, jobs=2, time_limit=300,
+                          progress=lambda _: None)
+    return sheet, {r.submission: r for r in results}
+
+
+def test_a_submission_that_breaks_things_costs_only_its_own_points(graded, malicious):
+    rows = _rows(malicious[0])
+    first = _rows(graded[0])["correct.ipynb"]
+    # The other submissions' grades are unchanged.
+    assert rows["correct.ipynb"] == first
+    # An infinite loop in the answer, sys.exit in the answer, an error at import: 0 on
+    # what they break, the rest graded.
+    for name in ("loops", "exits", "raises_at_import", "hogs_memory"):
+        row = rows[f"{name}.ipynb"]
+        assert row["ex-least-squares-slope"] == "10" and row["ex-task-interest"] == "0", row
+    loops = malicious[1]["loops.ipynb"].tests["ex-task-interest"]
+    assert "time limit" in loops[0]["message"]
+    assert "SystemExit" in malicious[1]["exits.ipynb"].tests["ex-task-interest"][0]["message"]
+    # A kernel that dies, a notebook that deletes the grader's files: 0, and why.
+    assert rows["dies.ipynb"]["total"] == "0" and "died" in rows["dies.ipynb"]["problem"]
+    assert "MemoryError" in \
+        malicious[1]["hogs_memory.ipynb"].tests["ex-task-interest"][0]["message"]
+    assert rows["deletes.ipynb"]["total"] == "0"
+    assert "deleted" in rows["deletes.ipynb"]["problem"]
+    assert rows["not_a_notebook.ipynb"]["total"] == "0"
+    assert "not a notebook" in rows["not_a_notebook.ipynb"]["problem"]
+    feedback = malicious[0].parent / f"{malicious[0].stem}-feedback"
+    assert "died" in (feedback / "dies.md").read_text()
+
+
+def test_a_cell_that_never_ends_is_interrupted_and_the_next_cells_run(tmp_path):
+    import nbconvert.preprocessors
+
+    from icm.course import _worker
+
+    original = nbconvert.preprocessors.ExecutePreprocessor
+    try:
+        _worker._limited_executor(3)
+        notebook = nbformat.v4.new_notebook(cells=[
+            nbformat.v4.new_code_cell("while True:\n    pass"),
+            nbformat.v4.new_code_cell("print('after the loop')")])
+        notebook.metadata["kernelspec"] = {"name": "python3", "language": "python",
+                                           "display_name": "Python 3"}
+        executor = nbconvert.preprocessors.ExecutePreprocessor(allow_errors=True)
+        assert executor.timeout == 3 and executor.interrupt_on_timeout
+        executed, _ = executor.preprocess(notebook, {"metadata": {"path": str(tmp_path)}})
+    finally:
+        nbconvert.preprocessors.ExecutePreprocessor = original
+    assert executed.cells[0].outputs[0]["ename"] == "KeyboardInterrupt"
+    assert "after the loop" in executed.cells[1].outputs[0]["text"]
+
+
+def test_grade_refuses_bad_input(tmp_path, assignments):
+    out, _ = assignments
+    with pytest.raises(grade.GradeError, match="no notebook"):
+        grade.grade(tmp_path, tmp_path / "grades.csv", assignments=out)
+    (tmp_path / "a.ipynb").write_text("{}")
+    with pytest.raises(grade.GradeError, match="no assignment"):
+        grade.grade(tmp_path, tmp_path / "grades.csv", assignments=tmp_path / "none")
+    with pytest.raises(ValueError, match="time_limit"):
+        grade.grade(tmp_path, tmp_path / "grades.csv", assignments=out, time_limit=0)
+    with pytest.raises(ValueError, match="not an assignment's notebook"):
+        grade.chapter_of(b'{"metadata": {}}')
+
+
+def test_the_command_line_grades_a_folder(assignments, graded, tmp_path):
+    out, _ = assignments
+    folder = tmp_path / "one"
+    folder.mkdir()
+    (folder / "a.ipynb").write_text('{"cells": [], "metadata": {"otter": '
+                                    '{"assignment_name": "no_such_chapter"}}}')
+    done = subprocess.run([sys.executable, "-m", "icm.course", "grade", str(folder),
+                           "--out", str(tmp_path / "g.csv"), "--assignments", str(out)],
+                          capture_output=True, text=True, cwd=ROOT)
+    assert done.returncode == 0, done.stderr
+    row = _rows(tmp_path / "g.csv")["a.ipynb"]
+    assert "no autograder for the chapter 'no_such_chapter'" in row["problem"]
+    assert (tmp_path / "g-feedback" / "a.md").exists()
+
+
+# --- the questions for a learning platform -------------------------------------------------
+
+def _questions():
+    return [{"chapter": "1. A chapter", "label": "ex-a", "name": "Exercise 1.3 Predict: a",
+             "text": "<p>How many \\(x &lt; 2\\)?</p>",
+             "options": [("one", False, "Count again."), ("two", True, "")],
+             "explanation": "<p>Two: 40% of them.</p>"},
+            {"chapter": "2. Another", "label": "ex-b", "name": "Exercise 2.1 Predict: b",
+             "text": "<p>Which?</p>", "options": [("a", True, ""), ("b", False, "No.")],
+             "explanation": "<p>A.</p>"}]
+
+
+def test_the_moodle_export_reads_back_and_a_broken_one_does_not():
+    questions = _questions()
+    text = lms.moodle_xml(questions)
+    assert lms.validate(text, questions) == []
+    assert text.count('<question type="category">') == 2
+    assert text.count('<answer fraction="100"') == 2
+    broken = text.replace('<answer fraction="100"', '<answer fraction="0"')
+    assert any("no right option" in p for p in lms.validate(broken, questions))
+    assert any("not XML" in p for p in lms.validate(text.replace("</quiz>", ""), questions))
+    assert lms.validate(text.replace("Count again.", "Count."), questions)
+    assert lms.validate(text, questions[:1])  # a question missing
+
+
+@pytest.mark.book
+def test_every_question_of_the_book_is_exported_to_moodle_xml(built_book, tmp_path):
+    from bs4 import BeautifulSoup
+
+    out = tmp_path / "questions.xml"
+    count = lms.export_moodle(built_book, out)
+    quizzes = {}
+    for name, path in assign.chapters():
+        page = BeautifulSoup((built_book / "book" / f"{name}.html").read_text(), "html.parser")
+        for block in page.select("div.exercise.icm-quiz"):
+            right = block.select_one('input[data-correct="true"]').find_next("label")
+            quizzes[block["id"]] = right.get_text(strip=True)
+    predict = [e.label for _, p in assign.chapters() for e in assign.chapter_exercises(p)
+               if e.kind == "predict"]
+    assert count == len(predict) == len(quizzes) and sorted(quizzes) == sorted(predict)
+    questions = lms.quiz_questions(built_book)
+    assert lms.validate(out.read_text(), questions) == []
+    for question in questions:
+        (right,) = [text for text, is_right, _ in question["options"] if is_right]
+        assert right == quizzes[question["label"]]
+        assert question["explanation"] and "{glue" not in question["explanation"]
+
+
+# --- the slides ---------------------------------------------------------------------------
+
+def _fake_book(folder, with_blocks=True):
+    """A built book's pages as the decks read them: a title, an objectives block, a
+    figure, a takeaways block and an exercise per chapter, with the vendored scripts."""
+    static = folder / "_static" / "vendor"
+    for name in ("reveal", "mathjax"):
+        shutil.copytree(ROOT / "book" / "_static" / "vendor" / name, static / name)
+    (folder / "_images").mkdir(parents=True)
+    (folder / "book").mkdir()
+    for number, (name, _) in enumerate(assign.chapters(), 1):
+        shutil.copy(ROOT / "assets" / "images" / "figure5.png",
+                    folder / "_images" / f"{name}.png")
+        blocks = (f'<div class="admonition icm-objectives"><p class="admonition-title">'
+                  f'Learning objectives</p><ul><li>Objective of {name}</li></ul></div>'
+                  f'<div class="admonition icm-takeaways"><p class="admonition-title">Key '
+                  f'takeaways</p><ul><li>Takeaway of {name}</li></ul></div>') \
+            if with_blocks else ""
+        (folder / "book" / f"{name}.html").write_text(
+            f'<html><body><main><section><h1>Chapter {name}<a class="headerlink" '
+            f'href="#">#</a></h1>{blocks}<figure id="fig-{number}"><img src="../_images/'
+            f'{name}.png" alt="a plot"><figcaption><p><span class="caption-number">Fig. '
+            f'{number}.1 </span><span class="caption-text">The caption of {name}, '
+            f'\\(x^2\\).</span></p></figcaption></figure><div class="exercise admonition" '
+            f'id="ex-{number}"><p class="admonition-title">Exercise {number}.1 (Implement: '
+            f'a thing)</p></div><div class="solution"><figure><img src="../_images/'
+            f'{name}.png" alt="hidden"></figure></div></section></main></body></html>')
+    return folder
+
+
+def test_a_deck_holds_the_chapters_objectives_figures_and_takeaways(tmp_path):
+    book = _fake_book(tmp_path / "html")
+    decks = slides.build_slides(book, tmp_path / "slides")
+    assert [d.stem for d in decks] == [name for name, _ in assign.chapters()]
+    for deck in decks:
+        text = deck.read_text()
+        assert f"Objective of {deck.stem}" in text and f"Takeaway of {deck.stem}" in text
+        assert f"The caption of {deck.stem}" in text and "headerlink" not in text
+        assert text.count("<section") == 5  # title, objectives, figure, takeaways, exercises
+        assert 'alt="hidden"' not in text  # a solution's figure stays in the book
+        assert f'src="images/{deck.stem}.png"' in text
+        assert "Exercise" in text and "http" not in text.split("<body>")[1]
+    assert (tmp_path / "slides" / "index.html").exists()
+    bare = _fake_book(tmp_path / "bare", with_blocks=False)
+    text = slides.build_slides(bare, tmp_path / "bare-slides")[0].read_text()
+    assert "Learning objectives" not in text and text.count("<section") == 3
+    with pytest.raises(slides.SlidesError, match="not a built book"):
+        slides.build_slides(tmp_path / "nothing", tmp_path / "x")
+
+
+def _open_deck(browser, deck):
+    context = browser.new_context(offline=True, viewport={"width": 1280, "height": 720})
+    requests, errors = [], []
+
+    def refuse_network(route):
+        url = route.request.url
+        if url.startswith(("file:", "data:")):
+            route.continue_()
+        else:
+            requests.append(url)
+            route.abort()
+
+    context.route("**/*", refuse_network)
+    page = context.new_page()
+    page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(deck.as_uri(), wait_until="load")
+    page.wait_for_function("window.Reveal && Reveal.isReady()", timeout=30000)
+    total = page.evaluate("Reveal.getTotalSlides()")
+    page.evaluate(f"Reveal.slide({total - 1})")
+    page.wait_for_timeout(300)
+    images = page.eval_on_selector_all("img", "els => els.map(e => e.naturalWidth)")
+    context.close()
+    return total, images, errors, requests
+
+
+@pytest.mark.book
+@pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (apt-get install "
+                    "chromium): the decks' offline check is skipped")
+def test_make_slides_gives_one_deck_per_chapter_that_opens_offline(built_book, tmp_path):
+    playwright_api = pytest.importorskip("playwright.sync_api")
+    decks = slides.build_slides(built_book, tmp_path / "slides")
+    assert len(decks) == len(assign.chapters()) == 8
+    with playwright_api.sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=CHROMIUM,
+                                             args=["--no-sandbox", "--disable-gpu"])
+        try:
+            for deck in decks:
+                content = slides.chapter_slides(built_book / "book" / deck.name)
+                total, images, errors, requests = _open_deck(browser, deck)
+                assert errors == [] and requests == [], (deck.name, errors, requests)
+                expected = 1 + len(content["figures"]) + bool(content["objectives"]) + \
+                    bool(content["takeaways"]) + bool(content["exercises"])
+                assert total == expected and content["figures"], deck.name
+                assert images and all(width > 0 for width in images), deck.name
+        finally:
+            browser.close()
+    first = slides.chapter_slides(built_book / "book" / "button_experiment.html")
+    assert "Describe the console and its trials" in first["objectives"]
+
+
+# --- the instructors' page's directives, on a small book ------------------------------------
+
+FIXTURE_CHAPTER = {
+    "cells": [
+        nbformat.v4.new_markdown_cell(
+            "# A chapter\n\n:::{admonition} Learning objectives\n:class: icm-objectives\n"
+            "- Compute a thing.\n- Explain it.\n:::\n\nThe chapter's text."),
+        nbformat.v4.new_markdown_cell("## Exercises"),
+        nbformat.v4.new_markdown_cell("```{exercise-start} Implement: the first thing\n"
+                                      ":label: ex-first\n```\n\nWrite it."),
+        nbformat.v4.new_markdown_cell("```{exercise-end}\n```"),
+        nbformat.v4.new_markdown_cell(":::{exercise} Extend: the second thing, 90%\n"
+                                      ":label: ex-second\n\nExtend it.\n:::"),
+    ]}
+
+
+def test_the_instructors_page_reads_objectives_and_exercises_from_the_chapters(tmp_path):
+    source = tmp_path / "src"
+    source.mkdir()
+    nbformat.write(nbformat.v4.new_notebook(cells=FIXTURE_CHAPTER["cells"]),
+                   source / "chapter.ipynb")
+    (source / "index.md").write_text(
+        "# Instructors\n\n```{toctree}\nchapter\nwrong\n```\n\n"
+        ":::{chapter-objectives} chapter\n:::\n\n"
+        ":::{chapter-exercises} chapter\nex-first: 10 min\nex-second: 20 min\n:::\n\n"
+        "See {exref}`ex-second`.\n")
+    # A page whose times leave an exercise out: an error, and the only message.
+    (source / "wrong.md").write_text("# Wrong\n\n:::{chapter-exercises} chapter\n"
+                                     "ex-first: 10 min\n:::\n")
+    (source / "conf.py").write_text(
+        "import sys\n"
+        f"sys.path.insert(0, {str(ROOT / 'book' / '_ext')!r})\n"
+        "extensions = ['myst_nb', 'sphinx_exercise', 'course_pages']\n"
+        "nb_execution_mode = 'off'\nmyst_enable_extensions = ['colon_fence']\n"
+        "numfig = True\nexclude_patterns = ['_build']\n")
+    done = subprocess.run([sys.executable, "-m", "sphinx", "-b", "html", "-q",
+                           str(source), str(tmp_path / "html")], capture_output=True,
+                          text=True)
+    messages = [line for line in (done.stdout + done.stderr).splitlines()
+                if "WARNING" in line or "ERROR" in line]
+    assert len(messages) == 1 and "wrong.md" in messages[0], messages
+    assert "missing ['ex-second']" in messages[0]
+    page = (tmp_path / "html" / "index.html").read_text()
+    assert "icm-chapter-objectives" in page and "Compute a thing." in page
+    assert "Explain it." in page and "Learning objectives" in page
+    assert "icm-exercise-table" in page
+    assert re.search(r"Exercise 1: the first thing", page)
+    assert "Exercise 2: the second thing, 90%" in page  # (a "%" in a title)
+    assert page.count('href="chapter.html#ex-second"') == 2  # the table and the exref
+    assert "20 min" in page and "icm-course.css" in page
+    assert (tmp_path / "html" / "_static" / "icm-course.css").exists()
