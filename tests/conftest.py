@@ -72,6 +72,10 @@ load. `make test` runs them; `make test-quick` leaves them out (marker `slow`). 
 run of 2026-12-02 (a machine under heavy load) they took 1,400 of the 2,900 s that
 the unit tests took summed; the remedies' claims alone 218 of the other unit tests'
 490 CPU-seconds."""
+SLOW_FIXTURES = ("assignments", "graded", "malicious")
+"""Fixtures that take minutes, so that every test using them is `slow` too: the course's
+assignments written by otter for every chapter, and the submissions graded from them
+(tests/test_course.py)."""
 
 
 def pytest_configure(config):
@@ -96,7 +100,7 @@ def pytest_collection_modifyitems(config, items):
         module = getattr(getattr(item, "module", None), "__name__", "")
         if "built_book" in names:
             item.add_marker(pytest.mark.book)
-        if item.nodeid.startswith(SLOW):
+        if item.nodeid.startswith(SLOW) or set(SLOW_FIXTURES) & set(names):
             item.add_marker(pytest.mark.slow)
         if "browser" in names or (module in ("test_browser", "test_pdf")
                                   and "built_book" in names):
