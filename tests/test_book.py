@@ -170,10 +170,20 @@ def test_the_references_are_labelled_as_the_text_cites_them(built_book):
         html = (built_book / f"{name}.html").read_text()
         # A citation links to the References page; "#id2" alone is a heading's own
         # anchor on the same page (Sphinx numbers those ids too).
-        for anchor, text in re.findall(
+        for match in re.finditer(
                 r'href="(?:book/)?references\.html#(id\d+)"[^>]*>([^<]+)</a>', html):
-            if anchor in labels:
+            anchor, text = match.groups()
+            if anchor not in labels:
+                continue
+            if re.fullmatch(r"\d{4}[a-z]?", text):
+                # A textual citation, "Deci and Ryan (1985)": the year is the link, the
+                # authors stand just before it.
+                authors, year = labels[anchor].rsplit(", ", 1)
+                before = re.sub(r"<[^>]+>", "", html[max(0, match.start() - 400):match.start()])
+                assert year == text and authors in before[-120:], \
+                    (name, anchor, labels[anchor], text, before[-80:])
+            else:
                 assert labels[anchor] == text, (name, anchor, labels[anchor], text)
-                cited += 1
+            cited += 1
     assert cited >= 10
     assert all(re.fullmatch(r"[^,]+, \d{4}[a-z]?", label) for label in labels.values()), labels
