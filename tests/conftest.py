@@ -36,6 +36,19 @@ def toc_files():
 
 
 @contextlib.contextmanager
+def first_objective(chapter):
+    """The first learning objective a chapter's notebook states, its first four words
+    (the chapter is the one source of its objectives; tests that look for them in a
+    built page or a deck ask for these words, so rewording an objective breaks none)."""
+    cells = json.loads((ROOT / "book" / f"{chapter}.ipynb").read_text())["cells"]
+    for cell in cells:
+        source = "".join(cell["source"])
+        if ":class: icm-objectives" in source:
+            bullet = next(line for line in source.splitlines() if line.startswith("- "))
+            return " ".join(bullet[2:].split()[:4])
+    raise AssertionError(f"{chapter} states no learning objectives")
+
+
 def cpu_burners(count=None):
     """Keeps every core busy (one process per core spinning in a loop, at normal
     priority) while the block runs: a machine made slow on purpose, as a student's
