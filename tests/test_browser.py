@@ -224,10 +224,6 @@ CODE_SCROLLING = """() => {
 }"""
 
 
-@pytest.mark.xfail(strict=False, raises=AssertionError,
-                   reason="62 code blocks scroll sideways at 1366 px today "
-                   "(issue 26); the chapters' rewrite makes their lines fit. Remove this "
-                   "mark once it is merged.")
 def test_no_code_block_scrolls_sideways_at_laptop_width(browser_pages, note):
     # At 1366 px, every line of a code cell, of its output and of a code block in the
     # text fits its block (82 to 86 characters in the text column, fewer in a box).
