@@ -59,7 +59,7 @@ def mastery_figure(result):
              xlim=(1, result.n_trials))
     left.set_title("When the predictor\nhas learned each task", fontsize=10)
     right.set(xlabel="trial", ylabel="presses per trial (mean)", xlim=(1, result.n_trials))
-    right.set_title("What the agent\npractises", fontsize=10)
+    right.set_title("What the learner\npractises", fontsize=10)
     # One legend for both panels (their tasks look the same), under them.
     handles, _ = left.get_legend_handles_labels()
     fig.legend(handles, [f"{task} task" for task in _goal_oriented.TASKS],
