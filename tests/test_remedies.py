@@ -351,20 +351,29 @@ def test_the_study_file_is_what_the_library_computes(study):
     assert study["reach"] == remedies_study.run_reach()
 
 
-def _fake_study(study, lp_first, grow_first, pressed_all=True):
-    """A study of two roots and four seeds a root in which every condition has the
-    given first presses and, at the budget, all five presses formed or none."""
+FAKE_SEEDS = 10
+"""Seeds per root of `_fake_study`: 20 held-out seeds, enough for a difference on every
+seed to be clear after Holm's correction for the chapter's family."""
+
+
+def _fake_study(study, lp_first, grow_first, pressed_all=True, tuning_first=None):
+    """A study of the four roots, `FAKE_SEEDS` seeds a root, in which every condition has
+    the given first presses (on the tuning roots, `tuning_first` for the remedies when
+    given) and, at the budget, all five presses formed or none."""
     budgets = study["budgets"]
-    pressed = [[[int(pressed_all)] * 5] * len(budgets)] * 4
+    n = FAKE_SEEDS
+    pressed = [[[int(pressed_all)] * 5] * len(budgets)] * n
     cells = np.array(study["runs"]["learning progress"]["100"]["coverage"]["all"])
     entry = lambda first, error: {
-        "pressed": pressed, "first_press": [first] * 4, "test_error": [error] * 4,
-        "red_first": [1] * 4, "as_scripted": [1.0] * 4, "maturity": [[1.0] * len(budgets)] * 4,
+        "pressed": pressed, "first_press": [first] * n, "test_error": [error] * n,
+        "red_first": [1] * n, "as_scripted": [1.0] * n, "maturity": [[1.0] * len(budgets)] * n,
         "coverage": {s: np.zeros_like(cells).tolist() for s in ("early", "all")}}
-    runs = {label: {r: entry(grow_first if label != "learning progress" else lp_first,
+    remedy = lambda root: (tuning_first if tuning_first is not None and root in ("100", "200")
+                           else grow_first)
+    runs = {label: {r: entry(remedy(r) if label != "learning progress" else lp_first,
                              0.01 if label != "learning progress" else 0.02)
-                    for r in ("100", "200")} for label in remedies_study.CONDITIONS}
-    return {**study, "runs": runs}
+                    for r in ("100", "200", "300", "400")} for label in remedies_study.CONDITIONS}
+    return {**study, "n_seeds": n, "runs": runs}
 
 
 def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
@@ -376,13 +385,14 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
         verdicts = remedies_study.verdicts(fake)
         assert verdicts["grow_others_pressed_early"] == 5.0
         assert verdicts["shown2_others_pressed_early"] == 3.0  # buttons 1, 2, 3
-        assert verdicts["grow_others_pressed_early_verdict"] == "clearly better"
-        assert verdicts["grow_all_pressed_verdict"] == "no clear difference"
+        assert verdicts["grow_others_pressed_early_verdict"].startswith("clearly better")
+        assert verdicts["grow_all_pressed_verdict"].startswith("no clear difference")
         assert verdicts["grow_test_error"] == pytest.approx(-0.01)
         assert verdicts["grow_test_error_verdict"] == "clearly better"
         assert "shown5_others_formed" not in verdicts  # no button left unshown
     worse = remedies_study.verdicts(_fake_study(study, [50] * 5, [300] * 5))
-    assert worse["shown1_others_pressed_early_verdict"] == "clearly worse"
+    assert worse["shown1_others_pressed_early_verdict"] == (
+        "clearly worse (learning progress at the ceiling; shown button 2 at the floor)")
     sentence = remedies_study.first_press_comparison(_fake_study(study, [-1] * 5, [50] * 5),
                                                      "shown button 2")
     assert sentence.startswith("button 0 at rollout 50 (never (median) with learning "
@@ -391,13 +401,24 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
     assert remedies_study.shown_sooner_sentence(
         _fake_study(study, [-1] * 5, [50] * 5)).startswith("sooner than learning progress "
                                                            "alone in all 8 cases")
+    # The held-out rule: worse on the tuning roots, the same on the held-out ones, is
+    # no clear difference (the tuning roots do not count; pooled, it would be worse).
+    held = remedies_study.verdicts(_fake_study(study, [50] * 5, [50] * 5,
+                                               tuning_first=[300] * 5))
+    assert held["grow_others_pressed_early_verdict"].startswith("no clear difference")
+    assert held["grow_others_pressed_early"] == 0.0
+    assert held["n_verdict_seeds"] == 2 * FAKE_SEEDS
+    # An arm at the ceiling is named: every seed formed all five.
+    assert held["grow_all_pressed_verdict"] == ("no clear difference (learning progress "
+                                                "at the ceiling; growing up at the ceiling)")
     assert remedies_study.shown_sooner_sentence(slow).startswith(
         "not sooner in shown button 2, button 2 (at rollout 300, against at rollout 50)")
     assert [c["button"] for c in remedies_study.shown_first_presses(slow)] == [2, 0, 4, 0, 1,
                                                                               2, 3, 4]
     table = remedies_study.comparison_table(study)
     assert table.count("\n") == 1 + len(remedies_study.CONDITIONS)
-    assert "| shown all five | 40 | " in table and "none left" in table
+    n_seeds = len(remedies_study.ROOTS) * study["n_seeds"]
+    assert f"| shown all five | {n_seeds} | " in table and "none left" in table
     firsts = remedies_study.first_press_table(study)
     assert firsts.count("\n") == 1 + len(remedies_study.CONDITIONS)
     assert firsts.count("(shown)") == 1 + 2 + 5 and "| random motor babbling | never |" in firsts
