@@ -38,7 +38,9 @@ SIGNAL_CLAIMS = {
                             "and place of interest, pressing at random included",
     "random_not_slower": "pressing at random masters red and green no later than learning "
                          "progress (its means within learning progress's bands or below)",
-    "novelty_region_fastest": "novelty per region masters green the soonest",
+    "novelty_region_fastest": "novelty per region has the lowest mean mastery trial of "
+                              "green (the lowest mean only: no comparison is claimed "
+                              "clear)",
     "novelty_task_balanced": "novelty per task opens red, green and nothing equally often",
     "task_not_trapped": "with interest per task, no signal is trapped by the noisy button",
     "region_error_trapped": "with interest per region, prediction error is trapped",
@@ -62,6 +64,16 @@ REWARD_CLAIMS = {
 }
 """The claims of the chapter "Which curiosity?" about the rods
 (`RewardComparison.claims`)."""
+BOLD_CLAIMS = {
+    "Novelty pays the coin exactly what it pays the sure outcome": ("novelty_blind", "exact"),
+    "Novelty per region presses every button about equally": ("region_novelty_equal", "all"),
+    "The noise costs every learner a little.": ("noise_costs_every_learner", "all"),
+}
+"""The bold claims of the chapter "Which curiosity?" that use a word of strength
+("every", "exactly", ...; book/_ext/claim_words.py), each with the claim that checks
+it (`COIN_CLAIMS`, `SIGNAL_CLAIMS`) and the kind of that check: "exact" (an array
+equality), "all" (every button's share within the tolerance of chance; every
+learner's mean later)."""
 LEARNED_SHARE = 0.9
 """The share of seeds in which a rod must be predicted well for the chapter to say that
 a learner learns it (`REWARD_CLAIMS`)."""
