@@ -151,7 +151,15 @@ def load_study():
 
 def main():
     """Runs the study and writes assets/remedies_study.json, after every entry (a study
-    left unfinished there is finished, not started again)."""
+    left unfinished there is finished, not started again); with the argument
+    "test-error", writes assets/remedies_test_error.json (`run_test_error_split`)."""
+    import sys
+
+    if sys.argv[1:] == ["test-error"]:
+        path = ASSETS / TEST_ERROR_FILE
+        path.write_text(json.dumps(run_test_error_split(progress=True)) + "\n")
+        print(f"wrote {path}")
+        return
     path = ASSETS / STUDY_FILE
     partial = json.loads(path.read_text()) if path.exists() else None
     write = lambda study: path.write_text(json.dumps(study, separators=(",", ":")) + "\n")
@@ -472,6 +480,69 @@ def run_replications(study=None, babbling=None):
     clear = [name for name in comparisons(study) if corrected[name]["clear"]]
     return {"root": replication.REPLICATION_ROOTS["forming_actions"],
             "n_seeds": REPLICATION_SEEDS, "verdicts": replicate(clear, study)}
+
+
+TEST_ERROR_FILE = "remedies_test_error.json"
+"""The file in assets/ that holds `run_test_error_split` (`python -m
+icm.experiments.remedies_study test-error` writes it; a test reruns two seeds)."""
+SPLIT_CONDITIONS = ("learning progress",) + TEACHING
+"""The conditions whose test error `test_error_split` separates."""
+
+
+def test_error_split(result):
+    """A run's final test error, whole and without the teacher: per seed, "all" (the
+    run's `final_test_error`), "own" (the same with the demonstrations left out of the
+    movements the robot remembers: each test goal's nearest outcome among its own
+    rollouts only) and "own_grid" (that, on the test goals that are not press goals
+    alone). Lists of floats (m), one per seed."""
+    _validate.instance("result", result, goal_babbling.GoalBabblingResult)
+    space, weight = result.settings["outcome_space"], result.settings["depth_weight"]
+    start = result.n_demonstrations
+    reached = goal_babbling.outcome_vectors(result.outcomes[:, start:],
+                                            result.depths[:, start:], space, weight)
+    wanted = goal_babbling.goal_outcomes(result.test_goals, space, weight)
+    distance = np.sqrt(((reached[:, :, None, :] - wanted[None, None]) ** 2).sum(axis=3))
+    nearest = distance.min(axis=1)  # [seed, goal]
+    return {"all": result.final_test_error().tolist(),
+            "own": nearest.mean(axis=1).tolist(),
+            "own_grid": nearest[:, buttons.N_BUTTONS:].mean(axis=1).tolist()}
+
+
+def run_test_error_split(roots=VERDICT_ROOTS, n_seeds=N_SEEDS, progress=False):
+    """`test_error_split` of every condition of `SPLIT_CONDITIONS` on the first `n_seeds`
+    seeds of each of `roots` (the runs of `run_condition`, the same seeds):
+    {"n_seeds", "runs": {label: {root: split}}}."""
+    runs = {}
+    for label in SPLIT_CONDITIONS:
+        arguments = {"strategy": "learning_progress", **CONDITIONS[label]}
+        runs[label] = {str(root): test_error_split(goal_babbling.run_goal_babbling(
+            **arguments, n_seeds=n_seeds, seed=root, progress=progress)) for root in roots}
+    return {"n_seeds": n_seeds, "runs": runs}
+
+
+def load_test_error_split():
+    """`run_test_error_split()` as assets/remedies_test_error.json keeps it."""
+    return json.loads(asset_path(TEST_ERROR_FILE).read_text())
+
+
+def teacher_test_error(split=None):
+    """How much of the teacher's lower test error is the robot's own: for each condition
+    of `TEACHING` against learning progress alone, seed by seed over the roots of
+    `split` (default `load_test_error_split()`), the difference in each of "all",
+    "own" and "own_grid" (`test_error_split`) with its 95% bootstrap band:
+    {"{key}_{part}": (mean, low, high)} in m (keys of `REMEDY_KEYS`)."""
+    split = load_test_error_split() if split is None else split
+    runs = split["runs"]
+    pooled = lambda label, part: np.concatenate([runs[label][r][part]
+                                                 for r in runs["learning progress"]])
+    out = {}
+    for label in TEACHING:
+        for part in ("all", "own", "own_grid"):
+            differences = pooled(label, part) - pooled("learning progress", part)
+            mean, low, high = bootstrap_band(differences[:, None], resamples=PANEL_RESAMPLES)
+            out[f"{REMEDY_KEYS[label]}_{part}"] = (float(mean[0]), float(low[0]),
+                                                   float(high[0]))
+    return out
 
 
 def first_press_comparison(study, label, baseline="learning progress"):
