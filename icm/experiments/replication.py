@@ -14,7 +14,7 @@ from icm import _validate
 from icm.envs._assets import ASSETS, asset_path
 from icm.stats import FAMILY_RATE, paired_p_value
 
-REPLICATION_ROOTS = {"forming_actions": 9001}
+REPLICATION_ROOTS = {"forming_actions": 9001, "curiosity": 9002}
 """The root seed of each chapter's replications: none of the studies' (100 to 400),
 the chapters' (0) or the other tests' roots (below 100) is 9001 or above."""
 REPLICATION_FILE = "replications.json"
@@ -42,10 +42,19 @@ def load_replications():
 
 
 def main():
-    """Runs every chapter's replications and writes assets/replications.json."""
-    from icm.experiments import remedies_study
+    """Runs every chapter's replications (or those of the chapters named as arguments,
+    e.g. `python -m icm.experiments.replication curiosity`) and writes
+    assets/replications.json, keeping the other chapters' entries."""
+    import sys
 
-    out = {"forming_actions": remedies_study.run_replications()}
+    from icm.experiments import curiosity, remedies_study
+
+    runs = {"forming_actions": remedies_study.run_replications,
+            "curiosity": curiosity.run_replications}
+    chosen = sys.argv[1:] or list(runs)
+    out = load_replications()
+    for chapter in chosen:
+        out[chapter] = runs[_validate.one_of("chapter", chapter, tuple(runs))]()
     path = ASSETS / REPLICATION_FILE
     path.write_text(json.dumps(out, indent=1) + "\n")
     print(f"wrote {path}")
