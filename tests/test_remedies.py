@@ -538,3 +538,42 @@ def test_the_replication_is_what_the_library_computes(study, name):
     stored = replication.load_replications()["forming_actions"]
     assert stored["n_seeds"] == remedies_study.REPLICATION_SEEDS
     assert remedies_study.replicate([name], study) == {name: stored["verdicts"][name]}
+
+
+# --- the teacher's test error, split ----------------------------------------------------------
+
+def test_the_split_test_error_is_the_studys_on_the_same_seeds(study):
+    # "all" is the run's final test error: the study's, seed by seed; without a teacher
+    # "own" is the same; leaving movements out can only raise a nearest distance.
+    split = remedies_study.load_test_error_split()
+    assert set(split["runs"]) == set(remedies_study.SPLIT_CONDITIONS)
+    for label, by_root in split["runs"].items():
+        assert sorted(map(int, by_root)) == sorted(remedies_study.VERDICT_ROOTS)
+        for root, parts in by_root.items():
+            n = split["n_seeds"]
+            np.testing.assert_allclose(parts["all"], study["runs"][label][root]["test_error"][:n],
+                                       rtol=0, atol=1e-12)
+            assert (np.array(parts["own"]) >= np.array(parts["all"]) - 1e-12).all()
+            if label == "learning progress":
+                assert parts["own"] == parts["all"]
+    rows = remedies_study.teacher_test_error(split)
+    table = remedies_study.teacher_test_error_table(split)
+    assert table.count("\n") == 1 + len(remedies_study.TEACHING)
+    assert f"{100 * rows['shown1_own'][0]:+.2f}" in table
+
+
+def test_leaving_the_demonstrations_out_is_measured_on_the_robots_own_rollouts(grown_and_shown):
+    split = remedies_study.test_error_split(grown_and_shown)
+    np.testing.assert_allclose(split["all"], grown_and_shown.final_test_error())
+    # Written from the definition: each test goal's nearest outcome among the rollouts
+    # after the demonstrations.
+    result = grown_and_shown
+    space, weight = result.settings["outcome_space"], result.settings["depth_weight"]
+    start = result.n_demonstrations
+    for seed in range(result.n_seeds):
+        reached = goal_babbling.outcome_vectors(result.outcomes[seed, start:],
+                                                result.depths[seed, start:], space, weight)
+        wanted = goal_babbling.goal_outcomes(result.test_goals, space, weight)
+        nearest = [min(np.linalg.norm(r - w) for r in reached) for w in wanted]
+        assert split["own"][seed] == pytest.approx(np.mean(nearest), abs=1e-12)
+        assert split["own_grid"][seed] == pytest.approx(np.mean(nearest[5:]), abs=1e-12)

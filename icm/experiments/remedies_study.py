@@ -545,6 +545,22 @@ def teacher_test_error(split=None):
     return out
 
 
+def teacher_test_error_table(split=None):
+    """A Markdown table of `teacher_test_error`: one row per condition of `TEACHING`, the
+    difference in test error from learning progress alone (cm, with its 95% band) with
+    the demonstrations, without them, and without them on the goals that are not press
+    goals."""
+    rows = teacher_test_error(split)
+    cell = lambda band: f"{100 * band[0]:+.2f} ({100 * band[1]:+.2f} to {100 * band[2]:+.2f})"
+    lines = ["| condition | with the demonstrations | without them "
+             "| without them, goals not presses |", "|---|---|---|---|"]
+    for label in TEACHING:
+        key = REMEDY_KEYS[label]
+        lines.append(f"| {label} | {cell(rows[key + '_all'])} | {cell(rows[key + '_own'])} "
+                     f"| {cell(rows[key + '_own_grid'])} |")
+    return "\n".join(lines)
+
+
 def first_press_comparison(study, label, baseline="learning progress"):
     """A sentence comparing, button by button, when the robot first pressed each button
     itself in condition `label` and in `baseline` (medians over every seed of the
