@@ -147,3 +147,109 @@ def every_nth(n, every):
 PANEL_RESAMPLES = 500
 """Bootstrap resamples of the panels' bands: enough for a 95% band to be stable to the
 eye, few enough for a panel to redraw at once."""
+
+
+FAMILY_RATE = 0.05
+"""The family-wise error rate at which a chapter's paired comparisons are called clear
+(`corrected_verdicts`, Holm's step-down correction)."""
+SIGN_FLIPS = 20000
+"""Random sign flips of `paired_p_value` when the seeds are too many to enumerate every
+flip."""
+EXACT_FLIPS_UP_TO = 16
+"""Up to this many seeds (2**16 flips) `paired_p_value` enumerates every flip."""
+
+
+def paired_p_value(differences, seed=0, alternative="two-sided"):
+    """The two-sided p-value of a paired comparison: are the per-seed differences
+    `differences` (one arm minus the other, on the same seeds) centred on zero?
+
+    The test is a sign-flip permutation test of the mean difference: under the null
+    hypothesis each difference is as likely positive as negative, so flipping the signs
+    of the differences gives the null distribution of their mean. The p-value is the
+    share of flips whose mean is at least as far from zero as the observed one (with a
+    tolerance of 1e-12, so that ties count as extreme); one-sided ("less", "greater"),
+    at least as far in that direction. Up to `EXACT_FLIPS_UP_TO` seeds
+    every flip is enumerated; beyond, `SIGN_FLIPS` random flips drawn from `seed` (the
+    identity included), so the same differences give the same p-value. No normality is
+    assumed, which matters for differences of 0s and 1s (a press formed or not).
+
+    Args:
+      differences: 1-d array of finite numbers, one per seed.
+      seed: seed of the random flips (integer >= 0).
+      alternative: "two-sided", "less" (the differences' mean below zero) or "greater".
+
+    Returns:
+      The p-value, a float in (0, 1]; 1 (two-sided) when every difference is zero.
+    """
+    differences = _validate.finite_array("differences", differences, ndim=1)
+    if len(differences) == 0:
+        raise ValueError("differences must hold one value per seed, got none")
+    seed = _validate.integer("seed", seed, 0)
+    alternative = _validate.one_of("alternative", alternative,
+                                   ("two-sided", "less", "greater"))
+    n = len(differences)
+    if n <= EXACT_FLIPS_UP_TO:
+        signs = 1 - 2 * ((np.arange(2 ** n)[:, None] >> np.arange(n)) & 1)
+    else:
+        signs = np.random.default_rng(seed).choice([-1, 1], size=(SIGN_FLIPS, n))
+        signs[0] = 1  # the observed arrangement is one of the flips
+    means = signs @ differences / n
+    observed = differences.mean()
+    if alternative == "two-sided":
+        means, observed = np.abs(means), abs(observed)
+    elif alternative == "less":
+        means, observed = -means, -observed
+    return float(np.mean(means >= observed - 1e-12))
+
+
+def corrected_verdicts(family, rate=FAMILY_RATE, seed=0):
+    """Which comparisons of a family are clear, corrected for their number: Holm's
+    step-down correction at family-wise error rate `rate` (statsmodels'
+    `multipletests`, method "holm"), on the p-values of `paired_p_value`.
+
+    Args:
+      family: {name: per-seed differences (a 1-d array) or a p-value (a float in
+        [0, 1])}: every comparison a chapter makes and calls clear or not.
+      rate: the family-wise error rate, in (0, 1); default `FAMILY_RATE`.
+      seed: the seed of `paired_p_value`'s random flips.
+
+    Returns:
+      {name: {"p": raw p-value, "p_holm": Holm-adjusted p-value, "clear": bool
+      (adjusted p-value below `rate`), "mean": mean difference (None for a family
+      member given as a p-value), "n_family": the family's size}}, in the family's
+      order.
+    """
+    from statsmodels.stats.multitest import multipletests  # here: slow to import
+
+    if not isinstance(family, dict) or not family:
+        raise _validate.ArgumentTypeError(f"family must be a non-empty dict {{name: per-seed "
+                                          f"differences or p-value}}, got "
+                                          f"{_validate.show(family)}")
+    rate = _validate.real("rate", rate, 0.0, 1.0, low_open=True, high_open=True)
+    p_values, means = [], []
+    for name, member in family.items():
+        if np.ndim(member) == 0:
+            p_values.append(_validate.real(f"family[{name!r}]", member, 0.0, 1.0))
+            means.append(None)
+        else:
+            differences = _validate.finite_array(f"family[{name!r}]", member, ndim=1)
+            p_values.append(paired_p_value(differences, seed))
+            means.append(float(differences.mean()))
+    clear, adjusted, _, _ = multipletests(p_values, alpha=rate, method="holm")
+    return {name: {"p": p, "p_holm": float(q), "clear": bool(c), "mean": m,
+                   "n_family": len(family)}
+            for name, p, q, c, m in zip(family, p_values, adjusted, clear, means)}
+
+
+def at_bound(values, low=0.0, high=1.0):
+    """"ceiling" when every one of `values` (an arm's per-seed outcomes) is at `high`,
+    "floor" when every one is at `low`, else None: a comparison whose baseline is at a
+    bound can only move one way, and a verdict on it must say so."""
+    values = _validate.finite_array("values", values)
+    if values.size == 0:
+        raise ValueError("values must hold at least one value, got none")
+    if np.all(values == high):
+        return "ceiling"
+    if np.all(values == low):
+        return "floor"
+    return None

@@ -332,3 +332,46 @@ def test_red_first_in_words(comparison):
         key: result for key, result in comparison.results.items()
         if key[:2] == ("novelty", "region")})
     assert every.describe_red_first() == "in every seed"
+
+
+# --- the chapter's paired comparisons: corrected, and replicated ----------------------------
+
+def test_the_paired_verdicts_are_holm_corrected_over_the_chapters_family(comparison):
+    from icm import stats
+
+    paired = comparison.paired_verdicts()
+    assert set(paired) == set(curiosity.SignalComparison.PAIRED)
+    for name, v in paired.items():
+        assert v["n_family"] == len(curiosity.SignalComparison.PAIRED)
+        assert v["p_holm"] >= v["p"] and v["clear"] == (v["p_holm"] < stats.FAMILY_RATE)
+        assert v["low"] <= v["mean"] <= v["high"] and 1 <= v["n_seeds"] <= 100
+
+
+def test_a_paired_verdict_the_replication_contradicts_is_not_called_clear(comparison):
+    paired = comparison.paired_verdicts()
+    failed = {"verdicts": {name: {"replicated": False} for name in paired}}
+    held = {"verdicts": {name: {"replicated": True} for name in paired}}
+    contradicted, replicated = (comparison.paired_words(r) for r in (failed, held))
+    for name, v in paired.items():
+        if v["clear"]:
+            assert contradicted[name].endswith("not replicated on a fresh root")
+            assert "clearly" in replicated[name] and "not replicated" not in replicated[name]
+        else:
+            assert contradicted[name].endswith("no clear difference")
+
+
+def test_every_clear_paired_verdict_of_the_chapter_is_replicated():
+    # The chapter's run (curiosity.CHAPTER_RUN) and the stored replications: every
+    # clear verdict has one, rerun here on the fresh root (slow: conftest.SLOW).
+    from icm.experiments import replication
+
+    stored = replication.load_replications()["curiosity"]
+    assert stored["of"] == curiosity.CHAPTER_RUN
+    assert stored["root"] == replication.REPLICATION_ROOTS["curiosity"] != SEED
+    assert stored["n_seeds"] == curiosity.REPLICATION_SEEDS
+    chapter = curiosity.run_signal_comparison(**curiosity.CHAPTER_RUN, noisy=(False,),
+                                              progress=False).paired_verdicts()
+    clear = {name: "less" if v["mean"] < 0 else "greater"
+             for name, v in chapter.items() if v["clear"]}
+    assert set(clear) <= set(stored["verdicts"])
+    assert curiosity.replicate(clear) == {name: stored["verdicts"][name] for name in clear}

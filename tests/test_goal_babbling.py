@@ -10,7 +10,7 @@ import pytest
 
 import icm
 from icm.envs import buttons, icub
-from icm.experiments import goal_babbling, goal_babbling_study
+from icm.experiments import goal_babbling, goal_babbling_study, remedies_study
 from icm.envs.buttons.movements import MovementLab, first_press, lowest_capsule_point
 from icm.figures import forming_actions
 from icm.learners import goal_babbling as learners_goal_babbling
@@ -667,10 +667,20 @@ def test_the_studys_verdicts_are_phrased_from_its_numbers(study):
                                      + goal_babbling_study.HELD_OUT_ROOTS}}
         verdicts = goal_babbling_study.verdicts(fake)
         assert words in verdicts["margin_verdict"]
-        assert verdicts["n_all_seeds"] == 32 and verdicts["loop_red_first"] == 1.0
+        assert verdicts["n_held_seeds"] == 16 and verdicts["loop_red_first"] == 1.0
+        assert verdicts["n_family"] == len(remedies_study.chapter_family(babbling=fake))
         assert verdicts["target_red_first"] == verdicts["target_as_scripted"] == "met"
         met = "met" if lp is pressed else "not met"
         assert verdicts["target_presses_tuning"] == verdicts["target_presses_held_out"] == met
+    # The held-out rule: a margin on the tuning seeds alone is no clear margin.
+    for r in goal_babbling_study.HELD_OUT_ROOTS:
+        fake["runs"]["random goal babbling"][str(r)]["pressed"] = pressed(8)
+    fake["runs"]["learning progress"] = {
+        r: {**entry, "pressed": pressed(8)}
+        for r, entry in fake["runs"]["learning progress"].items()}
+    for r in goal_babbling_study.TUNING_ROOTS:
+        fake["runs"]["random goal babbling"][str(r)]["pressed"] = missed(8)
+    assert "no clear difference" in goal_babbling_study.verdicts(fake)["margin_verdict"]
     counts = goal_babbling_study.failure_counts(study, "learning progress")
     assert sum(counts.values()) == 5 * goal_babbling_study.N_SEEDS * 2
     table = goal_babbling_study.failures_table(study, "learning progress")

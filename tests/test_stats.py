@@ -42,3 +42,56 @@ def test_the_bootstrap_band_holds_the_central_share_level_of_the_resampled_means
     _, low, high = stats.bootstrap_band(EVENTS, level=level, resamples=RESAMPLES)
     assert (low[0], high[0]) == pytest.approx(expected, abs=0.005)
     assert expected != pytest.approx(_binomial_band(0.9), abs=0.005)  # the level shows
+
+
+def test_the_paired_p_value_is_the_sign_flip_share_enumerated_for_few_seeds():
+    # Five differences all positive: of the 32 sign flips, 2 have a mean as far from 0
+    # (all +, all -); one-sided, 1 of 32.
+    assert stats.paired_p_value([1.0, 2.0, 1.0, 3.0, 1.0]) == pytest.approx(2 / 32)
+    assert stats.paired_p_value([1.0, 2.0, 1.0, 3.0, 1.0],
+                                alternative="greater") == pytest.approx(1 / 32)
+    assert stats.paired_p_value([1.0, 2.0, 1.0, 3.0, 1.0], alternative="less") == 1.0
+    assert stats.paired_p_value([0.0, 0.0, 0.0]) == 1.0
+
+
+def test_the_paired_p_value_of_many_seeds_is_seeded_and_near_the_sign_test():
+    # Differences of +1 and -1 only: the sign-flip test is the sign test.
+    differences = np.r_[np.ones(30), -np.ones(10)]
+    p = stats.paired_p_value(differences, seed=3)
+    assert p == stats.paired_p_value(differences, seed=3)
+    assert p == pytest.approx(scipy_stats.binomtest(30, 40).pvalue, abs=0.002)
+
+
+def test_holm_calls_clear_only_what_survives_the_family():
+    # Raw p-values 0.01, 0.02, 0.04: each below 5% alone. Holm compares them with
+    # 0.05/3, 0.05/2 and 0.05: the first is clear, the second (0.02 < 0.025) too, the
+    # third (0.04 < 0.05) too; with a fourth member at 0.5, the thresholds become
+    # 0.0125, 0.0167, 0.025, 0.05 and only the first is clear.
+    three = stats.corrected_verdicts({"a": 0.01, "b": 0.02, "c": 0.04})
+    assert [v["clear"] for v in three.values()] == [True, True, True]
+    four = stats.corrected_verdicts({"a": 0.01, "b": 0.02, "c": 0.04, "d": 0.5})
+    assert [v["clear"] for v in four.values()] == [True, False, False, False]
+    assert four["b"]["p_holm"] == pytest.approx(3 * 0.02)
+    assert all(v["n_family"] == 4 for v in four.values())
+
+
+def test_holm_takes_per_seed_differences_as_well_as_p_values():
+    rng = np.random.default_rng(0)
+    family = {"shifted": rng.normal(1.0, 0.5, 20), "null": rng.normal(0.0, 0.5, 20)}
+    verdicts = stats.corrected_verdicts(family)
+    assert verdicts["shifted"]["clear"] and not verdicts["null"]["clear"]
+    assert verdicts["shifted"]["mean"] == pytest.approx(family["shifted"].mean())
+    assert verdicts["shifted"]["p"] == stats.paired_p_value(family["shifted"])
+
+
+@pytest.mark.parametrize("family", [{}, [0.1], {"a": 1.5}, {"a": [1.0, np.nan]}])
+def test_holm_refuses_a_family_that_is_not_one(family):
+    with pytest.raises((ValueError, TypeError), match="family"):
+        stats.corrected_verdicts(family)
+
+
+def test_a_bound_is_named():
+    assert stats.at_bound([1.0, 1.0]) == "ceiling"
+    assert stats.at_bound([0.0, 0.0]) == "floor"
+    assert stats.at_bound([0.0, 1.0]) is None
+    assert stats.at_bound([3.0, 3.0], high=3) == "ceiling"

@@ -22,7 +22,7 @@ from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments._progress import progress_bar
 from icm.experiments.results import in_seeds
 from icm.learners import goal_oriented, interest, predictors, q_learning
-from icm.stats import bootstrap_band
+from icm.stats import bootstrap_band, corrected_verdicts
 
 CHANCE_SHARE = 1.0 / 6.0
 """The share of presses a learner pressing at random gives each of the six buttons."""
@@ -38,7 +38,9 @@ SIGNAL_CLAIMS = {
                             "and place of interest, pressing at random included",
     "random_not_slower": "pressing at random masters red and green no later than learning "
                          "progress (its means within learning progress's bands or below)",
-    "novelty_region_fastest": "novelty per region masters green the soonest",
+    "novelty_region_fastest": "novelty per region has the lowest mean mastery trial of "
+                              "green (the lowest mean only: no comparison is claimed "
+                              "clear)",
     "novelty_task_balanced": "novelty per task opens red, green and nothing equally often",
     "task_not_trapped": "with interest per task, no signal is trapped by the noisy button",
     "region_error_trapped": "with interest per region, prediction error is trapped",
@@ -62,6 +64,16 @@ REWARD_CLAIMS = {
 }
 """The claims of the chapter "Which curiosity?" about the rods
 (`RewardComparison.claims`)."""
+BOLD_CLAIMS = {
+    "Novelty pays the coin exactly what it pays the sure outcome": ("novelty_blind", "exact"),
+    "Novelty per region presses every button about equally": ("region_novelty_equal", "all"),
+    "The noise costs every learner a little.": ("noise_costs_every_learner", "all"),
+}
+"""The bold claims of the chapter "Which curiosity?" that use a word of strength
+("every", "exactly", ...; book/_ext/claim_words.py), each with the claim that checks
+it (`COIN_CLAIMS`, `SIGNAL_CLAIMS`) and the kind of that check: "exact" (an array
+equality), "all" (every button's share within the tolerance of chance; every
+learner's mean later)."""
 LEARNED_SHARE = 0.9
 """The share of seeds in which a rod must be predicted well for the chapter to say that
 a learner learns it (`REWARD_CLAIMS`)."""
@@ -238,6 +250,59 @@ class SignalComparison:
                 n(*sd, True)["green_mastery"][0] > n(*sd)["green_mastery"][0] for sd in plain),
         }
 
+    PAIRED = {"novelty_region_vs_random_green": (("novelty", "region"), ("random", "task"),
+                                                 "green"),
+              "random_vs_progress_red": (("random", "task"), ("learning_progress", "task"),
+                                         "red"),
+              "random_vs_progress_green": (("random", "task"),
+                                           ("learning_progress", "task"), "green")}
+    """The chapter's paired comparisons of mastery trials in the world without the noisy
+    button: {name: (arm, baseline, task)}, arm and baseline (signal, interest_per)."""
+
+    def paired_verdicts(self):
+        """The chapter's family of paired comparisons (`PAIRED`), corrected together
+        (`icm.stats.corrected_verdicts`: Holm at a family-wise 5%, sign-flip p-values):
+        for each, over the seeds in which both arms master the task (the same seeds),
+        the mean difference of the mastery trials (arm minus baseline; negative:
+        the arm masters sooner) with its 95% bootstrap band, its p-values, whether it
+        is clear, the seeds compared and the family's size. {name: dict}."""
+        family, bands, counts = {}, {}, {}
+        for name, (arm, baseline, task) in self.PAIRED.items():
+            i = _goal_oriented.TASKS.index(task)
+            a = self.results[(*arm, False)].mastery_trial[:, i]
+            b = self.results[(*baseline, False)].mastery_trial[:, i]
+            both = (a >= 1) & (b >= 1)
+            family[name] = (a[both] - b[both]).astype(float)
+            bands[name], counts[name] = _band(family[name]), int(both.sum())
+        corrected = corrected_verdicts(family)
+        return {name: {"mean": bands[name][0], "low": bands[name][1],
+                       "high": bands[name][2], "p": v["p"], "p_holm": v["p_holm"],
+                       "clear": v["clear"], "n_seeds": counts[name],
+                       "n_family": v["n_family"]}
+                for name, v in corrected.items()}
+
+    def paired_words(self, replications=None):
+        """The chapter's words for each of `paired_verdicts`: {name: "-1.4 trials (-3.5
+        to +0.9): no clear difference"}, "clearly sooner" or "clearly later" for a
+        clear one (the arm against the baseline), followed by ", not replicated on a
+        fresh root" where the stored replication (`replications`, default that of
+        assets/replications.json for this chapter) did not hold it."""
+        from icm.experiments import replication
+
+        if replications is None:
+            replications = replication.load_replications().get("curiosity", {})
+        stored = replications.get("verdicts", {})
+        out = {}
+        for name, v in self.paired_verdicts().items():
+            words = "no clear difference"
+            if v["clear"]:
+                words = "clearly sooner" if v["mean"] < 0 else "clearly later"
+                if stored.get(name, {}).get("replicated") is False:
+                    words += ", not replicated on a fresh root"
+            out[name] = (f"{v['mean']:+.1f} trials ({v['low']:+.1f} to {v['high']:+.1f}): "
+                         f"{words}")
+        return out
+
     def describe_red_first(self):
         """In words, the fewest seeds in which red is mastered first, over the runs
         without the noisy button: "in every seed" or "in at least 99.0% of the seeds"."""
@@ -294,6 +359,57 @@ class SignalComparison:
             cells.append("-" if np.isnan(mean) else f"{mean:.3f} [{low:.3f}, {high:.3f}]")
             lines.append("| " + " | ".join(cells) + " |")
         return "\n".join(lines)
+
+
+CHAPTER_RUN = {"n_seeds": 100, "n_trials": 100, "seed": 0}
+"""The arguments of the chapter's `run_signal_comparison`, whose clear paired verdicts
+`run_replications` replicates (the chapter checks that it ran these)."""
+REPLICATION_SEEDS = 200
+"""Seeds of a replication of a paired verdict (`replicate`). The chapter's one clear
+verdict, pressing at random against learning progress in green's mastery trial, is
+-2.1 trials with a per-seed spread (standard deviation) of about 7.5 over 100 seeds;
+with 200 seeds the standard error is about 0.53, and a one-sided paired test at 5%
+detects it with a probability of about 0.99 (normal approximation: z = 2.1 / 0.53 = 4.0
+against 1.645). The six runs it needs take well under a CPU-minute."""
+
+
+def replicate(directions, root=None, n_seeds=REPLICATION_SEEDS):
+    """Reruns the paired comparisons of `SignalComparison.PAIRED` named in `directions`
+    ({name: "less" or "greater", the direction the chapter found}) on the first
+    `n_seeds` seeds of a fresh root (default the chapter's of
+    `replication.REPLICATION_ROOTS`), with the chapter's trials, and tests each in its
+    direction: {name: `replication.replicated` dict}."""
+    from icm.experiments import replication
+
+    root = replication.REPLICATION_ROOTS["curiosity"] if root is None else root
+    for name in directions:
+        _validate.one_of("directions' names", name, tuple(SignalComparison.PAIRED))
+    fresh = run_signal_comparison(n_seeds=n_seeds, n_trials=CHAPTER_RUN["n_trials"],
+                                  signals=("learning_progress", "novelty", "random"),
+                                  noisy=(False,), seed=root, progress=False)
+    out = {}
+    for name, direction in directions.items():
+        arm, baseline, task = SignalComparison.PAIRED[name]
+        i = _goal_oriented.TASKS.index(task)
+        a = fresh.results[(*arm, False)].mastery_trial[:, i]
+        b = fresh.results[(*baseline, False)].mastery_trial[:, i]
+        both = (a >= 1) & (b >= 1)
+        out[name] = replication.replicated((a[both] - b[both]).astype(float), direction)
+    return out
+
+
+def run_replications():
+    """The replications of every paired verdict the chapter's run (`CHAPTER_RUN`) calls
+    clear (`replicate`), as assets/replications.json keeps them: {"root", "n_seeds",
+    "of": `CHAPTER_RUN`, "verdicts": {name: ...}}."""
+    from icm.experiments import replication
+
+    chapter = run_signal_comparison(**CHAPTER_RUN, noisy=(False,), progress=False)
+    found = chapter.paired_verdicts()
+    directions = {name: "less" if v["mean"] < 0 else "greater"
+                  for name, v in found.items() if v["clear"]}
+    return {"root": replication.REPLICATION_ROOTS["curiosity"], "n_seeds": REPLICATION_SEEDS,
+            "of": CHAPTER_RUN, "verdicts": replicate(directions)}
 
 
 def run_signal_comparison(n_seeds=100, n_trials=100, signals=interest.SIGNALS,

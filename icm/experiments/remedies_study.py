@@ -17,8 +17,8 @@ import numpy as np
 from icm import _validate
 from icm.envs import buttons
 from icm.envs._assets import ASSETS, asset_path
-from icm.experiments import goal_babbling, goal_babbling_study
-from icm.stats import PANEL_RESAMPLES, bootstrap_band
+from icm.experiments import goal_babbling, goal_babbling_study, replication
+from icm.stats import PANEL_RESAMPLES, at_bound, bootstrap_band, corrected_verdicts
 
 STUDY_FILE = "remedies_study.json"
 """The file in assets/ that holds the study."""
@@ -33,8 +33,10 @@ CONDITIONS = {
 }
 """The conditions compared, by label: `run_goal_babbling` arguments that differ from
 its defaults (learning progress over fixed regions, no maturation, no teacher). One
-button shown is the middle one, the red button of the paper's experiment; two are the
-end buttons, farthest from the resting hand."""
+button shown is the middle one, the one the book's runs of the paper's experiment
+light red (`buttons.DEFAULT_RED_BUTTON`; the paper does not say which button is
+red); two are the end buttons, 0 and 4 (not the two farthest from the resting
+fingertip: button 1 is about as far as button 4)."""
 ROOTS = goal_babbling_study.TUNING_ROOTS + goal_babbling_study.HELD_OUT_ROOTS
 """Root seeds on which every condition runs: those of `goal_babbling_study`, which no
 test uses (the maturation's settings were chosen on its tuning roots, the first two)."""
@@ -149,7 +151,15 @@ def load_study():
 
 def main():
     """Runs the study and writes assets/remedies_study.json, after every entry (a study
-    left unfinished there is finished, not started again)."""
+    left unfinished there is finished, not started again); with the argument
+    "test-error", writes assets/remedies_test_error.json (`run_test_error_split`)."""
+    import sys
+
+    if sys.argv[1:] == ["test-error"]:
+        path = ASSETS / TEST_ERROR_FILE
+        path.write_text(json.dumps(run_test_error_split(progress=True)) + "\n")
+        print(f"wrote {path}")
+        return
     path = ASSETS / STUDY_FILE
     partial = json.loads(path.read_text()) if path.exists() else None
     write = lambda study: path.write_text(json.dumps(study, separators=(",", ":")) + "\n")
@@ -317,9 +327,240 @@ def paired_difference(study, label, baseline, measure, roots=None):
 
 VERDICTS = {"better": "clearly better", "worse": "clearly worse",
             "no different": "no clear difference"}
-"""The words of a verdict of `verdicts`: "clearly" when the difference's bootstrap
-interval lies on one side of zero (for the test error, lower is better), "no clear
-difference" when it includes zero."""
+"""The words of a verdict of `verdicts`: "clearly" when the comparison is clear in the
+chapter's family (`chapter_verdicts`: Holm-corrected, on `VERDICT_ROOTS`), in the
+direction of its mean (for the test error, lower is better), "no clear difference"
+otherwise."""
+VERDICT_ROOTS = goal_babbling_study.HELD_OUT_ROOTS
+"""The root seeds on which the chapter's comparisons are decided: the held-out ones.
+Every setting the chapter "Forming actions" compares (the learner's, the clock's, the
+teacher's) was chosen on the tuning roots, which would flatter it."""
+
+
+def _bounds(label, measure):
+    """The (lowest, highest) values a seed can take in `measure` for condition `label`'s
+    comparison, or None for the test error (no bound reached in practice)."""
+    if measure == "all_pressed":
+        return 0.0, 1.0
+    if measure.startswith("others"):
+        return 0.0, float(buttons.N_BUTTONS - len(shown_buttons(label)))
+    return None
+
+
+def comparisons(study=None, roots=VERDICT_ROOTS):
+    """The remedies' paired comparisons with learning progress alone, over the seeds of
+    `roots` (default `VERDICT_ROOTS`): {"{key}_{measure}": {"label", "measure", "arm",
+    "baseline"}} (`REMEDY_KEYS`, `PAIRED_MEASURES`; per-seed values of the remedy and
+    of learning progress alone, on the same seeds), the measures of the buttons not
+    shown left out where the teacher shows all five."""
+    study = load_study() if study is None else check_study(study)
+    out = {}
+    for label, key in REMEDY_KEYS.items():
+        for measure in PAIRED_MEASURES:
+            if measure.startswith("others") and len(shown_buttons(label)) == buttons.N_BUTTONS:
+                continue  # no button left unshown
+            out[f"{key}_{measure}"] = {
+                "label": label, "measure": measure,
+                "arm": seed_values(study, label, measure, label, roots),
+                "baseline": seed_values(study, "learning progress", measure, label, roots)}
+    return out
+
+
+def chapter_family(study=None, babbling=None):
+    """Every paired comparison the chapter "Forming actions" calls clear or not, as per-seed
+    differences on the held-out root seeds: the remedies' (`comparisons`) and those of
+    `goal_babbling_study.comparisons` ({name: differences}). `chapter_verdicts`
+    corrects them together."""
+    family = {name: c["arm"] - c["baseline"] for name, c in comparisons(study).items()}
+    babbling = goal_babbling_study.load_study() if babbling is None else babbling
+    family.update(goal_babbling_study.comparisons(babbling))
+    return family
+
+
+def chapter_verdicts(study=None, babbling=None):
+    """`icm.stats.corrected_verdicts` of `chapter_family`: Holm's correction at a
+    family-wise 5%, on sign-flip permutation p-values ({name: {"p", "p_holm",
+    "clear", "mean", "n_family"}})."""
+    return corrected_verdicts(chapter_family(study, babbling))
+
+
+def verdict_words(mean, clear, lower_is_better=False, bound=None, replicated=None):
+    """The words of one verdict: `VERDICTS`' words for a clear or unclear difference of
+    mean `mean`; then, when an arm sits at a bound (`bound`, e.g. "learning progress
+    at the ceiling"), that in brackets; and ", not replicated on a fresh root" for a
+    clear verdict whose replication (`replicated` False) did not hold it."""
+    if clear and mean != 0:
+        verdict = "better" if (mean < 0) == lower_is_better else "worse"
+    else:
+        verdict = "no different"
+    words = VERDICTS[verdict] + (f" ({bound})" if bound else "")
+    if verdict != "no different" and replicated is False:
+        words += ", not replicated on a fresh root"
+    return words
+
+
+def verdicts(study=None, babbling=None, replications=None):
+    """The numbers and words the chapter's comparisons of the remedies are phrased from,
+    over the held-out seeds (`VERDICT_ROOTS`): for each remedy (`REMEDY_KEYS`) against
+    learning progress alone, seed by seed, the difference in each of `PAIRED_MEASURES`
+    with its 95% bootstrap band ("{key}_{measure}", "..._low", "..._high"), its raw
+    and Holm-corrected p-values ("..._p", "..._p_holm", `chapter_verdicts`) and the
+    words of `verdict_words` ("..._verdict"): clear only when Holm says so, the arm at
+    the ceiling or floor named, and "not replicated" where the stored replication
+    (`replications`, default `replication.load_replications()`) did not hold a clear
+    verdict. Also "n_family" (the comparisons corrected together) and "n_verdict_seeds".
+    A dict {name: value}."""
+    study = load_study() if study is None else check_study(study)
+    corrected = chapter_verdicts(study, babbling)
+    if replications is None:
+        replications = replication.load_replications().get("forming_actions", {})
+    stored = replications.get("verdicts", {})
+    out = {"n_family": len(corrected)}
+    for name, c in comparisons(study).items():
+        differences = c["arm"] - c["baseline"]
+        mean, low, high = bootstrap_band(differences[:, None], resamples=PANEL_RESAMPLES)
+        out[name], out[f"{name}_low"], out[f"{name}_high"] = (float(mean[0]), float(low[0]),
+                                                              float(high[0]))
+        out[f"{name}_p"], out[f"{name}_p_holm"] = (corrected[name]["p"],
+                                                   corrected[name]["p_holm"])
+        bounds = _bounds(c["label"], c["measure"])
+        bound = None
+        if bounds is not None:
+            at = {who: at_bound(values, *bounds) for who, values in
+                  (("learning progress", c["baseline"]), (c["label"], c["arm"]))}
+            bound = "; ".join(f"{who} at the {where}" for who, where in at.items() if where)
+        out[f"{name}_verdict"] = verdict_words(
+            float(mean[0]), corrected[name]["clear"], c["measure"] == "test_error", bound,
+            stored.get(name, {}).get("replicated"))
+        out["n_verdict_seeds"] = len(differences)
+    return out
+
+
+REPLICATION_SEEDS = 8
+"""Seeds of a replication (`replicate`): the clear verdicts of the study are the
+teacher's lower test errors, -0.35, -0.49 and -0.54 cm on the held-out seeds with
+per-seed spreads (standard deviations) of about 0.31, 0.31 and 0.30 cm, standardised
+effects of 1.1 to 1.8. With 8 seeds, a one-sided paired test at 5% detects the
+smallest of them with a probability of about 0.93 (Student's t approximation: a
+noncentrality of 1.15 * sqrt(8) = 3.25 against a critical value of 1.89), the others
+above 0.99; each replication runs 16 seed-runs, about 90 CPU-seconds."""
+
+
+def replicate(names, study=None, root=None, n_seeds=REPLICATION_SEEDS):
+    """Reruns the comparisons `names` (keys of `comparisons`) on the first `n_seeds`
+    seeds of a fresh root (default the chapter's `replication.REPLICATION_ROOTS`), each
+    condition and learning progress alone with `run_condition`, and tests each in the
+    direction the study found (`study`, default `load_study()`, over `VERDICT_ROOTS`):
+    {name: `replication.replicated` dict}."""
+    study = load_study() if study is None else check_study(study)
+    root = replication.REPLICATION_ROOTS["forming_actions"] if root is None else root
+    found = comparisons(study)
+    for name in names:
+        _validate.one_of("names[i]", name, tuple(found))
+    labels = ["learning progress"] + sorted({found[n]["label"] for n in names})
+    fresh = {**study, "n_seeds": n_seeds,
+             "runs": {label: {str(root): run_condition(label, root, n_seeds)}
+                      for label in labels}}
+    out = {}
+    for name in names:
+        label, measure = found[name]["label"], found[name]["measure"]
+        differences = (seed_values(fresh, label, measure, label, [root])
+                       - seed_values(fresh, "learning progress", measure, label, [root]))
+        direction = "less" if (found[name]["arm"] - found[name]["baseline"]).mean() < 0 \
+            else "greater"
+        out[name] = replication.replicated(differences, direction)
+    return out
+
+
+def run_replications(study=None, babbling=None):
+    """The replications of every verdict `chapter_verdicts` calls clear among the
+    remedies' comparisons (`replicate`), as assets/replications.json keeps them:
+    {"root", "n_seeds", "verdicts": {name: ...}}."""
+    corrected = chapter_verdicts(study, babbling)
+    clear = [name for name in comparisons(study) if corrected[name]["clear"]]
+    return {"root": replication.REPLICATION_ROOTS["forming_actions"],
+            "n_seeds": REPLICATION_SEEDS, "verdicts": replicate(clear, study)}
+
+
+TEST_ERROR_FILE = "remedies_test_error.json"
+"""The file in assets/ that holds `run_test_error_split` (`python -m
+icm.experiments.remedies_study test-error` writes it; a test reruns two seeds)."""
+SPLIT_CONDITIONS = ("learning progress",) + TEACHING
+"""The conditions whose test error `test_error_split` separates."""
+
+
+def test_error_split(result):
+    """A run's final test error, whole and without the teacher: per seed, "all" (the
+    run's `final_test_error`), "own" (the same with the demonstrations left out of the
+    movements the robot remembers: each test goal's nearest outcome among its own
+    rollouts only) and "own_grid" (that, on the test goals that are not press goals
+    alone). Lists of floats (m), one per seed."""
+    _validate.instance("result", result, goal_babbling.GoalBabblingResult)
+    space, weight = result.settings["outcome_space"], result.settings["depth_weight"]
+    start = result.n_demonstrations
+    reached = goal_babbling.outcome_vectors(result.outcomes[:, start:],
+                                            result.depths[:, start:], space, weight)
+    wanted = goal_babbling.goal_outcomes(result.test_goals, space, weight)
+    distance = np.sqrt(((reached[:, :, None, :] - wanted[None, None]) ** 2).sum(axis=3))
+    nearest = distance.min(axis=1)  # [seed, goal]
+    return {"all": result.final_test_error().tolist(),
+            "own": nearest.mean(axis=1).tolist(),
+            "own_grid": nearest[:, buttons.N_BUTTONS:].mean(axis=1).tolist()}
+
+
+def run_test_error_split(roots=VERDICT_ROOTS, n_seeds=N_SEEDS, progress=False):
+    """`test_error_split` of every condition of `SPLIT_CONDITIONS` on the first `n_seeds`
+    seeds of each of `roots` (the runs of `run_condition`, the same seeds):
+    {"n_seeds", "runs": {label: {root: split}}}."""
+    runs = {}
+    for label in SPLIT_CONDITIONS:
+        arguments = {"strategy": "learning_progress", **CONDITIONS[label]}
+        runs[label] = {str(root): test_error_split(goal_babbling.run_goal_babbling(
+            **arguments, n_seeds=n_seeds, seed=root, progress=progress)) for root in roots}
+    return {"n_seeds": n_seeds, "runs": runs}
+
+
+def load_test_error_split():
+    """`run_test_error_split()` as assets/remedies_test_error.json keeps it."""
+    return json.loads(asset_path(TEST_ERROR_FILE).read_text())
+
+
+def teacher_test_error(split=None):
+    """How much of the teacher's lower test error is the robot's own: for each condition
+    of `TEACHING` against learning progress alone, seed by seed over the roots of
+    `split` (default `load_test_error_split()`), the difference in each of "all",
+    "own" and "own_grid" (`test_error_split`) with its 95% bootstrap band:
+    {"{key}_{part}": (mean, low, high)} in m (keys of `REMEDY_KEYS`)."""
+    split = load_test_error_split() if split is None else split
+    runs = split["runs"]
+    pooled = lambda label, part: np.concatenate([runs[label][r][part]
+                                                 for r in runs["learning progress"]])
+    out = {}
+    for label in TEACHING:
+        for part in ("all", "own", "own_grid"):
+            differences = pooled(label, part) - pooled("learning progress", part)
+            mean, low, high = bootstrap_band(differences[:, None], resamples=PANEL_RESAMPLES)
+            out[f"{REMEDY_KEYS[label]}_{part}"] = (float(mean[0]), float(low[0]),
+                                                   float(high[0]))
+    return out
+
+
+def teacher_test_error_table(split=None):
+    """A Markdown table of `teacher_test_error`: one row per condition of `TEACHING`, the
+    difference in test error from learning progress alone (cm, with its 95% band) with
+    the demonstrations, without them, and without them on the goals that are not press
+    goals."""
+    rows = teacher_test_error(split)
+    cell = lambda band: f"{100 * band[0]:+.2f} ({100 * band[1]:+.2f} to {100 * band[2]:+.2f})"
+    lines = ["| condition | with the demonstrations | without them "
+             "| without them, goals not presses |", "|---|---|---|---|"]
+    for label in TEACHING:
+        key = REMEDY_KEYS[label]
+        lines.append(f"| {label} | {cell(rows[key + '_all'])} | {cell(rows[key + '_own'])} "
+                     f"| {cell(rows[key + '_own_grid'])} |")
+    return "\n".join(lines)
+
+
 def first_press_comparison(study, label, baseline="learning progress"):
     """A sentence comparing, button by button, when the robot first pressed each button
     itself in condition `label` and in `baseline` (medians over every seed of the
@@ -369,35 +610,6 @@ def shown_sooner_sentence(study=None, roots=None):
 REMEDY_KEYS = {"growing up": "grow", "shown button 2": "shown1",
                "shown buttons 0 and 4": "shown2", "shown all five": "shown5"}
 """The short names `verdicts` gives the remedies' numbers."""
-
-
-def verdicts(study=None, roots=None):
-    """The numbers and words the chapter's comparisons of the remedies are phrased
-    from, over the seeds of `roots` (default all): for each remedy (`REMEDY_KEYS`)
-    against learning progress alone, seed by seed, the difference in each of
-    `PAIRED_MEASURES` with its 95% bootstrap band ("{key}_{measure}", "..._low",
-    "..._high") and the words of `VERDICTS` saying whether the remedy did better, worse,
-    or no clearly different ("..._verdict"); the measures of the buttons not shown
-    are left out where the teacher shows all five. A dict {name: value}."""
-    study = load_study() if study is None else check_study(study)
-    out = {}
-    for label, key in REMEDY_KEYS.items():
-        for measure in PAIRED_MEASURES:
-            if measure.startswith("others") and len(shown_buttons(label)) == buttons.N_BUTTONS:
-                continue  # no button left unshown
-            mean, low, high = paired_difference(study, label, "learning progress", measure,
-                                                roots)
-            name = f"{key}_{measure}"
-            out[name], out[f"{name}_low"], out[f"{name}_high"] = mean, low, high
-            lower_is_better = measure == "test_error"
-            if low > 0:
-                verdict = "worse" if lower_is_better else "better"
-            elif high < 0:
-                verdict = "better" if lower_is_better else "worse"
-            else:
-                verdict = "no different"
-            out[f"{name}_verdict"] = VERDICTS[verdict]
-    return out
 
 
 if __name__ == "__main__":

@@ -957,12 +957,25 @@ CHAPTER_CLAIMS = {
     "rods_epsilon": "red predicted well first holds at an epsilon other than the default, "
                     "and not at the largest tried",
     "rods_blue_needs_drive": "blue is found at every point with an initial Q above zero, "
-                             "and not with no initial Q and no random moves",
+                             "whatever epsilon, and fails with no initial Q and no random "
+                             "moves (the chapter gives the other epsilons at no initial Q "
+                             "by their shares and verdicts, not as a claim)",
     "presses_not_needed": "red first and the interest's order hold at every number of "
                           "presses tried",
 }
 """The claims of the chapter "What the result depends on" about its maps
 (`chapter_claims`)."""
+BOLD_CLAIMS = {
+    "Above the threshold, red comes first at every point of the maps, whatever the "
+    "presses and the reading.": ("weight_above_settles_red", "all"),
+    "Red is predicted well first at every point of these maps": ("critic_red_everywhere",
+                                                                 "all"),
+}
+"""The bold claims of the chapter "What the result depends on" that use a word of
+strength (book/_ext/claim_words.py), each with the claim of `CHAPTER_CLAIMS` that
+checks it and the kind of that check: "all", every point's verdict "holds" (a claim
+that must hold at every point of a map is the conjunction of the points' own tests,
+which needs no correction for their number: it fails if any one fails)."""
 
 
 def _every(result, claim, verdict_, **where):
@@ -1108,6 +1121,11 @@ def chapter_numbers(goal, critic, rods_result):
         rods_red_first_by_epsilon=rods_result.shares_along("red_first", "epsilon"),
         rods_blue_q_none_by_epsilon=rods_result.shares_along("blue_found", "epsilon",
                                                              initial_q=qs[0]))
+    toppled = rods_result.points()["red_toppled_first_verdict"]
+    holds = int((toppled == "holds").sum())
+    clauses["rods_toppled_first_points"] = (
+        f"it holds at every one of the {len(toppled)} points" if holds == len(toppled) else
+        f"it holds at {holds} of the {len(toppled)} points and is unclear at the others")
     # The fewest seeds, in words ("in every seed" rather than "in at least 100.0%").
     for name in ("goal_red_first_above_min", "critic_red_first_min",
                  "rods_red_toppled_first_min", "rods_blue_positive_q_min"):
