@@ -12,10 +12,11 @@ import time
 
 from conftest import EXECUTE_BOOK, EXECUTION_RECORD, RECORDS, ROOT, cpu_burners
 
-SLOWEST_CHAPTER = "book/forming_actions.ipynb"
+SLOWEST_CHAPTER = "book/rod_toppling.ipynb"
 """The chapter whose execution takes the most CPU time, when no build has left a record
-of times here yet (a fresh clone, CI): 76 to 110 s of the book's 195 to 215 on an idle
-machine (issue 30)."""
+of times here yet (a fresh clone, CI): 28 of the book's 123 CPU-seconds in a build of
+2026-12-02 under heavy load (the reference workload 0.04 s), since "Forming actions"
+reads its goal-babbling runs from a file (19 CPU-seconds, from 133; issue 30)."""
 
 
 def slowest_chapter():
