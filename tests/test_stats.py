@@ -95,3 +95,12 @@ def test_a_bound_is_named():
     assert stats.at_bound([0.0, 0.0]) == "floor"
     assert stats.at_bound([0.0, 1.0]) is None
     assert stats.at_bound([3.0, 3.0], high=3) == "ceiling"
+
+
+def test_the_paired_p_value_refuses_bad_input():
+    with pytest.raises(ValueError, match="differences"):
+        stats.paired_p_value([])
+    with pytest.raises(ValueError, match="alternative"):
+        stats.paired_p_value([1.0, 2.0], alternative="up")
+    with pytest.raises((ValueError, TypeError), match="differences"):
+        stats.paired_p_value([[1.0, 2.0]])
