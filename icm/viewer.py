@@ -218,28 +218,6 @@ def _rods_export():
     }
 
 
-class _RecordingConsoles:
-    """A batched button console that keeps each trial's layout and each press."""
-
-    def __init__(self, consoles):
-        self.consoles, self.trials = consoles, []
-        self.n_actions, self.red_button = consoles.n_actions, consoles.red_button
-
-    def __len__(self):
-        return len(self.consoles)
-
-    def new_trials(self):
-        layout = self.consoles.new_trials()
-        self.trials.append({"layout": layout.copy(), "actions": [], "effects": []})
-        return layout
-
-    def press(self, actions):
-        effects = self.consoles.press(actions)
-        self.trials[-1]["actions"].append(np.asarray(actions).copy())
-        self.trials[-1]["effects"].append(effects.copy())
-        return effects
-
-
 def learner_replay(n_trials=DEFAULT_REPLAY_TRIALS, seed=0):
     """The first `n_trials` trials of run 0 of `run_goal_oriented(seed=seed)` (the
     paper's settings, the tabular console), press by press, for the browser to replay.
@@ -259,45 +237,25 @@ def learner_replay(n_trials=DEFAULT_REPLAY_TRIALS, seed=0):
     """
     from icm.envs import buttons
     from icm.experiments import goal_oriented as experiment
-    from icm.experiments._seeding import run_seeds
-    from icm.learners import goal_oriented
 
-    learner = goal_oriented.GoalOrientedSettings()  # the library's (the paper's) settings
-    settings = experiment._check_run_arguments(
-        1, n_trials, buttons.DEFAULT_PRESSES_PER_TRIAL, buttons.DEFAULT_RED_BUTTON, False,
-        False, seed, learner)
-    (env_seed, agent_seed), = run_seeds(settings["seed"], 1, 2)
-    red = settings["red_button"]
-    env = _RecordingConsoles(buttons.ButtonConsoleBatch([env_seed], red, False))
-    agent = goal_oriented.GoalOrientedBatch(
-        [agent_seed], np.array(buttons.layouts(red)), buttons.EFFECTS, env.n_actions,
-        settings=learner)
-    result = experiment._play(settings, env, agent, n_trials, settings["presses_per_trial"],
-                              red, False)
+    trials = []
+
+    def record(trial, layout, actions, effects):
+        if trial == len(trials):
+            trials.append({"layout": int(layout[0]), "actions": [], "effects": []})
+        trials[trial]["actions"].append(int(actions[0]))
+        trials[trial]["effects"].append(int(effects[0]))
+
+    result, = experiment.run_goal_oriented_grid(
+        [{}], n_seeds=1, n_trials=n_trials, seed=seed, progress=False, observe=record)
+    red = result.settings["red_button"]
     layouts = buttons.layouts(red)
-    trials = [{"lights": layouts[int(trial["layout"][0])].tolist(),
-               "presses": [int(a[0]) for a in trial["actions"]],
-               "boxes": [list(buttons.EFFECTS[int(e[0])]) for e in trial["effects"]],
+    trials = [{"lights": layouts[trial["layout"]].tolist(),
+               "presses": trial["actions"],
+               "boxes": [list(buttons.EFFECTS[e]) for e in trial["effects"]],
                "interest": result.interest[0, t].tolist()}
-              for t, trial in enumerate(env.trials)]
-    return {"seed": settings["seed"], "trials": trials}
-
-
-class _RecordingTables:
-    """A batched rod table (one row) that keeps every move."""
-
-    def __init__(self, tables):
-        self.tables, self.moves = tables, []
-        self.start = tables.start
-
-    def new_episodes(self, rows):
-        self.tables.new_episodes(rows)
-
-    def move(self, rows, cells, actions):
-        next_cells, toppled = self.tables.move(rows, cells, actions)
-        self.moves.append((int(cells[0]), int(actions[0]), int(next_cells[0]),
-                           int(toppled[0])))
-        return next_cells, toppled
+              for t, trial in enumerate(trials)]
+    return {"seed": result.settings["seed"], "trials": trials}
 
 
 def rod_replay(n_episodes=DEFAULT_REPLAY_EPISODES, seed=0):
@@ -318,21 +276,29 @@ def rod_replay(n_episodes=DEFAULT_REPLAY_EPISODES, seed=0):
       predictor's absolute errors on each rod summed over the episode: the intrinsic
       reward the robot was paid).
     """
+    from icm import _validate
     from icm.envs import rods
     from icm.experiments import rod_toppling as experiment
     from icm.experiments._seeding import run_seeds
     from icm.learners import q_learning
 
-    learner = q_learning.QLearnerSettings()  # the library's settings
-    settings = experiment._check_run_arguments(
-        1, n_episodes, False, False, rods.DEFAULT_START_CELL, rods.DEFAULT_MAX_MOVES, (),
-        seed, 0, False, learner)
-    (env_seed, agent_seed), = run_seeds(settings["seed"], 1, 2)
-    env = _RecordingTables(rods.RodTableBatch(1, settings["start_cell"], False, [env_seed]))
+    # run_rod_toppling's defaults, its seeds and the library's (the paper's) settings.
+    n_episodes = _validate.integer_at_least("n_episodes", n_episodes, 1)
+    seed = _validate.root_seed("seed", seed)
+    start_cell, max_moves = rods.DEFAULT_START_CELL, rods.DEFAULT_MAX_MOVES
+    learner = q_learning.QLearnerSettings()
+    (env_seed, agent_seed), = run_seeds(seed, 1, 2)
+    recorded = []
+
+    def record(rows, cells, actions, next_cells, toppled):
+        recorded.append((int(cells[0]), int(actions[0]), int(next_cells[0]),
+                         int(toppled[0])))
+
+    env = rods.RodTableBatch(1, start_cell, False, [env_seed])
     agent = q_learning.QLearner.from_settings(experiment.N_STATES, experiment.N_ACTIONS,
                                               len(rods.ROD_NAMES), learner, agent_seed)
-    played = experiment.play_episodes(env, [agent], n_episodes, settings["max_moves"])
-    episodes, moves = [], iter(env.moves)
+    played = experiment.play_episodes(env, [agent], n_episodes, max_moves, observe=record)
+    episodes, moves = [], iter(recorded)
     for e in range(n_episodes):
         length = int(played["length"][0, e])
         taken = [next(moves) for _ in range(length)]
@@ -341,8 +307,7 @@ def rod_replay(n_episodes=DEFAULT_REPLAY_EPISODES, seed=0):
                          "actions": [m[1] for m in taken],
                          "toppled": rods.ROD_NAMES[toppled] if toppled >= 0 else None,
                          "errors": played["errors"][0, e].tolist()})
-    return {"seed": settings["seed"], "start_cell": list(settings["start_cell"]),
-            "episodes": episodes}
+    return {"seed": seed, "start_cell": list(start_cell), "episodes": episodes}
 
 
 def formed_presses(babbling, run=0):

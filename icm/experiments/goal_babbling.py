@@ -765,27 +765,6 @@ class FormedActionsResult:
         return comes_first(mastery[:, 0], mastery[:, 1])
 
 
-class _Recorder:
-    """The physics console batch, keeping every (layout, action, effect)."""
-
-    def __init__(self, env):
-        self.env, self.log = env, []
-        self.n_actions, self.red_button = env.n_actions, env.red_button
-        self.effects = env.effects
-
-    def __len__(self):
-        return len(self.env)
-
-    def new_trials(self):
-        self.layout = self.env.new_trials()
-        return self.layout
-
-    def press(self, actions):
-        effects = self.env.press(actions)
-        self.log.append((self.layout.copy(), np.asarray(actions).copy(), effects.copy()))
-        return effects
-
-
 def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True):
     """Runs the paper's goal-oriented learner on the physics console, with the movements
     the robot formed by goal babbling as its five press actions.
@@ -810,23 +789,27 @@ def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True)
                        "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
     n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
     _validate.boolean("progress", progress)
-    settings = _goal_oriented._check_run_arguments(
-        babbling.n_seeds, n_trials, buttons.DEFAULT_PRESSES_PER_TRIAL,
-        buttons.DEFAULT_RED_BUTTON, False, True, seed, goal_oriented.GoalOrientedSettings())
-    settings["formed_by"] = babbling.strategy
-    seeds = run_seeds(settings["seed"], babbling.n_seeds, 2)
     lab = MovementLab()
     motions = [[lab.phases(m) for m in movements] for movements in babbling.press_movements]
-    red = buttons.DEFAULT_RED_BUTTON
-    env = _Recorder(buttons.PhysicsButtonConsoleBatch(
-        [s[0] for s in seeds], red, buttons.DEFAULT_PRESSES_PER_TRIAL, press_motions=motions))
-    agent = goal_oriented.GoalOrientedBatch(
-        [s[1] for s in seeds], np.array(buttons.layouts(red)), env.effects, env.n_actions)
-    learner = _goal_oriented._play(settings, env, agent, n_trials,
-                                   buttons.DEFAULT_PRESSES_PER_TRIAL, red, progress)
+    red, presses = buttons.DEFAULT_RED_BUTTON, buttons.DEFAULT_PRESSES_PER_TRIAL
+    log = []
+
+    def formed_console(env_seeds):
+        return buttons.PhysicsButtonConsoleBatch(env_seeds, red, presses,
+                                                 press_motions=motions)
+
+    def record(trial, layout, actions, effects):
+        log.append((layout.copy(), np.asarray(actions).copy(), effects.copy()))
+
+    learner, = _goal_oriented.run_goal_oriented_grid(
+        [{}], n_seeds=babbling.n_seeds, n_trials=n_trials, presses_per_trial=presses,
+        red_button=red, physics=True, seed=seed, progress=progress,
+        make_env=formed_console, observe=record)
+    settings = learner.settings
+    settings["formed_by"] = babbling.strategy
     table = buttons.outcome_table(red)
     matches = np.array([table[layout, actions] == effects
-                        for layout, actions, effects in env.log])  # [press, seed]
+                        for layout, actions, effects in log])  # [press, seed]
     return FormedActionsResult(settings, learner, float(np.mean(matches)), int(np.size(matches)),
                                matches.mean(axis=0))
 

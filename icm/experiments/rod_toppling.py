@@ -596,7 +596,7 @@ def toppling_pairs():
 
 
 def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), progress=False,
-                  off_grid=rods.OFF_GRID.default):
+                  off_grid=rods.OFF_GRID.default, observe=None):
     """Plays `n_episodes` episodes of each per-agent learner of `agents` (`QLearner`s,
     one per row of `env`, a batched rod table such as the physics one), and summarises
     them (`summarize`).
@@ -607,8 +607,30 @@ def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), prog
     `off_grid="end"` at a move off the grid (the hand stayed in its cell). After each episode the compiled
     `icm.experiments._rods_kernel.record_episode` keeps what the result needs, as the
     compiled loop of the tabular runs does (which gives the same numbers).
+
+    Args:
+      env: a batched rod table, one row per agent (as `icm.envs.rods.RodTableBatch`:
+        `start`, `new_episodes(rows)`, `move(rows, cells, actions)`).
+      agents: one `icm.learners.q_learning.QLearner` per row.
+      n_episodes: episodes each row plays (>= 1).
+      max_moves: moves after which an episode without a topple ends, or None.
+      snapshot_episodes: episodes after which to keep a snapshot (see `summarize`).
+      progress: show a progress bar over the episodes.
+      off_grid: what a move off the grid does, "stay" or "end".
+      observe: None, or a function called after every move as
+        `observe(rows, cells, actions, next_cells, toppled)` (arrays over the rows that
+        moved; `toppled` is the rod toppled, -1 for none): a recorder, for example.
+
+    Returns:
+      The summary of the episodes (`summarize`).
+
+    Raises:
+      ValueError: for a bad `n_episodes`, `max_moves` or `off_grid`.
     """
     from icm.experiments import _rods_kernel  # here: it loads Numba
+
+    n_episodes = _validate.integer_at_least("n_episodes", n_episodes, 1)
+    observe = _validate.function("observe", observe)
 
     n = len(agents)
     n_states, n_actions = agents[0].n_states, agents[0].n_actions
@@ -641,6 +663,8 @@ def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), prog
         actions = np.array([agents[r].select_action(int(c)) for r, c in zip(active, cells)],
                            dtype=np.int64)
         next_cells, toppled = env.move(active, cells, actions)
+        if observe is not None:
+            observe(active, cells, actions, next_cells, toppled)
         off = next_cells == cells  # a move off the grid: the hand stayed
         terminal = (toppled >= 0) | (off & off_grid_ends)
         for r, c, a, after, rod, last in zip(active.tolist(), cells.tolist(),

@@ -10,6 +10,7 @@ from icm import _validate
 from icm.envs import buttons, icub, rods
 from icm.experiments import curiosity as _curiosity
 from icm.experiments.curiosity import RewardComparison, SignalComparison
+from icm.experiments.rod_toppling import WELL_PREDICTED_ERROR
 from icm.figures._common import (LINESTYLES, MARKERS, TASK_COLOURS, check_result, new_figure,
                                  legend_below, plot_mean_band, series_style)
 from icm.figures.icub import check_camera, check_image_size, render
@@ -151,7 +152,7 @@ def wobbly_rod_figure(comparison):
              ylim=(0, 1), xlim=(1, comparison.settings["n_episodes"]))
     left.set_title(f"Where the episodes end, {n} seeds", fontsize=10)
     legend_below(left, ncols=2)
-    right.axhline(_curiosity._rod_toppling.WELL_PREDICTED_ERROR, color="black",
+    right.axhline(WELL_PREDICTED_ERROR, color="black",
                   linestyle="--", linewidth=1)
     right.set(xlabel="episode", ylabel="largest error left on a red pair", ylim=(0, 1.02),
               xlim=(1, comparison.settings["n_episodes"]))
