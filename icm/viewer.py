@@ -26,7 +26,7 @@ import xml.etree.ElementTree as ElementTree
 
 import numpy as np
 
-from icm import _validate
+from icm import _book, _validate
 from icm.envs._assets import asset_path
 
 BROWSER_MUJOCO = "3.14.0"
@@ -39,7 +39,7 @@ STATIC_FILES = ("icm-live.js", "icm.css", "vendor/three/three.min.js",
                 "vendor/mujoco/mujoco.js", "vendor/mujoco/mujoco-wasm.js")
 """The files of the book's `_static` folder a live view needs (the viewer loads all but
 icm.css on request)."""
-BOOK_ENV = "ICM_STATIC_PANELS"
+BOOK_ENV = _book.STATIC_ENV
 """Set to "1" while the book is built (book/_ext/execute_book.py): views are then the
 live viewer; otherwise (a Jupyter kernel, where the book's `_static` folder is not
 served) they are the still with a note."""

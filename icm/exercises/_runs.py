@@ -14,8 +14,8 @@ from icm.learners.predictors import NearestNeighbourPredictor
 EXERCISE_SEEDS = 20
 """Seeds of the runs a check makes with a student's piece: enough for a mean curve
 with a visible band, few enough for a run of a few seconds."""
-EXERCISE_TRIALS = 60
-"""Trials of those runs (the chapter's Figure 5 has 60)."""
+EXERCISE_TRIALS = go_experiment.CHAPTER_TRIALS
+"""Trials of those runs: the chapter's (its Figure 5's)."""
 
 
 class _AgentsAsRows:

@@ -24,6 +24,11 @@ from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
 TASKS = ("red", "green")
 """Order of the task axis in the result arrays."""
 LATE_TRIALS = 10
+CHAPTER_SEEDS = 200
+"""Runs of the chapter "The actor-critic" (its Figure 6; `python -m icm figure6`)."""
+CHAPTER_TRIALS = 100
+"""Trials per run in that chapter and `python -m icm figure6` (its panel runs
+`panel_data.PANEL_TRIALS`)."""
 """`summary()` describes the end of a run by its last `LATE_TRIALS` trials."""
 
 

@@ -39,18 +39,20 @@ from icm.experiments.results import check_results
 from icm.experiments._seeding import check_run_size, run_seeds
 from icm.learners import goal_oriented
 from icm.learners.goal_babbling import (  # noqa: F401 (N_BOOTSTRAP re-exported)
-    N_BOOTSTRAP, GoalBabblingAgent)
+    N_BOOTSTRAP, GoalBabblingAgent, GoalBabblingSettings)
+from icm.learners import goal_choice as _goal_choice
 from icm.learners.goal_choice import (  # noqa: F401 (re-exported)
     DEFAULT_EPSILON, DEFAULT_WINDOW, MEASURES, RandomGoals, RegionGrid, RegionProgress,
-    SplittingRegionProgress)
+    SplittingRegionProgress, make_goal_choice)
 from icm.learners.maturation import (  # noqa: F401 (re-exported)
     DEFAULT_MATURATION, MATURATIONS, JointRangeMaturation)
 from icm.learners.sensorimotor import (  # noqa: F401 (re-exported)
     DEFAULT_EXPLORATION_NOISE, INVERSE_MODELS, NOISE_DISTANCE, make_inverse_model)
 from icm.stats import PANEL_RESAMPLES, bootstrap_band, comes_first
 
-STRATEGIES = ("random_motor", "random_goal", "learning_progress")
-"""How the next movement is chosen (see the module docstring)."""
+STRATEGIES = tuple(_goal_choice.STRATEGIES)
+"""How the next movement is chosen (see the module docstring): the names of the
+strategies registered in `icm.learners.goal_choice.STRATEGIES`."""
 DEFAULT_N_ROLLOUTS = 1000
 """Rollouts per run (our choice: the paper has no goal babbling). What the strategies
 reach with it is measured in the chapter "Forming actions"."""
@@ -81,15 +83,15 @@ and one beyond each end; the 2 layers split at z = 0.525 m, 1 cm above the caps:
 the console, and in the air."""
 N_CHECKPOINTS = 20
 """Checkpoints of the test error, evenly spread over a run."""
-REGION_KINDS = ("fixed", "splitting")
+REGION_KINDS = tuple(_goal_choice.REGION_KINDS)
 """Learning progress's regions: the fixed `REGION_GRID`, or regions that split as goals
-accumulate (`icm.learners.goal_choice.SplittingRegionProgress`)."""
-DEFAULT_INVERSE_MODEL = "nearest_neighbour"
+accumulate (`icm.learners.goal_choice.REGION_KINDS`)."""
+DEFAULT_INVERSE_MODEL = GoalBabblingSettings.spec("inverse_model").default
 """The inverse model of a run unless told otherwise (`INVERSE_MODELS`)."""
-DEFAULT_MEASURE = "learning_progress"
+DEFAULT_MEASURE = GoalBabblingSettings.spec("measure").default
 """How learning progress measures a region's progress unless told otherwise
 (`MEASURES`)."""
-DEFAULT_REGIONS = "fixed"
+DEFAULT_REGIONS = GoalBabblingSettings.spec("regions").default
 """Learning progress's regions unless told otherwise (`REGION_KINDS`)."""
 DEFAULT_TRIALS = 30
 """Trials of the goal-oriented learner on the formed actions (`run_formed_actions`)."""
@@ -408,26 +410,59 @@ def check_demonstrations(demonstrations):
     return tuple(int(b) for b in shown)
 
 
+LEARNER_ARGUMENTS = GoalBabblingSettings.names()
+"""The arguments of `run_goal_babbling` that are the learner's settings
+(`icm.learners.goal_babbling.GoalBabblingSettings`: their ranges, defaults and checks
+live there)."""
+
+
+def learner_settings(arguments, settings=None):
+    """The learner's settings of a run: `settings` (a `GoalBabblingSettings`, None for
+    the library's) with every argument of `arguments` (a dict over
+    `LEARNER_ARGUMENTS`) that differs from its default, each checked by its `Setting`.
+
+    Raises:
+      ValueError: for a value its `Setting` refuses (ArgumentTypeError for a wrong
+        type), or a name that is not a setting.
+    """
+    base = GoalBabblingSettings() if settings is None else _validate.instance(
+        "settings", settings, GoalBabblingSettings)
+    specs = GoalBabblingSettings.specs()
+    changes = {}
+    for name, value in arguments.items():
+        if name not in specs:
+            raise ValueError(f"{name!r} is not a setting of GoalBabblingSettings; its "
+                             f"settings are {', '.join(specs)}")
+        checked = specs[name].check(value, name)
+        if settings is None or checked != specs[name].default:
+            changes[name] = checked
+    return base.replace(**changes) if changes else base
+
+
 def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, exploration_noise,
                          epsilon, window, outcome_space, inverse_model, measure, regions,
-                         depth_weight, retract, threads, maturation, demonstrations):
+                         depth_weight, retract, threads, maturation, demonstrations,
+                         settings=None):
+    learner = learner_settings(dict(
+        strategy=strategy, exploration_noise=exploration_noise, epsilon=epsilon,
+        window=window, inverse_model=inverse_model, measure=measure, regions=regions,
+        maturation=maturation), settings)
     checked = dict(
-        strategy=_validate.one_of("strategy", strategy, STRATEGIES),
+        strategy=learner.strategy,
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
         n_rollouts=_validate.integer_at_least("n_rollouts", n_rollouts, 1),
         seed=_validate.root_seed("seed", seed),
-        exploration_noise=_validate.real("exploration_noise", exploration_noise, 0.0, 1.0,
-                                         low_open=True),
-        epsilon=_validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0),
-        window=_validate.integer_at_least("window", window, 2),
+        exploration_noise=learner.exploration_noise,
+        epsilon=learner.epsilon,
+        window=learner.window,
         outcome_space=_validate.one_of("outcome_space", outcome_space, OUTCOME_SPACES),
-        inverse_model=_validate.one_of("inverse_model", inverse_model, INVERSE_MODELS),
-        measure=_validate.one_of("measure", measure, MEASURES),
-        regions=_validate.one_of("regions", regions, REGION_KINDS),
+        inverse_model=learner.inverse_model,
+        measure=learner.measure,
+        regions=learner.regions,
         depth_weight=_validate.real("depth_weight", depth_weight, 0.0, MAX_DEPTH_WEIGHT,
                                     low_open=True),
         retract=_validate.boolean("retract", retract),
-        maturation=_validate.one_of("maturation", maturation, MATURATIONS),
+        maturation=learner.maturation,
         demonstrations=check_demonstrations(demonstrations))
     if checked["n_rollouts"] < len(checked["demonstrations"]):
         raise ValueError(f"n_rollouts must be at least the number of demonstrations "
@@ -458,7 +493,7 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
                       outcome_space=DEFAULT_OUTCOME_SPACE, inverse_model=DEFAULT_INVERSE_MODEL,
                       measure=DEFAULT_MEASURE, regions=DEFAULT_REGIONS,
                       depth_weight=DEPTH_WEIGHT, retract=False, threads=None,
-                      maturation=DEFAULT_MATURATION, demonstrations=()):
+                      maturation=DEFAULT_MATURATION, demonstrations=(), settings=None):
     """Runs goal babbling on the simulated iCub, all seeds at once.
 
     Every rollout is a movement performed in physics from the start of a trial
@@ -507,6 +542,12 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
       maturation: one of `MATURATIONS` ("none" or "joint_range").
       demonstrations: the buttons the teacher shows, in order, each at most once (a
         tuple of integers 0 to 4; empty or None: no teacher).
+      settings: the learner's settings, a
+        `icm.learners.goal_babbling.GoalBabblingSettings` (None: from the arguments
+        above); an argument among `LEARNER_ARGUMENTS` given a value other than its
+        default replaces that setting. The ranges and the sources of `strategy`,
+        `exploration_noise`, `epsilon`, `window`, `inverse_model`, `measure`,
+        `regions` and `maturation` are their `Setting`s.
 
     Returns:
       A `GoalBabblingResult`.
@@ -518,7 +559,8 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
     settings = _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress,
                                     exploration_noise, epsilon, window, outcome_space,
                                     inverse_model, measure, regions, depth_weight,
-                                    retract, threads, maturation, demonstrations)
+                                    retract, threads, maturation, demonstrations,
+                                    settings)
     lab = MovementLab(threads)
     seeds = run_seeds(settings["seed"], n_seeds, 2)
     arrays = _babble(settings, lab, [s[0] for s in seeds], progress)
@@ -552,23 +594,14 @@ def _babble(settings, lab, seeds, progress):
     weight, retract = settings["depth_weight"], settings["retract"]
     n_outcome = 3 if space == "point" else 3 + buttons.N_BUTTONS
     grid = _grid()
-    model = make_inverse_model(settings["inverse_model"], n_seeds, n_rollouts, lab.lower,
-                               lab.upper, n_outcome,
-                               exploration_noise=settings["exploration_noise"])
-    if strategy == "random_motor":
-        choice = None
-    elif strategy == "random_goal":
-        choice = RandomGoals(grid, n_seeds)
-    else:
-        kind = RegionProgress if settings["regions"] == "fixed" else SplittingRegionProgress
-        choice = kind(grid, n_seeds, settings["measure"], settings["epsilon"],
-                      settings["window"])
-    maturation = None if settings["maturation"] == "none" else \
-        JointRangeMaturation(n_seeds, lab.home, lab.lower, lab.upper)
+    learner = GoalBabblingSettings(**{name: settings[name] for name in LEARNER_ARGUMENTS})
     shown = lab.press_postures[list(settings["demonstrations"])]
-    agent = GoalBabblingAgent(model, choice, [np.random.default_rng(s) for s in seeds],
-                              lambda goals: goal_outcomes(goals, space, weight),
-                              maturation=maturation, demonstrations=shown)
+    agent = GoalBabblingAgent.from_settings(
+        learner, [np.random.default_rng(s) for s in seeds], lab.lower, lab.upper,
+        n_rollouts, n_outcome, grid, lab.home,
+        lambda goals: goal_outcomes(goals, space, weight), demonstrations=shown)
+    choice, maturation = agent.goal_choice, agent.maturation
+    by_interest = _goal_choice.STRATEGIES[strategy].by_interest
     movements = np.zeros((n_seeds, n_rollouts, 7))
     outcomes = np.zeros((n_seeds, n_rollouts, 3))
     depths = np.zeros((n_seeds, n_rollouts, buttons.N_BUTTONS))
@@ -588,7 +621,7 @@ def _babble(settings, lab, seeds, progress):
         touched[:, i], pressed[:, i] = done["touched"], done["pressed"]
         if goal is not None:
             goals[:, i], regions[:, i] = goal, region
-            if strategy == "learning_progress":
+            if by_interest:
                 interest_log[:, i] = choice.values()
         if maturation is not None:
             maturity[:, i] = maturation.psi

@@ -28,6 +28,11 @@ TASK_KEYS = {"red": (_REST, (1, 0)), "green": (_REST, (0, 1)), "nothing": (_REST
 """The agent's task keys (boxes at rest -> boxes after the press) by name."""
 _TASK_EFFECTS = (buttons.RED_BOX, buttons.GREEN_BOX)  # red, green, as TASKS
 FADE_FRACTION = 0.1
+CHAPTER_SEEDS = 200
+"""Runs of the chapter "Goal-oriented interest" (its Figure 5; `python -m icm figure5`)."""
+CHAPTER_TRIALS = 60
+"""Trials per run in that chapter: its Figure 5 and panel, its exercises' runs, its
+robustness maps and `python -m icm figure5`."""
 """The share of its peak below which a task's mean interest has faded (`fade_trial`)."""
 CLAIMS = {
     "red_first_mostly": "red is mastered first in most seeds",
