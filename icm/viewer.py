@@ -27,14 +27,19 @@ import xml.etree.ElementTree as ElementTree
 import numpy as np
 
 from icm import _book, _validate
+from icm._settings import Names
 from icm.envs._assets import asset_path
 
 BROWSER_MUJOCO = "3.14.0"
 """The version of MuJoCo's WebAssembly build that the live views run in the reader's
 browser (`@mujoco/mujoco`, vendored in book/_static/vendor; a test checks its lock
 file); Python runs the `mujoco` package installed with icm."""
-SCENES = ("buttons", "rods")
-"""The scenes the viewer shows."""
+LIVE_SCENES = {}
+"""The scenes the viewer shows, by name: each scenario's export for the browser and
+the view it starts from, registered where the export is written (`live_scene`). The
+browser side (book/_static/icm-live.js) steps the scenario's rules too."""
+SCENES = Names(lambda: tuple(LIVE_SCENES))
+"""The scenes the viewer shows (the names of `LIVE_SCENES`)."""
 STATIC_FILES = ("icm-live.js", "icm.css", "vendor/three/three.min.js",
                 "vendor/mujoco/mujoco.js", "vendor/mujoco/mujoco-wasm.js")
 """The files of the book's `_static` folder a live view needs (the viewer loads all but
@@ -55,6 +60,26 @@ is, turned to the body it targets, or elsewhere on the sphere around that body
 ("orbit": distance in m, azimuth and elevation in radians). The robot from the front at
 the console; from behind its right shoulder at the rods, where the arrow keys then move
 the hand the way they point."""
+
+
+def live_scene(name):
+    """Registers the decorated function (of no arguments, returning the scene's export:
+    see `scene_export`) as the live view of scenario `name`, whose starting view is
+    `VIEWS[name]`.
+
+    Raises:
+      ValueError: for a name registered already or without a view in `VIEWS`.
+    """
+    name = _validate.text("name", name)
+    if name in LIVE_SCENES:
+        raise ValueError(f"name must be a new scene, got {name!r}: registered already")
+    _validate.one_of("name", name, tuple(VIEWS))
+
+    def register(export):
+        LIVE_SCENES[name] = _validate.function("export", export, allow_none=False)
+        return export
+    return register
+
 
 DEFAULT_REPLAY_TRIALS = 10
 """Trials of the goal-oriented learner's run that `live_learner` replays."""
@@ -145,9 +170,10 @@ def scene_export(scene):
       ValueError: for another scene.
     """
     scene = _validate.one_of("scene", scene, SCENES)
-    return _buttons_export() if scene == "buttons" else _rods_export()
+    return LIVE_SCENES[scene]()
 
 
+@live_scene("buttons")
 def _buttons_export():
     from icm.envs import buttons
 
@@ -182,6 +208,7 @@ def _buttons_export():
     }
 
 
+@live_scene("rods")
 def _rods_export():
     from icm.envs import icub, rods
 
