@@ -36,7 +36,7 @@ browser (`@mujoco/mujoco`, vendored in book/_static/vendor; a test checks its lo
 file); Python runs the `mujoco` package installed with icm."""
 LIVE_SCENES = {}
 """The scenes the viewer shows, by name: each scenario's export for the browser and
-the view it starts from, registered where the export is written (`live_scene`). The
+the view it starts from, registered where the export is written (`register_scene`). The
 browser side (book/_static/icm-live.js) steps the scenario's rules too."""
 SCENES = Names(lambda: tuple(LIVE_SCENES))
 """The scenes the viewer shows (the names of `LIVE_SCENES`)."""
@@ -62,7 +62,7 @@ the console; from behind its right shoulder at the rods, where the arrow keys th
 the hand the way they point."""
 
 
-def live_scene(name):
+def register_scene(name):
     """Registers the decorated function (of no arguments, returning the scene's export:
     see `scene_export`) as the live view of scenario `name`, whose starting view is
     `VIEWS[name]`.
@@ -173,7 +173,7 @@ def scene_export(scene):
     return LIVE_SCENES[scene]()
 
 
-@live_scene("buttons")
+@register_scene("buttons")
 def _buttons_export():
     from icm.envs import buttons
 
@@ -208,7 +208,7 @@ def _buttons_export():
     }
 
 
-@live_scene("rods")
+@register_scene("rods")
 def _rods_export():
     from icm.envs import icub, rods
 
