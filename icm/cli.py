@@ -90,7 +90,11 @@ def _check_out(parser, out):
     if out.is_dir():
         parser.error(f"--out must be a file to write, got the folder {out}")
     if out.suffix.lower() not in (".png", ".pdf", ".svg"):
-        parser.error(f"--out must end in .png, .pdf or .svg, got {out}")
+        if out.name.lower() in (".png", ".pdf", ".svg"):  # Path(".png").suffix is ""
+            parser.error(f"--out must name a file before its suffix (for example "
+                         f"figure{out.name}), got {out}")
+        parser.error(f"--out must end in .png, .pdf or .svg, got {out} (suffix "
+                     f"{out.suffix or 'none'})")
     if not out.parent.exists():
         parser.error(f"--out: the folder {out.parent} does not exist")
     existed = out.exists()

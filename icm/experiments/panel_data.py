@@ -284,10 +284,21 @@ class PanelGrid:
     curves: tuple
     cells: tuple = None
 
+    def __post_init__(self):
+        spec(self.name)  # a panel of PANELS, else a ValueError naming them
+        for field in ("settings", "curves"):
+            if not isinstance(getattr(self, field), (tuple, list)):
+                raise _validate.ArgumentTypeError(
+                    f"{field} must be a tuple, got {_validate.show(getattr(self, field))}")
+        if len(self.curves) != len(self.settings) or (
+                self.cells is not None and len(self.cells) != len(self.settings)):
+            raise ValueError(f"curves (and cells) must have one entry per setting "
+                             f"({len(self.settings)}), got {len(self.curves)}")
+
     @property
     def spec(self):
         """The panel's `PanelSpec`."""
-        return PANELS[self.name]
+        return spec(self.name)
 
     def index(self, **setting):
         """Position of `setting` (every control given) in the grid.
