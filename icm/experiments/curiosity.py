@@ -554,15 +554,15 @@ def outcome_rewards(rewards=("prediction_error", "learning_progress", "novelty")
     predictor_lr = _validate.learning_rate("predictor_lr", predictor_lr)
     seed = _validate.root_seed("seed", seed)
     _validate.boolean("progress", progress)
+    check_memory("outcome_rewards", {"rewards": len(rewards), "n_seeds": n_seeds,
+                                     "n_tries": n_tries},
+                 outcome_rewards_memory(len(rewards), n_seeds, n_tries, window))
     if n_seeds * n_tries > MAX_OUTCOME_DRAWS:
         hours = 2 * n_seeds * n_tries * OUTCOME_SECONDS_PER_TRY / 3600
         raise ValueError(f"n_seeds x n_tries must be at most {MAX_OUTCOME_DRAWS:,} (about "
                          f"{2 * MAX_OUTCOME_DRAWS * OUTCOME_SECONDS_PER_TRY / 60:.0f} minutes "
                          f"of computing), got n_seeds={n_seeds} x n_tries={n_tries} = "
                          f"{n_seeds * n_tries:,} (about {hours:.1f} hours)")
-    check_memory("outcome_rewards", {"rewards": len(rewards), "n_seeds": n_seeds,
-                                     "n_tries": n_tries},
-                 outcome_rewards_memory(len(rewards), n_seeds, n_tries, window))
     coins = np.random.default_rng(seed).random((n_seeds, n_tries)) < 0.5
     sure = np.ones_like(coins)
     rows, pair = np.arange(n_seeds), np.zeros(n_seeds, dtype=np.int64)
