@@ -199,7 +199,7 @@ def recorder(n_rows, n_episodes, n_cells, n_actions, n_rods, pairs, snapshot_epi
 
     Args:
       pairs: (cells, actions, rods), the map's pairs that topple a rod (red 0 or blue
-        1), as `icm.experiments.rod_toppling.toppling_pairs` gives them.
+        1), as `icm.experiments.rod_episodes.toppling_pairs` gives them.
       snapshot_episodes: the episodes (from 1) after which to keep a snapshot, besides
         the four moments.
       threshold: the error below which a rod is predicted well.
@@ -252,7 +252,7 @@ def record_episode(r, ep, rod, q, predictions, last_error, found, record):
 
     The learner is only read: a run keeps a few snapshots per row, not the learner
     after every episode. Called by `play` and, for the physics, by
-    `icm.experiments.rod_toppling.play_episodes`.
+    `icm.experiments.rod_episodes.play_episodes`.
     """
     (pair_cells, pair_actions, pair_rods, snapshot_at, threshold, rod_error,
      rod_error_toppled, well_toppled, taken, q_snap, p_snap, e_snap) = record
