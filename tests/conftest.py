@@ -32,7 +32,6 @@ def toc_files():
     return toc_pages(ROOT)
 
 
-@contextlib.contextmanager
 def first_objective(chapter):
     """The first learning objective a chapter's notebook states, its first four words
     (the chapter is the one source of its objectives; tests that look for them in a
@@ -46,6 +45,7 @@ def first_objective(chapter):
     raise AssertionError(f"{chapter} states no learning objectives")
 
 
+@contextlib.contextmanager
 def cpu_burners(count=None):
     """Keeps every core busy (one process per core spinning in a loop, at normal
     priority) while the block runs: a machine made slow on purpose, as a student's
