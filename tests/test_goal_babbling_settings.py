@@ -115,3 +115,21 @@ def test_a_strategy_not_registered_is_refused():
     with pytest.raises(ValueError, match="strategy must be one of 'random_motor', "
                                          "'random_goal', 'learning_progress'"):
         goal_choice.make_goal_choice("first_region", _grid(), 1)
+
+
+def test_the_public_loop_is_the_runs_loop_and_observes_each_rollout():
+    from icm.envs.buttons.movements import MovementLab
+    from icm.experiments._seeding import run_seeds
+
+    run = goal_babbling.run_goal_babbling("learning_progress", n_seeds=2, n_rollouts=30,
+                                          seed=4, progress=False)
+    lab = MovementLab(1)
+    seen = []
+    seeds = [s[0] for s in run_seeds(4, 2, 2)]
+    played = goal_babbling.babble(goal_babbling.make_agent(lab, seeds, 30), lab, 30,
+                                  observe=lambda i, movements, done: seen.append(i))
+    assert seen == list(range(30))
+    for name in ("movements", "outcomes", "regions", "interest"):
+        np.testing.assert_array_equal(played[name], getattr(run, name))
+    with pytest.raises(ValueError, match="observe must be a function"):
+        goal_babbling.babble(goal_babbling.make_agent(lab, seeds, 3), lab, 3, observe=5)

@@ -1,6 +1,7 @@
 """The console as goal babbling sees it: the goal space and its regions, what a
 movement's outcome is (where the finger stopped, and how far each cap went down), the
-test goals, and how far a press must go (see `icm.experiments.goal_babbling`)."""
+test goals, how far a press must go, and how often random movements of a smaller
+reach touch the console (see `icm.experiments.goal_babbling`)."""
 
 import functools
 
@@ -9,6 +10,7 @@ import numpy as np
 from icm import _validate
 from icm.envs import buttons
 from icm.envs.buttons import movements as _movements
+from icm.envs.buttons.movements import MovementLab
 from icm.learners.goal_choice import RegionGrid
 
 OUTCOME_SPACES = ("point", "point_and_depths")
@@ -152,3 +154,44 @@ one centred on each button and one beyond each end button."""
 def region_columns():
     """The column (index along y) of every region, [region]."""
     return np.array([index[1] for index in np.ndindex(*REGION_GRID)])
+
+
+RANGE_SHARES = (0.2, 0.3, 0.4, 0.5, 0.7, 1.0)
+"""The reachable ranges `touch_shares` measures by default, as shares of the way from
+the resting posture to the joints' limits."""
+
+
+def touch_shares(shares=RANGE_SHARES, n_movements=500, seed=0, threads=None):
+    """How often random movements reach the console when the arm's joint range is cut
+    down around its resting posture, as a maturing arm's is
+    (`icm.learners.maturation.JointRangeMaturation` with psi = share): for each
+    share, `n_movements` joint targets uniform in [home - share (home - lower), home
+    + share (upper - home)] are performed, and the share of them that end with the
+    finger on the console or a cap is returned, with the share that pressed a button.
+
+    Args:
+      shares: increasing shares of the range in (0, 1].
+      n_movements: random movements per share (>= 1).
+      seed: the seed of the movements (an integer >= 0, a Generator or None).
+      threads: as in `run_goal_babbling`.
+
+    Returns:
+      A dict {"shares": [...], "touched": [...], "pressed": [...]}, one value per share.
+    """
+    given, shares = shares, _validate.finite_array("shares", shares, ndim=1)
+    if not len(shares) or np.any(np.diff(shares) <= 0) or shares[0] <= 0 or shares[-1] > 1:
+        raise ValueError(f"shares must be increasing shares in (0, 1], got "
+                         f"{_validate.show(given)}")
+    n_movements = _validate.integer_at_least("n_movements", n_movements, 1)
+    rng = np.random.default_rng(_validate.root_seed("seed", seed))
+    if threads is not None:
+        _validate.integer_in_range("threads", threads, 1, _movements.MAX_THREADS)
+    lab = MovementLab(threads)
+    touched, pressed = [], []
+    for share in shares:
+        low = lab.home - share * (lab.home - lab.lower)
+        high = lab.home + share * (lab.upper - lab.home)
+        done = lab.perform(rng.uniform(low, high, (n_movements, len(lab.home))))
+        touched.append(float(done["touched"].mean()))
+        pressed.append(float((done["pressed"] >= 0).mean()))
+    return {"shares": shares.tolist(), "touched": touched, "pressed": pressed}

@@ -56,7 +56,7 @@ from icm.experiments.babbling_space import (  # noqa: F401 (re-exported)
     COLUMN_NAMES, DEFAULT_OUTCOME_SPACE, DEPTH_WEIGHT, EDGE_SHARE, GOAL_HIGH, GOAL_LOW,
     MAX_DEPTH_WEIGHT, OUTCOME_SPACES, REGION_GRID, console_geometry, goal_depths,
     goal_outcomes, outcome_vectors, press_distances, region_bounds, region_columns,
-    region_grid, region_of)
+    region_grid, region_of, RANGE_SHARES, touch_shares)
 from icm.experiments.babbling_results import (  # noqa: F401 (re-exported)
     GoalBabblingResult, median_first_press)
 
@@ -286,19 +286,83 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
 def _babble(settings, lab, seeds, progress):
     """The rollouts of a run, all seeds at once (one generator per seed, from `seeds`):
     a dict of the arrays `GoalBabblingResult` keeps per rollout."""
-    strategy, n_rollouts = settings["strategy"], settings["n_rollouts"]
-    n_seeds, space = len(seeds), settings["outcome_space"]
-    weight, retract = settings["depth_weight"], settings["retract"]
-    n_outcome = 3 if space == "point" else 3 + buttons.N_BUTTONS
-    grid = region_grid()
     learner = GoalBabblingSettings(**{name: settings[name] for name in LEARNER_ARGUMENTS})
-    shown = lab.press_postures[list(settings["demonstrations"])]
-    agent = GoalBabblingAgent.from_settings(
-        learner, [np.random.default_rng(s) for s in seeds], lab.lower, lab.upper,
-        n_rollouts, n_outcome, grid, lab.home,
+    agent = make_agent(lab, seeds, settings["n_rollouts"], learner, settings["outcome_space"],
+                       settings["depth_weight"], settings["demonstrations"])
+    return babble(agent, lab, settings["n_rollouts"], settings["outcome_space"],
+                  settings["depth_weight"], settings["retract"], progress,
+                  description=f"goal babbling ({settings['strategy']}, {len(seeds)} seeds "
+                              f"at once)")
+
+
+def make_agent(lab, seeds, n_rollouts, settings=None, outcome_space=DEFAULT_OUTCOME_SPACE,
+               depth_weight=DEPTH_WEIGHT, demonstrations=()):
+    """The goal-babbling learner of a run on `lab`, one row per seed, as
+    `run_goal_babbling` builds it (`GoalBabblingAgent.from_settings` on this
+    experiment's goal space, its goals turned into outcomes of `outcome_space`).
+
+    Args:
+      lab: the `icm.envs.buttons.movements.MovementLab` it babbles on.
+      seeds: one integer seed per row (each row's generator).
+      n_rollouts: the rollouts it will make (its inverse model keeps them all).
+      settings: a `icm.learners.goal_babbling.GoalBabblingSettings` (None: the
+        library's).
+      outcome_space, depth_weight: as `run_goal_babbling`'s.
+      demonstrations: the buttons the teacher shows, as `run_goal_babbling`'s.
+
+    Returns:
+      A `GoalBabblingAgent`.
+    """
+    _validate.instance("lab", lab, MovementLab)
+    n_rollouts = _validate.integer_at_least("n_rollouts", n_rollouts, 1)
+    space = _validate.one_of("outcome_space", outcome_space, OUTCOME_SPACES)
+    weight = _validate.real("depth_weight", depth_weight, 0.0, MAX_DEPTH_WEIGHT, low_open=True)
+    shown = lab.press_postures[list(check_demonstrations(demonstrations))]
+    n_outcome = 3 if space == "point" else 3 + buttons.N_BUTTONS
+    return GoalBabblingAgent.from_settings(
+        settings, [np.random.default_rng(s) for s in seeds], lab.lower, lab.upper,
+        n_rollouts, n_outcome, region_grid(), lab.home,
         lambda goals: goal_outcomes(goals, space, weight), demonstrations=shown)
+
+
+def babble(agent, lab, n_rollouts, outcome_space=DEFAULT_OUTCOME_SPACE,
+           depth_weight=DEPTH_WEIGHT, retract=False, progress=False, observe=None,
+           description="goal babbling"):
+    """Plays `n_rollouts` rollouts of a goal-babbling learner on `lab`, all rows at
+    once: the loop of `run_goal_babbling` (which adds the final test of the presses),
+    open to any learner of the same shape.
+
+    Args:
+      agent: a `GoalBabblingAgent` (`make_agent` builds the run's), one row per seed.
+      lab: the `icm.envs.buttons.movements.MovementLab` the movements are rolled out
+        on.
+      n_rollouts: rollouts to play (>= 1).
+      outcome_space, depth_weight: how a movement's outcome is read (as
+        `run_goal_babbling`'s).
+      retract: also simulate each movement's return home.
+      progress: show a progress bar over the rollouts when they last over a second.
+      observe: None, or a function called after every rollout as
+        `observe(rollout, movements, done)` (`done`: what `MovementLab.perform`
+        measured, one entry per row).
+      description: the progress bar's words.
+
+    Returns:
+      A dict of the arrays `GoalBabblingResult` keeps per rollout ("movements",
+      "outcomes", "depths", "touched", "pressed", "goals", "regions", "interest",
+      "maturity"), each [seed, rollout, ...].
+
+    Raises:
+      ValueError: for a bad argument.
+    """
+    _validate.instance("agent", agent, GoalBabblingAgent)
+    _validate.instance("lab", lab, MovementLab)
+    n_rollouts = _validate.integer_at_least("n_rollouts", n_rollouts, 1)
+    space = _validate.one_of("outcome_space", outcome_space, OUTCOME_SPACES)
+    weight = _validate.real("depth_weight", depth_weight, 0.0, MAX_DEPTH_WEIGHT, low_open=True)
+    retract = _validate.boolean("retract", retract)
+    observe = _validate.function("observe", observe)
+    n_seeds = agent.n_rows
     choice, maturation = agent.goal_choice, agent.maturation
-    by_interest = _goal_choice.STRATEGIES[strategy].by_interest
     movements = np.zeros((n_seeds, n_rollouts, 7))
     outcomes = np.zeros((n_seeds, n_rollouts, 3))
     depths = np.zeros((n_seeds, n_rollouts, buttons.N_BUTTONS))
@@ -306,10 +370,9 @@ def _babble(settings, lab, seeds, progress):
     pressed = np.zeros((n_seeds, n_rollouts), dtype=np.int64)
     goals = np.full((n_seeds, n_rollouts, 3), np.nan)
     regions = np.full((n_seeds, n_rollouts), -1, dtype=np.int64)
-    interest_log = np.zeros((n_seeds, n_rollouts, grid.n_regions))
+    interest_log = np.zeros((n_seeds, n_rollouts, region_grid().n_regions))
     maturity = np.ones((n_seeds, n_rollouts))
-    for i in progress_bar(range(n_rollouts), n_rollouts,
-                          f"goal babbling ({strategy}, {n_seeds} seeds at once)", progress,
+    for i in progress_bar(range(n_rollouts), n_rollouts, description, progress,
                           unit="rollout"):
         targets, goal, region = agent.produce()
         done = lab.perform(targets, retract)
@@ -318,10 +381,12 @@ def _babble(settings, lab, seeds, progress):
         touched[:, i], pressed[:, i] = done["touched"], done["pressed"]
         if goal is not None:
             goals[:, i], regions[:, i] = goal, region
-            if by_interest:
-                interest_log[:, i] = choice.values()
+            # The regions' interest (0 everywhere for goals that do not follow it).
+            interest_log[:, i] = choice.values()
         if maturation is not None:
             maturity[:, i] = maturation.psi
+        if observe is not None:
+            observe(i, targets, done)
     return {"movements": movements, "outcomes": outcomes, "depths": depths,
             "touched": touched, "pressed": pressed, "goals": goals, "regions": regions,
             "interest": interest_log, "maturity": maturity}
@@ -360,47 +425,6 @@ def presses_formed(result, rollouts):
         movements = np.take_along_axis(result.movements, nearest[:, :, None], axis=1)
         out[i] = _press_each_button(lab, movements, seeds)
     return out
-
-
-RANGE_SHARES = (0.2, 0.3, 0.4, 0.5, 0.7, 1.0)
-"""The reachable ranges `touch_shares` measures by default, as shares of the way from
-the resting posture to the joints' limits."""
-
-
-def touch_shares(shares=RANGE_SHARES, n_movements=500, seed=0, threads=None):
-    """How often random movements reach the console when the arm's joint range is cut
-    down around its resting posture, as a maturing arm's is
-    (`icm.learners.maturation.JointRangeMaturation` with psi = share): for each
-    share, `n_movements` joint targets uniform in [home - share (home - lower), home
-    + share (upper - home)] are performed, and the share of them that end with the
-    finger on the console or a cap is returned, with the share that pressed a button.
-
-    Args:
-      shares: increasing shares of the range in (0, 1].
-      n_movements: random movements per share (>= 1).
-      seed: the seed of the movements (an integer >= 0, a Generator or None).
-      threads: as in `run_goal_babbling`.
-
-    Returns:
-      A dict {"shares": [...], "touched": [...], "pressed": [...]}, one value per share.
-    """
-    given, shares = shares, _validate.finite_array("shares", shares, ndim=1)
-    if not len(shares) or np.any(np.diff(shares) <= 0) or shares[0] <= 0 or shares[-1] > 1:
-        raise ValueError(f"shares must be increasing shares in (0, 1], got "
-                         f"{_validate.show(given)}")
-    n_movements = _validate.integer_at_least("n_movements", n_movements, 1)
-    rng = np.random.default_rng(_validate.root_seed("seed", seed))
-    if threads is not None:
-        _validate.integer_in_range("threads", threads, 1, _movements.MAX_THREADS)
-    lab = MovementLab(threads)
-    touched, pressed = [], []
-    for share in shares:
-        low = lab.home - share * (lab.home - lab.lower)
-        high = lab.home + share * (lab.upper - lab.home)
-        done = lab.perform(rng.uniform(low, high, (n_movements, len(lab.home))))
-        touched.append(float(done["touched"].mean()))
-        pressed.append(float((done["pressed"] >= 0).mean()))
-    return {"shares": shares.tolist(), "touched": touched, "pressed": pressed}
 
 
 PRESS_FAILURES = ("formed", "not pushed in far enough", "off the cap",
