@@ -157,16 +157,11 @@ def babbling_against_raw(repeats=5, n_movements=40):
         return min(times)
 
     n_seeds = 10
-    settings = goal_babbling._check_run_arguments(
-        "learning_progress", n_seeds, n_movements // n_seeds, 0, False,
-        goal_babbling.DEFAULT_EXPLORATION_NOISE, goal_babbling.DEFAULT_EPSILON,
-        goal_babbling.DEFAULT_WINDOW, goal_babbling.DEFAULT_OUTCOME_SPACE,
-        goal_babbling.DEFAULT_INVERSE_MODEL, goal_babbling.DEFAULT_MEASURE,
-        goal_babbling.DEFAULT_REGIONS, goal_babbling.DEPTH_WEIGHT, False, None)
+    n_rollouts = n_movements // n_seeds
 
-    def whole_run(lab):  # the rollouts of a run, without the final press test
-        return lambda: goal_babbling._babble(settings, lab, list(range(n_seeds)),
-                                             progress=False)
+    def whole_run(lab):  # the rollouts of a run (the library's settings), no press test
+        return lambda: goal_babbling.babble(
+            goal_babbling.make_agent(lab, range(n_seeds), n_rollouts), lab, n_rollouts)
 
     short, full = lab.outcome_step + 1, lab.n_steps
     cases = [("rollouts, reach and hold, 1 thread", lambda: lab.perform(targets), short),

@@ -287,6 +287,9 @@ def integer_array(name, value, ndim=None):
     array = np.asarray(value)
     if array.dtype.kind not in "iu":
         raise _type_error(name, "an array of integers", value)
+    if not isinstance(value, np.ndarray) and any(  # numpy turns [True, 10] into [1, 10]
+            isinstance(v, (bool, np.bool_)) for v in np.asarray(value, dtype=object).ravel()):
+        raise _type_error(name, "an array of integers", value)
     if ndim is not None and array.ndim != ndim:
         raise ValueError(f"{name} must have {ndim} dimension(s), got {array.ndim}: "
                          f"{show(value)}")

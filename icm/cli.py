@@ -12,6 +12,7 @@ import sys
 from icm import experiments
 from icm.experiments import goal_babbling, rod_toppling
 from icm.learners import actor_critic, goal_oriented, q_learning
+from icm.learners.goal_babbling import GoalBabblingSettings
 
 
 def _figures():
@@ -89,7 +90,11 @@ def _check_out(parser, out):
     if out.is_dir():
         parser.error(f"--out must be a file to write, got the folder {out}")
     if out.suffix.lower() not in (".png", ".pdf", ".svg"):
-        parser.error(f"--out must end in .png, .pdf or .svg, got {out}")
+        if out.name.lower() in (".png", ".pdf", ".svg"):  # Path(".png").suffix is ""
+            parser.error(f"--out must name a file before its suffix (for example "
+                         f"figure{out.name}), got {out}")
+        parser.error(f"--out must end in .png, .pdf or .svg, got {out} (suffix "
+                     f"{out.suffix or 'none'})")
     if not out.parent.exists():
         parser.error(f"--out: the folder {out.parent} does not exist")
     existed = out.exists()
@@ -120,15 +125,18 @@ def _setting_type(spec):
     return parse
 
 
-def _settings_options(parser, settings_class):
-    """An option for every setting of a learner's `settings_class`, from its `Setting`:
-    the name with dashes, its type and range, and help with its label, range, default
-    and the paper's value or the lack of one."""
+def _settings_options(parser, settings_class, skip=()):
+    """An option for every setting of a learner's `settings_class` (but those named in
+    `skip`), from its `Setting`: the name with dashes, its type and range, and help with
+    its label, range, default and the paper's value or the lack of one."""
     for name, spec in settings_class.specs().items():
+        if name in skip:
+            continue
         paper = f"the paper's: {spec.paper}" if spec.published else "the paper gives none"
         parser.add_argument(
             "--" + name.replace("_", "-"), dest=SETTINGS_DEST + name, type=_setting_type(spec),
-            default=spec.default, choices=spec.choices or None, metavar=None if spec.choices
+            default=spec.default, choices=tuple(spec.choices) or None,
+            metavar=None if spec.choices
             else name.upper(),
             help=f"{spec.label}, {spec.allowed()} (default {spec.default}; {paper})")
 
@@ -144,10 +152,11 @@ def _no_options(parser):
 
 
 def _figure5_options(parser):
-    parser.add_argument("--seeds", type=_positive_int, default=200,
-                        help="number of independent runs (default 200)")
-    parser.add_argument("--trials", type=_positive_int, default=60,
-                        help="trials per run (default 60)")
+    seeds, trials = experiments.goal_oriented.CHAPTER_SEEDS, experiments.goal_oriented.CHAPTER_TRIALS
+    parser.add_argument("--seeds", type=_positive_int, default=seeds,
+                        help=f"number of independent runs (default {seeds})")
+    parser.add_argument("--trials", type=_positive_int, default=trials,
+                        help=f"trials per run (default {trials})")
     _settings_options(parser, goal_oriented.GoalOrientedSettings)
 
 
@@ -159,10 +168,11 @@ def _figure6(args):
 
 
 def _figure6_options(parser):
-    parser.add_argument("--seeds", type=_positive_int, default=200,
-                        help="number of independent runs (default 200)")
-    parser.add_argument("--trials", type=_positive_int, default=100,
-                        help="trials per run (default 100)")
+    seeds, trials = experiments.actor_critic.CHAPTER_SEEDS, experiments.actor_critic.CHAPTER_TRIALS
+    parser.add_argument("--seeds", type=_positive_int, default=seeds,
+                        help=f"number of independent runs (default {seeds})")
+    parser.add_argument("--trials", type=_positive_int, default=trials,
+                        help=f"trials per run (default {trials})")
     _settings_options(parser, actor_critic.ActorCriticSettings)
 
 
@@ -195,16 +205,14 @@ def _goal_babbling(args):
     for strategy in strategies:
         results[strategy] = experiments.run_goal_babbling(
             strategy=strategy, n_seeds=args.seeds, n_rollouts=args.rollouts, seed=args.seed,
-            exploration_noise=args.exploration_noise, epsilon=args.epsilon,
-            window=args.window, outcome_space=args.outcome_space,
-            inverse_model=args.inverse_model, measure=args.measure, regions=args.regions,
-            threads=args.threads, maturation=args.maturation,
-            demonstrations=args.demonstrations)
+            outcome_space=args.outcome_space, threads=args.threads,
+            demonstrations=args.demonstrations, **_settings_of(args))
+    maturation = _settings_of(args)["maturation"]
     print(goal_babbling.comparison_table(results))
-    if args.maturation != "none" or args.demonstrations:
+    if maturation != "none" or args.demonstrations:
         shown = ", ".join(map(str, args.demonstrations))
         plural = "s" if len(args.demonstrations) > 1 else ""
-        print(f"(maturation {args.maturation}, "
+        print(f"(maturation {maturation}, "
               + (f"the teacher showed button{plural} {shown})" if shown else "no teacher)"))
     labels = figures.forming_actions.STRATEGY_LABELS
     return figures.test_error_figure({labels[s]: r for s, r in results.items()})
@@ -212,48 +220,20 @@ def _goal_babbling(args):
 
 def _goal_babbling_options(parser):
     parser.add_argument("--strategy", choices=goal_babbling.STRATEGIES + ("all",),
-                        default="all", help="which strategy to run (default all three)")
+                        default="all", help="which strategy to run (default all: "
+                             f"{', '.join(goal_babbling.STRATEGIES)})")
     parser.add_argument("--seeds", type=_positive_int, default=5,
                         help="number of independent runs per strategy (default 5)")
     parser.add_argument("--rollouts", type=_positive_int,
                         default=goal_babbling.DEFAULT_N_ROLLOUTS,
                         help="movements per run, each simulated "
                              f"(default {goal_babbling.DEFAULT_N_ROLLOUTS})")
-    parser.add_argument("--exploration-noise", type=_number,
-                        default=goal_babbling.DEFAULT_EXPLORATION_NOISE,
-                        help="the inverse model's noise far from a goal, a share of each "
-                             "joint's range in (0, 1] "
-                             f"(default {goal_babbling.DEFAULT_EXPLORATION_NOISE})")
-    parser.add_argument("--epsilon", type=_number, default=goal_babbling.DEFAULT_EPSILON,
-                        help="learning progress: share of goals in a region drawn "
-                             f"uniformly, in [0, 1] (default {goal_babbling.DEFAULT_EPSILON})")
-    parser.add_argument("--window", type=_integer_at_least(2),
-                        default=goal_babbling.DEFAULT_WINDOW,
-                        help="learning progress: distances per region in the progress, "
-                             f">= 2 (default {goal_babbling.DEFAULT_WINDOW})")
     parser.add_argument("--outcome-space", choices=goal_babbling.OUTCOME_SPACES,
                         default=goal_babbling.DEFAULT_OUTCOME_SPACE,
                         help="what a movement's outcome is: where the finger stopped, or "
                              "that and how far each cap went down "
                              f"(default {goal_babbling.DEFAULT_OUTCOME_SPACE})")
-    parser.add_argument("--inverse-model", choices=goal_babbling.INVERSE_MODELS,
-                        default=goal_babbling.DEFAULT_INVERSE_MODEL,
-                        help="nearest neighbour, or a locally weighted linear step "
-                             f"(default {goal_babbling.DEFAULT_INVERSE_MODEL})")
-    parser.add_argument("--measure", choices=goal_babbling.MEASURES,
-                        default=goal_babbling.DEFAULT_MEASURE,
-                        help="learning progress: the paper's slope of distances, or "
-                             "SAGG-RIAC's competence progress "
-                             f"(default {goal_babbling.DEFAULT_MEASURE})")
-    parser.add_argument("--regions", choices=goal_babbling.REGION_KINDS,
-                        default=goal_babbling.DEFAULT_REGIONS,
-                        help="learning progress: fixed regions, or regions that split as "
-                             f"goals accumulate (default {goal_babbling.DEFAULT_REGIONS})")
-    parser.add_argument("--maturation", choices=goal_babbling.MATURATIONS,
-                        default=goal_babbling.DEFAULT_MATURATION,
-                        help="grow up: the arm's reachable joint range grows from around its "
-                             "resting posture as its competence stops progressing "
-                             f"(default {goal_babbling.DEFAULT_MATURATION})")
+    _settings_options(parser, GoalBabblingSettings, skip=("strategy",))
     parser.add_argument("--demonstrations", type=_buttons, default=(),
                         help="the buttons a teacher shows first, by moving the arm to the "
                              "scripted press, e.g. 2 or 0,4 (each at most once; default "

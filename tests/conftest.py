@@ -12,7 +12,6 @@ import sys
 import time
 
 import pytest
-import yaml
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 BUILD_BOOK = ROOT / "book" / "_ext" / "build_book.py"
@@ -28,11 +27,9 @@ RECORDS by the session that built the book."""
 
 def toc_files():
     """The book's pages in table-of-contents order (paths without suffix)."""
-    toc = yaml.safe_load((ROOT / "_toc.yml").read_text())
-    chapters = list(toc.get("chapters", []))
-    for part in toc.get("parts", []):
-        chapters += part["chapters"]
-    return [toc["root"]] + [chapter["file"] for chapter in chapters]
+    from icm._book import toc_pages
+
+    return toc_pages(ROOT)
 
 
 def first_objective(chapter):

@@ -517,7 +517,7 @@ def test_a_goal_choice_rule_must_draw_from_the_generator_it_is_given():
         calls.append(1)
         return reference_goal_choice(interests, epsilon,
                                      np.random.default_rng(len(calls) % goal_choice.SEQUENCE))
-    cases = goal_choice._cases()
+    cases = goal_choice.public_cases()
     names = [case.name for case in cases] + [goal_choice.GENERATOR]
     result = goal_choice._generator_verdict(ignores_rng, cases, names, 5)
     assert not result.passed and "whatever generator" in result.hint
@@ -642,6 +642,7 @@ def test_function_interest_with_the_reference_gives_the_library_run():
     np.testing.assert_allclose(mine.interest, library.interest, atol=1e-12)
     np.testing.assert_array_equal(mine.mastery_trial, library.mastery_trial)
     np.testing.assert_allclose(mine.button_share, library.button_share)
+    np.testing.assert_allclose(mine.action_interest, library.action_interest, atol=1e-12)
     np.testing.assert_allclose(mine.prediction_error, library.prediction_error)
 
 

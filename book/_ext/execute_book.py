@@ -94,11 +94,12 @@ from queue import Empty
 
 import nbformat
 import psutil
-import yaml
 from jupyter_client.channels import AsyncZMQSocketChannel
 from jupyter_client.manager import AsyncKernelManager
 from nbclient import NotebookClient
 from nbclient.exceptions import CellExecutionError, DeadKernelError
+
+from icm._book import STATIC_ENV, toc_pages
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 POLL_SECONDS = 1.0
@@ -113,7 +114,7 @@ computing."""
 DEFAULT_CPU_LIMIT = 1800
 """CPU-seconds a single cell may use (the slowest cell of the book uses about 40)."""
 LIBRARY = ("icm", "assets", "requirements.txt", "pyproject.toml")
-KERNEL_ENVIRONMENT = {"ICM_STATIC_PANELS": "1", "ICM_BOOK_BUILD": "1",
+KERNEL_ENVIRONMENT = {STATIC_ENV: "1", "ICM_BOOK_BUILD": "1",
                       "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1",
                       "MKL_NUM_THREADS": "1"}
 """Set for the kernels (which inherit this process's environment): see above."""
@@ -139,10 +140,7 @@ filled by `execute` in this process."""
 
 def notebooks():
     """The book's notebooks, in table-of-contents order."""
-    toc = yaml.safe_load((ROOT / "_toc.yml").read_text())
-    files = [toc["root"]]
-    for part in toc.get("parts", []):
-        files += [chapter["file"] for chapter in part["chapters"]]
+    files = toc_pages(ROOT)
     return [ROOT / f"{name}.ipynb" for name in files if (ROOT / f"{name}.ipynb").exists()]
 
 

@@ -38,11 +38,9 @@ the chapter's claims."""
 
 def chapters():
     """The chapter notebooks in the order of `_toc.yml` (part "Chapters")."""
-    import yaml
+    from icm._book import toc_pages
 
-    toc = yaml.safe_load((ROOT / "_toc.yml").read_text())
-    part = next(p for p in toc["parts"] if p["caption"] == "Chapters")
-    return [ROOT / (entry["file"] + ".ipynb") for entry in part["chapters"]]
+    return [ROOT / (page + ".ipynb") for page in toc_pages(ROOT, "Chapters")]
 
 
 def _source(cell):

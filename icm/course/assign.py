@@ -40,6 +40,7 @@ import nbformat
 import yaml
 
 from icm import _validate
+from icm._book import toc_pages
 from icm.exercises.registry import EXERCISES
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -89,14 +90,12 @@ def chapters(root=ROOT):
     Returns:
       The list.
     """
-    toc = yaml.safe_load((root / "_toc.yml").read_text())
-    found = []
-    for part in toc.get("parts", []):
-        if part.get("caption") == "Chapters":
-            for entry in part["chapters"]:
-                path = root / f"{entry['file']}.ipynb"
-                if path.exists():
-                    found.append((path.stem, path))
+    try:
+        pages = toc_pages(root, "Chapters")
+    except ValueError:  # no part "Chapters"
+        pages = []
+    found = [(path.stem, path) for path in (root / f"{page}.ipynb" for page in pages)
+             if path.exists()]
     if not found:
         raise AssignError(f"no chapter notebooks found from {root / '_toc.yml'}: run this "
                           f"from a clone of the project")

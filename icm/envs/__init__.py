@@ -10,7 +10,6 @@ MuJoCo, dm_control and Gymnasium are imported only when a physics environment or
 Gymnasium adapter is first used, so that the tabular twins load in a blink.
 """
 
-import importlib
 import inspect
 import os
 import sys
@@ -19,31 +18,13 @@ if sys.platform.startswith("linux"):
     os.environ.setdefault("MUJOCO_GL", "egl")  # headless rendering, unless the user chose
 
 from icm import _validate  # noqa: E402
-from icm.envs import buttons, rods  # noqa: E402
+from icm._settings import Names  # noqa: E402
+from icm.envs.suite import SUITE  # noqa: E402
+from icm.envs import buttons, rods  # noqa: E402 (each registers its scenario)
 from icm.envs.twins import compare_twins  # noqa: E402
 
-_DISCRETE = {
-    "buttons": {False: ("icm.envs.buttons.twin", "ButtonConsole"),
-                True: ("icm.envs.buttons.physics", "PhysicsButtonConsole")},
-    "rods": {False: ("icm.envs.rods.twin", "RodTable"),
-             True: ("icm.envs.rods.physics", "PhysicsRodTable")},
-}
-_CONTINUOUS = {"buttons": ("icm.envs.buttons.physics", "load_continuous", "ButtonsTask"),
-               "rods": ("icm.envs.rods.physics", "load_continuous", "RodsTask")}
-NAMES = tuple(sorted(_DISCRETE))
-"""Names that `load` and `load_continuous` know."""
-
-
-def _resolve(module, name):
-    return getattr(importlib.import_module(module), name)
-
-
-def _check_name(name):
-    if not isinstance(name, str):
-        raise _validate.ArgumentTypeError(
-            f"name must be an environment name ({', '.join(NAMES)}), got {name!r}")
-    if name not in _DISCRETE:
-        raise ValueError(f"unknown environment {name!r}; known: {', '.join(NAMES)}")
+NAMES = Names(lambda: tuple(sorted(SUITE)))
+"""Names that `load` and `load_continuous` know: the scenarios of `SUITE`."""
 
 
 def _check_kwargs(name, factory, kwargs):
@@ -58,7 +39,8 @@ def load(name, physics=False, seed=None, **kwargs):
     """Loads one of the paper's environments, with its discrete actions.
 
     Args:
-      name: "buttons" (section 2.1) or "rods" (section 2.2).
+      name: "buttons" (section 2.1) or "rods" (section 2.2), or another scenario of
+        `SUITE`.
       physics: False for the fast tabular twin (default), True for the simulated iCub.
       seed: None, an integer >= 0 or a `numpy.random.Generator`; the same seed gives
         the same episodes, in both versions.
@@ -70,11 +52,12 @@ def load(name, physics=False, seed=None, **kwargs):
       A `dm_env.Environment`.
 
     Raises:
-      ValueError: for an unknown name, a bad `physics` flag or a bad keyword argument.
+      ValueError: for an unknown name, a bad `physics` flag (or physics=True for a
+        scenario without a physics version) or a bad keyword argument.
     """
-    _check_name(name)
+    scenario = SUITE[SUITE.check(name)]
     physics = _validate.boolean("physics", physics)
-    factory = _resolve(*_DISCRETE[name][physics])
+    factory = scenario.resolve("physics") if physics else scenario.twin
     _check_kwargs(name, factory, kwargs)
     return factory(seed=seed, **kwargs)
 
@@ -94,11 +77,11 @@ def load_continuous(name, seed=None, **kwargs):
     Raises:
       ValueError: for an unknown name or a bad argument.
     """
-    _check_name(name)
-    module, loader, task = _CONTINUOUS[name]
+    scenario = SUITE[SUITE.check(name)]
+    loader = scenario.resolve("continuous")
     task_kwargs = {k: v for k, v in kwargs.items() if k != "time_limit"}
-    _check_kwargs(name, _resolve(module, task), task_kwargs)
-    return _resolve(module, loader)(seed=seed, **kwargs)
+    _check_kwargs(name, scenario.resolve("task"), task_kwargs)
+    return loader(seed=seed, **kwargs)
 
 
 def as_gymnasium(env, render_mode=None):

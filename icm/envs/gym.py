@@ -37,10 +37,9 @@ class GymnasiumEnv(gymnasium.Env):
     metadata = {"render_modes": ["rgb_array"], "render_fps": 25}
 
     def __init__(self, env, render_mode=None):
-        from icm.envs.buttons import ButtonTrials
-        from icm.envs.rods import RodEpisodes
+        from icm.envs.suite import SUITE
 
-        _validate.instance("env", env, (ButtonTrials, RodEpisodes),
+        _validate.instance("env", env, SUITE.episode_classes(),
                            "a discrete environment from icm.envs.load")
         render_mode = _validate.one_of("render_mode", render_mode, (None, "rgb_array"))
         if render_mode is not None and not hasattr(env, "physics"):

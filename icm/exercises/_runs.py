@@ -10,21 +10,64 @@ from icm.experiments import goal_oriented as go_experiment
 from icm.experiments._seeding import run_seeds
 from icm.learners.goal_oriented import DEFAULT_EPSILON, GoalOrientedAgent
 from icm.learners.predictors import NearestNeighbourPredictor
-from icm.stats import first_from_which
 
 EXERCISE_SEEDS = 20
 """Seeds of the runs a check makes with a student's piece: enough for a mean curve
 with a visible band, few enough for a run of a few seconds."""
-EXERCISE_TRIALS = 60
-"""Trials of those runs (the chapter's Figure 5 has 60)."""
+EXERCISE_TRIALS = go_experiment.CHAPTER_TRIALS
+"""Trials of those runs: the chapter's (its Figure 5's)."""
+
+
+class _AgentsAsRows:
+    """Per-agent learners (`GoalOrientedAgent`, one per row) seen as the batched learner
+    `icm.experiments.goal_oriented.play` drives: each row's agent chooses, learns and is
+    read through its own methods, in row order, so that its numbers are its own."""
+
+    def __init__(self, agents, red_button, n_actions):
+        self.agents, self.n_actions = agents, n_actions
+        self.lights = [tuple(layout.tolist()) for layout in buttons.layouts(red_button)]
+        self.effects = np.array(buttons.EFFECTS)
+        self.interest_per = "task"
+        self.interest, self.predictor = self, self  # values() and effect, as the batch's
+        rest = go_experiment.TASK_KEYS["nothing"][0]
+        self._tasks = [(rest, effect) for effect in buttons.EFFECTS]
+        self._rest = rest
+
+    def _observation(self, layout):
+        return {"lights": np.array(self.lights[layout]), "boxes": np.array(self._rest)}
+
+    def select_actions(self, layouts):
+        return np.array([agent.select_action(self._observation(layout))
+                         for agent, layout in zip(self.agents, layouts.tolist())])
+
+    def learn(self, layouts, actions, effects):
+        for agent, layout, action, effect in zip(self.agents, layouts.tolist(),
+                                                 actions.tolist(), effects.tolist()):
+            after = {"lights": np.array(self.lights[layout]),
+                     "boxes": np.array(buttons.EFFECTS[effect])}
+            agent.learn(self._observation(layout), action, after)
+
+    def values(self):
+        """[row, effect]: each agent's interest in the task of each effect."""
+        return np.array([[agent.interest.interest(task) for task in self._tasks]
+                         for agent in self.agents])
+
+    @property
+    def effect(self):
+        """[row, layout * n_actions + action]: the effect each agent predicts."""
+        return np.array([[buttons.EFFECTS.index(tuple(int(v) for v in agent.predictor.predict(
+            lights, action, default=self._rest)))
+            for lights in self.lights for action in range(self.n_actions)]
+            for agent in self.agents])
 
 
 def run_goal_oriented_with(make_interest, n_seeds=EXERCISE_SEEDS, n_trials=EXERCISE_TRIALS,
                            noisy_button=False, seed=0):
     """`icm.experiments.run_goal_oriented` with another interest module: each seed is a
-    `GoalOrientedAgent` built with `make_interest()`, on a `ButtonConsole`, seeded as
-    `run_goal_oriented` seeds its rows (with the library's `LearningProgressInterest`
-    it gives the same numbers; a test checks it).
+    `GoalOrientedAgent` built with `make_interest()`, on a row of a
+    `ButtonConsoleBatch`, seeded as `run_goal_oriented` seeds its rows and played by its
+    loop (`icm.experiments.goal_oriented.play`); with the library's
+    `LearningProgressInterest` it gives the same numbers (a test checks it).
 
     Args:
       make_interest: a function of no arguments returning a new interest module (with
@@ -35,7 +78,7 @@ def run_goal_oriented_with(make_interest, n_seeds=EXERCISE_SEEDS, n_trials=EXERC
       seed: the root seed, an integer >= 0.
 
     Returns:
-      A `GoalOrientedResult` (its `action_interest` is left at zero).
+      A `GoalOrientedResult`.
     """
     _validate.function("make_interest", make_interest, allow_none=False)
     n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
@@ -45,35 +88,12 @@ def run_goal_oriented_with(make_interest, n_seeds=EXERCISE_SEEDS, n_trials=EXERC
     red = buttons.DEFAULT_RED_BUTTON
     presses = buttons.DEFAULT_PRESSES_PER_TRIAL
     n_actions = buttons.n_actions(noisy_button)
-    layouts = buttons.layouts(red)
-    queries = [(tuple(layout.tolist()), b) for layout in layouts for b in range(buttons.N_BUTTONS)]
-    truth = np.array([buttons.press_outcome(np.array(c), b) for c, b in queries])
-    interest = np.zeros((n_seeds, n_trials, 2))
-    error = np.zeros((n_seeds, n_trials, 2))
-    practice = np.zeros((n_seeds, n_trials, 2), dtype=np.int64)
-    pressed = np.zeros((n_seeds, n_trials, n_actions))
-    for run, (env_seed, agent_seed) in enumerate(run_seeds(seed, n_seeds, 2)):
-        env = buttons.ButtonConsole(red, presses, noisy_button=noisy_button, seed=env_seed)
-        agent = GoalOrientedAgent(n_actions, NearestNeighbourPredictor(), make_interest(),
-                                  DEFAULT_EPSILON, seed=agent_seed)
-        for trial in range(n_trials):
-            step = env.reset()
-            while not step.last():
-                action = agent.select_action(step.observation)
-                next_step = env.step(action)
-                agent.learn(step.observation, action, next_step.observation)
-                practice[run, trial] += next_step.observation["boxes"]
-                pressed[run, trial, action] += 1
-                step = next_step
-            for i, task in enumerate(go_experiment.TASKS):
-                interest[run, trial, i] = agent.interest.interest(go_experiment.TASK_KEYS[task])
-            predicted = np.array([agent.predictor.predict(c, b, default=(0, 0))
-                                  for c, b in queries])
-            error[run, trial] = np.abs(predicted - truth).mean(axis=0)
-    mastery = first_from_which(np.moveaxis(error, 1, 2) == 0)
-    mastery = np.where(mastery >= 0, mastery + 1, -1)
+    seeds = run_seeds(seed, n_seeds, 2)
+    env = buttons.ButtonConsoleBatch([env_seed for env_seed, _ in seeds], red, noisy_button)
+    agents = _AgentsAsRows([GoalOrientedAgent(n_actions, NearestNeighbourPredictor(),
+                                              make_interest(), DEFAULT_EPSILON,
+                                              seed=agent_seed)
+                            for _, agent_seed in seeds], red, n_actions)
     settings = dict(n_seeds=n_seeds, n_trials=n_trials, presses_per_trial=presses,
                     noisy_button=noisy_button, seed=seed, interest="yours")
-    return go_experiment.GoalOrientedResult(settings, interest, error, mastery, practice,
-                                            pressed / presses,
-                                            np.zeros((n_seeds, n_trials, n_actions)))
+    return go_experiment.play(env, agents, n_trials, presses, settings=settings)

@@ -46,7 +46,13 @@ def reference_softmax(preferences, temperature):
     return softmax(preferences, temperature).tolist()
 
 
-def _softmax_cases():
+def public_softmax_cases():
+    """The cases the check runs when given none (the ones the book shows the
+    student), the paper's edge cases first: a list of `Case`.
+
+    Returns:
+      A list of `icm.exercises._core.Case`.
+    """
     return [
         Case("ties: every preference the same", ([0.0, 0.0, 0.0, 0.0, 0.0], 0.2),
              "Equal preferences give equal probabilities, 1/n each."),
@@ -86,7 +92,7 @@ def check_softmax(softmax_function, cases=None):
       ArgumentTypeError: if the argument is not a function of (preferences,
         temperature).
     """
-    cases = _softmax_cases() if cases is None else cases
+    cases = public_softmax_cases() if cases is None else cases
     return _core.run_cases("softmax", "softmax_function", softmax_function,
                            SOFTMAX_PARAMETERS, cases, reference_softmax,
                            returns="a list of probabilities", forbidden=SOFTMAX_FORBIDDEN)
@@ -124,7 +130,13 @@ def _after(args, returned):
     return {"td_error": returned, "critic": args[0], "actor": args[1]}
 
 
-def _td_cases():
+def public_td_cases():
+    """The cases the check runs when given none (the ones the book shows the
+    student), the paper's edge cases first: a list of `Case`.
+
+    Returns:
+      A list of `icm.exercises._core.Case`.
+    """
     standard_hint, printed_hint = STANDARD_HINT, PRINTED_HINT
     s, t = "here", "there"
     cases = [
@@ -271,7 +283,7 @@ def check_td_update(td_update, cases=None):
     Raises:
       ArgumentTypeError: if the argument is not a function of those ten arguments.
     """
-    cases = _td_cases() if cases is None else cases
+    cases = public_td_cases() if cases is None else cases
     return _core.run_cases("td_update", "td_update", td_update, TD_PARAMETERS, cases,
                            reference_td_update, observe=_after, quantities=TD_QUANTITIES,
                            forbidden=TD_FORBIDDEN)

@@ -37,7 +37,13 @@ def reference_press_outcome(lights, button):
     return tuple(int(b) for b in buttons.press_outcome(np.array(lights), button))
 
 
-def _outcome_cases():
+def public_outcome_cases():
+    """The cases the check runs when given none (the ones the book shows the
+    student), the paper's edge cases first: a list of `Case`.
+
+    Returns:
+      A list of `icm.exercises._core.Case`.
+    """
     cases = []
     hints = _OUTCOME_HINTS
     for light in (buttons.RED, buttons.GREEN, buttons.OFF):
@@ -67,7 +73,7 @@ def check_press_outcome(press_outcome, cases=None):
     Raises:
       ArgumentTypeError: if the argument is not a function of (lights, button).
     """
-    cases = _outcome_cases() if cases is None else cases
+    cases = public_outcome_cases() if cases is None else cases
     return _core.run_cases("press_outcome", "press_outcome", press_outcome,
                            OUTCOME_PARAMETERS, cases, reference_press_outcome,
                            returns="a pair (red, green)", forbidden=OUTCOME_FORBIDDEN)
@@ -118,7 +124,13 @@ def reference_predict(memory, context, action, action_weight, default):
     return tuple(predicted)
 
 
-def _predict_cases():
+def public_predict_cases():
+    """The cases the check runs when given none (the ones the book shows the
+    student), the paper's edge cases first: a list of `Case`.
+
+    Returns:
+      A list of `icm.exercises._core.Case`.
+    """
     a, b, c, d = (tuple(layout.tolist()) for layout in buttons.layouts())
     red, green, nothing = (1, 0), (0, 1), (0, 0)
     cases = [
@@ -181,7 +193,7 @@ def check_nearest_neighbour(predict, cases=None):
     Raises:
       ArgumentTypeError: if the argument is not a function of those five arguments.
     """
-    cases = _predict_cases() if cases is None else cases
+    cases = public_predict_cases() if cases is None else cases
     return _core.run_cases("nearest-neighbour prediction", "predict", predict,
                            PREDICT_PARAMETERS, cases, reference_predict,
                            returns="an effect, a pair (red, green)",

@@ -52,7 +52,13 @@ def region_probabilities(interests, epsilon):
     return epsilon / n + (1 - epsilon) * interests / total
 
 
-def _cases():
+def public_cases():
+    """The cases the check runs when given none (the ones the book shows the
+    student), the paper's edge cases first: a list of `Case`.
+
+    Returns:
+      A list of `icm.exercises._core.Case`.
+    """
     rng = np.random.default_rng(9)
     return [
         Case("every interest 0: uniform", ([0.0, 0.0, 0.0, 0.0], 0.3),
@@ -145,7 +151,7 @@ def check_goal_choice(choose_region, interests=None, epsilon=0.3, cases=None):
             raise ValueError(f"interests must hold one number >= 0 per region, got "
                              f"{_validate.show(interests)}")
     epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
-    cases = _cases() if cases is None else cases
+    cases = public_cases() if cases is None else cases
     result = rule_verdict(choose_region, cases, 1000)
     if not result.passed or interests is None:
         return result

@@ -24,7 +24,13 @@ INTEREST_FORBIDDEN = Forbidden(("icm.learners.interest",))
 interest module (the slope, the four signals, their batched table)."""
 
 
-def _slope_cases():
+def public_slope_cases():
+    """The cases the check runs when given none (the ones the book shows the
+    student), the paper's edge cases first: a list of `Case`.
+
+    Returns:
+      A list of `icm.exercises._core.Case`.
+    """
     rng = np.random.default_rng(20)
     cases = [
         Case("two values", ([1.0, 0.0],),
@@ -72,7 +78,7 @@ def check_least_squares_slope(least_squares_slope_function, cases=None):
     Raises:
       ArgumentTypeError: if the argument is not a function of one argument.
     """
-    cases = _slope_cases() if cases is None else cases
+    cases = public_slope_cases() if cases is None else cases
     return _core.run_cases("least_squares_slope", "least_squares_slope_function",
                            least_squares_slope_function, SLOPE_PARAMETERS, cases,
                            least_squares_slope, returns="a number",
@@ -134,7 +140,13 @@ def reference_task_interest(history, others, window=DEFAULT_WINDOW,
     return max(0.0, -sum(map(operator.mul, slope_weights(len(recent)), recent)))
 
 
-def _interest_cases():
+def public_interest_cases():
+    """The cases the check runs when given none (the ones the book shows the
+    student), the paper's edge cases first: a list of `Case`.
+
+    Returns:
+      A list of `icm.exercises._core.Case`.
+    """
     rng = np.random.default_rng(5)
     cases = [
         Case("empty history: a task never witnessed", ([], [0.2, 0.1], 5, 0.5),
@@ -308,7 +320,7 @@ def check_task_interest(task_interest, experiment=True, n_seeds=EXERCISE_SEEDS,
         window, new_task_factor), or a bad `experiment`.
     """
     experiment = _validate.boolean("experiment", experiment)
-    cases = _interest_cases() if cases is None else cases
+    cases = public_interest_cases() if cases is None else cases
     result = _core.run_cases("task_interest", "task_interest", task_interest,
                              INTEREST_PARAMETERS, cases, reference_task_interest,
                              returns="a number", forbidden=INTEREST_FORBIDDEN)
@@ -331,7 +343,13 @@ def check_task_interest(task_interest, experiment=True, n_seeds=EXERCISE_SEEDS,
     return result
 
 
-def _signal_cases():
+def public_signal_cases():
+    """The cases the check runs when given none (the ones the book shows the
+    student), the paper's edge cases first: a list of `Case`.
+
+    Returns:
+      A list of `icm.exercises._core.Case`.
+    """
     coin = np.random.default_rng(3).integers(0, 2, 20).astype(float).tolist()
     return [
         Case("empty history: a task never witnessed", ([],),
@@ -505,7 +523,7 @@ def check_curiosity_signal(signal, experiment=True, n_seeds=EXERCISE_SEEDS,
         bad `experiment`.
     """
     experiment = _validate.boolean("experiment", experiment)
-    cases = _signal_cases() if cases is None else cases
+    cases = public_signal_cases() if cases is None else cases
     result = signal_verdict(signal, cases)
     if not result.passed:
         return result

@@ -25,7 +25,13 @@ def reference_minimum_jerk(fraction):
     return float(minimum_jerk(fraction))
 
 
-def _cases():
+def public_cases():
+    """The cases the check runs when given none (the ones the book shows the
+    student), the paper's edge cases first: a list of `Case`.
+
+    Returns:
+      A list of `icm.exercises._core.Case`.
+    """
     cases = [
         Case("the start: fraction 0", (0.0,), "At the start the profile is 0."),
         Case("the end: fraction 1", (1.0,), "At the end the profile is 1: the target is "
@@ -57,7 +63,7 @@ def check_minimum_jerk(minimum_jerk_function, cases=None):
     Raises:
       ArgumentTypeError: if the argument is not a function of one argument.
     """
-    cases = _cases() if cases is None else cases
+    cases = public_cases() if cases is None else cases
     return _core.run_cases("minimum_jerk", "minimum_jerk_function", minimum_jerk_function,
                            PARAMETERS, cases, reference_minimum_jerk, returns="a number",
                            forbidden=FORBIDDEN)

@@ -28,7 +28,13 @@ def reference_red_first(red_trial, green_trial):
     return bool(comes_first(red_trial, green_trial))
 
 
-def _cases():
+def public_cases():
+    """The cases the check runs when given none (the ones the book shows the
+    student), the paper's edge cases first: a list of `Case`.
+
+    Returns:
+      A list of `icm.exercises._core.Case`.
+    """
     never = NEVER
     return [
         Case("red at trial 3, green at trial 9", (3, 9), "Red comes first when its trial "
@@ -62,7 +68,7 @@ def check_red_first(red_first, cases=None):
     Raises:
       ArgumentTypeError: if the argument is not a function of two arguments.
     """
-    cases = _cases() if cases is None else cases
+    cases = public_cases() if cases is None else cases
     return _core.run_cases("red_first", "red_first", red_first, PARAMETERS, cases,
                            reference_red_first, returns="True or False", forbidden=FORBIDDEN)
 

@@ -64,7 +64,13 @@ def _q(rows, value=0.1):
     return [[value] * 4 for _ in range(rows)]
 
 
-def _step_cases():
+def public_step_cases():
+    """The cases the check runs when given none (the ones the book shows the
+    student), the paper's edge cases first: a list of `Case`.
+
+    Returns:
+      A list of `icm.exercises._core.Case`.
+    """
     knows = _q(3)
     knows[1] = [0.1, 0.5, 0.2, 0.1]
     cases = [
@@ -183,7 +189,7 @@ def check_q_learning_step(q_learning_step, cases=None):
     Raises:
       ArgumentTypeError: if the argument is not a function of those ten arguments.
     """
-    cases = _step_cases() if cases is None else cases
+    cases = public_step_cases() if cases is None else cases
     return _core.run_cases("q_learning_step", "q_learning_step", q_learning_step,
                            STEP_PARAMETERS, cases, reference_q_learning_step,
                            observe=_after, quantities=STEP_QUANTITIES,
@@ -205,7 +211,13 @@ def reference_state_confidence(last_errors):
     return 1.0 - sum(capped) / len(capped)
 
 
-def _confidence_cases():
+def public_confidence_cases():
+    """The cases the check runs when given none (the ones the book shows the
+    student), the paper's edge cases first: a list of `Case`.
+
+    Returns:
+      A list of `icm.exercises._core.Case`.
+    """
     return [
         Case("a cell never visited: every move untried", ([None, None, None, None],),
              "A move never tried counts as an error of 1: a cell never visited has "
@@ -242,7 +254,7 @@ def check_state_confidence(state_confidence, cases=None):
     Raises:
       ArgumentTypeError: if the argument is not a function of one argument.
     """
-    cases = _confidence_cases() if cases is None else cases
+    cases = public_confidence_cases() if cases is None else cases
     return _core.run_cases("state_confidence", "state_confidence", state_confidence,
                            CONFIDENCE_PARAMETERS, cases,
                            reference_state_confidence, returns="a number",

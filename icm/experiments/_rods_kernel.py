@@ -15,7 +15,7 @@ The loop copies no rule's numbers: the numbers each choice draws
 (`icm.envs.rods.WOBBLE_TOPPLE_PROBABILITY`) and the slope weights
 (`icm.learners.interest.slope_weights`) are read from their modules at every run and
 passed in (a test changes each in its home and sees the loop's results change). The
-reward is one of the interest signals the loop computes (`SIGNAL_CODES`), kept per
+reward is one of the interest signals the loop computes (`signal_codes`), kept per
 (cell, action) pair as the per-agent classes keep it; `check_reward` refuses, by
 name, a signal it does not compute.
 """
@@ -27,10 +27,13 @@ from icm._validate import one_of
 from icm.envs.rods import rules as rod_rules
 from icm.learners import action_selection, interest
 
-SIGNAL_CODES = {"prediction_error": 0, "learning_progress": 1, "novelty": 2, "random": 3}
-"""The reward signals the compiled loop computes, by name and as it numbers them. A
-signal of `icm.learners.interest.SIGNAL_CLASSES` that is not here runs on the physics
-path (per-agent classes) only; `check_reward` refuses it for the tabular loop."""
+def signal_codes():
+    """The reward signals the compiled loop computes, by name and as it numbers them:
+    the signals of `icm.learners.interest.SIGNAL_CLASSES` whose `KERNEL_CODE` is set.
+    One that is not here runs on the physics path (per-agent classes) only;
+    `check_reward` refuses it for the tabular loop."""
+    return {name: cls.KERNEL_CODE for name, cls in interest.SIGNAL_CLASSES.items()
+            if cls.KERNEL_CODE is not None}
 
 
 NO_LIMIT = np.iinfo(np.int64).max
@@ -40,11 +43,12 @@ NO_LIMIT = np.iinfo(np.int64).max
 def check_reward(reward):
     """`reward` if the compiled loop computes it, else a ValueError that names it and
     the ones it computes."""
-    if reward not in SIGNAL_CODES:
+    codes = signal_codes()
+    if reward not in codes:
         raise ValueError(f"reward {reward!r} is an interest signal the compiled rod loop "
-                         f"does not compute; it computes {', '.join(SIGNAL_CODES)} (add it "
+                         f"does not compute; it computes {', '.join(codes)} (add it "
                          f"to icm.experiments._rods_kernel, or run it with physics=True)")
-    return one_of("reward", reward, tuple(SIGNAL_CODES))
+    return one_of("reward", reward, tuple(codes))
 
 
 def slope_weights(window):
@@ -195,7 +199,7 @@ def recorder(n_rows, n_episodes, n_cells, n_actions, n_rods, pairs, snapshot_epi
 
     Args:
       pairs: (cells, actions, rods), the map's pairs that topple a rod (red 0 or blue
-        1), as `icm.experiments.rod_toppling.toppling_pairs` gives them.
+        1), as `icm.experiments.rod_episodes.toppling_pairs` gives them.
       snapshot_episodes: the episodes (from 1) after which to keep a snapshot, besides
         the four moments.
       threshold: the error below which a rod is predicted well.
@@ -248,7 +252,7 @@ def record_episode(r, ep, rod, q, predictions, last_error, found, record):
 
     The learner is only read: a run keeps a few snapshots per row, not the learner
     after every episode. Called by `play` and, for the physics, by
-    `icm.experiments.rod_toppling.play_episodes`.
+    `icm.experiments.rod_episodes.play_episodes`.
     """
     (pair_cells, pair_actions, pair_rods, snapshot_at, threshold, rod_error,
      rod_error_toppled, well_toppled, taken, q_snap, p_snap, e_snap) = record
@@ -332,7 +336,7 @@ def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, nex
     per_row = lambda value: np.ascontiguousarray(np.broadcast_to(
         np.asarray(value, dtype=float), (n,)))
     epsilon, alpha, gamma, lr = per_row(epsilon), per_row(alpha), per_row(gamma), per_row(lr)
-    signal = SIGNAL_CODES[check_reward(reward)]
+    signal = signal_codes()[check_reward(reward)]
     n_draws = int(action_selection.DRAWS_PER_CHOICE)
     window = int(window) if signal == 1 else 1
     weights = slope_weights(window)

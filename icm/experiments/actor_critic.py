@@ -24,6 +24,11 @@ from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
 TASKS = ("red", "green")
 """Order of the task axis in the result arrays."""
 LATE_TRIALS = 10
+CHAPTER_SEEDS = 200
+"""Runs of the chapter "The actor-critic" (its Figure 6; `python -m icm figure6`)."""
+CHAPTER_TRIALS = 100
+"""Trials per run in that chapter and `python -m icm figure6` (its panel runs
+`panel_data.PANEL_TRIALS`)."""
 """`summary()` describes the end of a run by its last `LATE_TRIALS` trials."""
 
 
@@ -334,15 +339,14 @@ def run_actor_critic_grid(grid, **arguments):
                                    len({s["action_weight"] for s in settings}) == 1)[0])
     seeds = run_seeds(first["seed"], n, 2) * len(settings)
     red_button = first["red_button"]
-    states, start_states, probes = state_table(red_button)
+    states = state_table(red_button)[0]
     env = buttons.ButtonConsoleBatch([s[0] for s in seeds], red_button)
     agent = actor_critic.ActorCriticBatch(
         [s[1] for s in seeds], states, buttons.EFFECTS, buttons.N_BUTTONS,
         settings=actor_critic.ActorCriticSettings.stack(blocks, n))
-    rewarded = -1 if first["reward"] != "extrinsic" else \
-        buttons.RED_BOX if first["rewarded_box"] == "red" else buttons.GREEN_BOX
-    result = _play(first, env, agent, first["n_trials"], first["presses_per_trial"],
-                   red_button, start_states, probes, rewarded, progress)
+    rewarded_box = first["rewarded_box"] if first["reward"] == "extrinsic" else None
+    result = play(env, agent, first["n_trials"], first["presses_per_trial"],
+                  rewarded_box=rewarded_box, progress=progress, settings=first)
     return _grid.split(result, settings, n)
 
 
@@ -368,14 +372,47 @@ def state_table(red_button=buttons.DEFAULT_RED_BUTTON):
     return np.array(features), np.arange(4) * len(effects), probes
 
 
-def _play(settings, env, agent, n_trials, presses_per_trial, red_button, start_states,
-          probes, rewarded, progress):
-    """Plays every trial of a batched actor-critic run and gathers the result.
+def play(env, agent, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
+         rewarded_box=None, observe=None, progress=False, settings=None):
+    """Plays `n_trials` trials of a batched actor-critic on a batched console and
+    gathers an `ActorCriticResult`: the loop of `run_actor_critic`, open to any console
+    and learner of the same shape.
 
     After each trial the loop reduces what happened to the result's numbers for that
     trial: the boxes opened, section 4.1's test of the predictor on the probes, the
     actor's policy at the start states and the critic's largest value; a run keeps its
-    result and nothing per press."""
+    result and nothing per press.
+
+    Args:
+      env: a batched console (as `icm.envs.buttons.ButtonConsoleBatch`).
+      agent: a batched actor-critic whose states are `state_table(env.red_button)`'s
+        (as `icm.learners.actor_critic.ActorCriticBatch`).
+      n_trials: trials to play (>= 1).
+      presses_per_trial: presses per trial (see `icm.envs.buttons.PRESSES_PER_TRIAL`).
+      rewarded_box: None (no extrinsic reward), "red" or "green": the box whose opening
+        pays the extrinsic reward.
+      observe: None, or a function called after every press as
+        `observe(trial, layouts, actions, effects)` (index arrays, one entry per row).
+      progress: show a progress bar over the trials when the run lasts over a second.
+      settings: the dict the result keeps as its `settings` (None: an empty dict).
+
+    Returns:
+      An `ActorCriticResult`.
+
+    Raises:
+      ValueError: for a bad `n_trials`, `presses_per_trial` or `rewarded_box`.
+    """
+    n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
+    presses_per_trial = buttons.PRESSES_PER_TRIAL.check(presses_per_trial, "presses_per_trial")
+    if rewarded_box is not None:
+        _validate.one_of("rewarded_box", rewarded_box, TASKS)
+    observe = _validate.function("observe", observe)
+    _validate.boolean("progress", progress)
+    settings = {} if settings is None else _validate.instance("settings", settings, dict)
+    red_button = env.red_button
+    _, start_states, probes = state_table(red_button)
+    rewarded = -1 if rewarded_box is None else \
+        buttons.RED_BOX if rewarded_box == "red" else buttons.GREEN_BOX
     n_seeds, n_effects = len(env), len(buttons.EFFECTS)
     practice = np.zeros((n_seeds, n_trials, len(TASKS)), dtype=np.int64)
     reward_out = np.zeros((n_seeds, n_trials))
@@ -399,6 +436,8 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, start_s
             next_state = layout * n_effects + observed
             external = (observed == rewarded).astype(float)
             r, _ = agent.learn(state, actions, next_state, observed, external, 1.0)
+            if observe is not None:
+                observe(trial, layout, actions, observed)
             reward_out[:, trial] += r
             practice[:, trial] += effects[observed]  # the boxes opened
             state = next_state

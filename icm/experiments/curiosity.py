@@ -622,9 +622,17 @@ def run_reward_comparison(n_seeds=100, n_episodes=300, rewards=q_learning.REWARD
     return RewardComparison(settings, results)
 
 
+OUTCOME_SECONDS_PER_TRY = 1e-5
+"""About what one seed's try of one outcome costs `outcome_rewards` (measured: 10
+microseconds on the book's 2-core machine)."""
+MAX_OUTCOME_DRAWS = 10_000_000
+"""The most seeds times tries `outcome_rewards` takes: a few minutes of computing;
+the chapter's call makes 6,000."""
+
+
 def outcome_rewards(rewards=("prediction_error", "learning_progress", "novelty"),
                     n_tries=60, n_seeds=100, window=interest.DEFAULT_WINDOW,
-                    predictor_lr=predictors.DEFAULT_LINEAR_LR, seed=0):
+                    predictor_lr=predictors.DEFAULT_LINEAR_LR, seed=0, progress=True):
     """What each intrinsic reward pays, try after try, for one (state, action) pair
     whose outcome is a fair coin (1 or 0, probability 1/2 each: the wobbly rod) and for
     one whose outcome is always 1 (a rod that always topples), as the rods' Q-learner
@@ -633,9 +641,11 @@ def outcome_rewards(rewards=("prediction_error", "learning_progress", "novelty")
     each reward is its signal of those errors, all seeds at once in
     `icm.learners.interest.InterestTable`, which gives the same numbers).
 
-    It takes about 10 microseconds per seed and try of each outcome, and its memory
-    grows as the seeds times the tries (`outcome_rewards_memory`): a call that this
-    machine could not hold is refused before it starts.
+    It takes about 10 microseconds per seed and try of each outcome (a progress bar,
+    with the time left, shows when it lasts over a second), and its memory grows as the
+    seeds times the tries (`outcome_rewards_memory`): a call that this machine could not
+    hold is refused before it starts, and so is one of more than `MAX_OUTCOME_DRAWS`
+    seeds times tries (its message says how long it would take).
 
     Args:
       rewards: the rewards, names of `REWARDS`.
@@ -644,12 +654,14 @@ def outcome_rewards(rewards=("prediction_error", "learning_progress", "novelty")
       window: errors in the learning-progress slope (>= 2).
       predictor_lr: the predictor's learning rate, in (0, 1].
       seed: the root seed of the coins.
+      progress: show a progress bar over the seeds when the call lasts over a second.
 
     Returns:
       {(reward, "coin" | "sure"): rewards [seed, try]}.
 
     Raises:
-      ValueError: for a bad argument, or a call too large for this machine's memory.
+      ValueError: for a bad argument, or a call too large for this machine's memory or
+        `MAX_OUTCOME_DRAWS`.
     """
     rewards = _check_choices("rewards", rewards, q_learning.REWARDS)
     n_tries = _validate.integer_at_least("n_tries", n_tries, 1)
@@ -657,16 +669,26 @@ def outcome_rewards(rewards=("prediction_error", "learning_progress", "novelty")
     window = _validate.integer_at_least("window", window, 2)
     predictor_lr = _validate.learning_rate("predictor_lr", predictor_lr)
     seed = _validate.root_seed("seed", seed)
+    _validate.boolean("progress", progress)
     check_memory("outcome_rewards", {"rewards": len(rewards), "n_seeds": n_seeds,
                                      "n_tries": n_tries},
                  outcome_rewards_memory(len(rewards), n_seeds, n_tries, window))
+    if n_seeds * n_tries > MAX_OUTCOME_DRAWS:
+        hours = 2 * n_seeds * n_tries * OUTCOME_SECONDS_PER_TRY / 3600
+        raise ValueError(f"n_seeds x n_tries must be at most {MAX_OUTCOME_DRAWS:,} (about "
+                         f"{2 * MAX_OUTCOME_DRAWS * OUTCOME_SECONDS_PER_TRY / 60:.0f} minutes "
+                         f"of computing), got n_seeds={n_seeds} x n_tries={n_tries} = "
+                         f"{n_seeds * n_tries:,} (about {hours:.1f} hours)")
     coins = np.random.default_rng(seed).random((n_seeds, n_tries)) < 0.5
     sure = np.ones_like(coins)
     rows, pair = np.arange(n_seeds), np.zeros(n_seeds, dtype=np.int64)
     out = {}
+    bar = progress_bar(None, 2 * n_seeds, "rewards of a coin and a sure outcome", progress)
     for kind, outcomes in (("coin", coins), ("sure", sure)):
         errors = np.zeros((n_seeds, n_tries))  # the pair's surprise at each try
         for k in range(n_seeds):
+            if bar is not None:
+                bar.update(1)
             predictor = predictors.LinearPredictor(1, 1, predictor_lr)
             for t, outcome in enumerate(outcomes[k].tolist()):
                 errors[k, t] = predictor.update(0, 0, [float(outcome)])
@@ -680,6 +702,8 @@ def outcome_rewards(rewards=("prediction_error", "learning_progress", "novelty")
                 # gives 0.0; it changes no other number.)
                 paid[:, t] = signal.values(rows)[:, 0] + 0.0
             out[(reward, kind)] = paid
+    if bar is not None:
+        bar.close()
     return {(reward, kind): out[(reward, kind)] for reward in rewards
             for kind in ("coin", "sure")}
 

@@ -28,6 +28,11 @@ TASK_KEYS = {"red": (_REST, (1, 0)), "green": (_REST, (0, 1)), "nothing": (_REST
 """The agent's task keys (boxes at rest -> boxes after the press) by name."""
 _TASK_EFFECTS = (buttons.RED_BOX, buttons.GREEN_BOX)  # red, green, as TASKS
 FADE_FRACTION = 0.1
+CHAPTER_SEEDS = 200
+"""Runs of the chapter "Goal-oriented interest" (its Figure 5; `python -m icm figure5`)."""
+CHAPTER_TRIALS = 60
+"""Trials per run in that chapter: its Figure 5 and panel, its exercises' runs, its
+robustness maps and `python -m icm figure5`."""
 """The share of its peak below which a task's mean interest has faded (`fade_trial`)."""
 CLAIMS = {
     "red_first_mostly": "red is mastered first in most seeds",
@@ -305,7 +310,7 @@ GRID_ARGUMENTS = _grid.grid_arguments(run_goal_oriented)
 `icm.learners.goal_oriented.GoalOrientedSettings` that are per row."""
 
 
-def run_goal_oriented_grid(grid, **arguments):
+def run_goal_oriented_grid(grid, make_env=None, observe=None, **arguments):
     """Runs `run_goal_oriented(**arguments, **setting)` for every setting of `grid`, all
     in one batch (each setting's seeds are rows of the batched learner, which takes
     these settings per row).
@@ -317,6 +322,12 @@ def run_goal_oriented_grid(grid, **arguments):
     Args:
       grid: a non-empty list of dicts, each a setting of some of `GRID_ARGUMENTS`
         (those left out take their value from `arguments`, or the default).
+      make_env: None (the console `physics` names), or a function that takes the
+        rows' console seeds (a list of integers, one per row) and returns the batched
+        console to play on (as `icm.envs.buttons.ButtonConsoleBatch`: `new_trials`,
+        `press`, `n_actions`, `effects`, `red_button`), for example a physics console
+        whose presses are movements the robot formed.
+      observe: None, or a function called after every press (see `play`).
       **arguments: any other arguments of `run_goal_oriented`, the same for every
         setting (n_seeds, n_trials, seed, progress, learner settings, ...).
 
@@ -327,6 +338,8 @@ def run_goal_oriented_grid(grid, **arguments):
       ValueError: for a malformed grid, a setting of an argument not in
         `GRID_ARGUMENTS`, or any value `run_goal_oriented` refuses.
     """
+    _validate.function("make_env", make_env)
+    _validate.function("observe", observe)
     blocks, others, progress = _grid.check_settings_grid(grid, run_goal_oriented, arguments)
     settings = [_check_run_arguments(**others, settings=block) for block in blocks]
     first, n = settings[0], settings[0]["n_seeds"]
@@ -341,7 +354,9 @@ def run_goal_oriented_grid(grid, **arguments):
     seeds = run_seeds(first["seed"], n, 2) * len(settings)
     env_seeds, agent_seeds = [s[0] for s in seeds], [s[1] for s in seeds]
     red_button, presses = first["red_button"], first["presses_per_trial"]
-    if first["physics"]:
+    if make_env is not None:
+        env = make_env(env_seeds)
+    elif first["physics"]:
         env = buttons.PhysicsButtonConsoleBatch(env_seeds, red_button, presses,
                                                 first["noisy_button"])
     else:
@@ -349,16 +364,49 @@ def run_goal_oriented_grid(grid, **arguments):
     agent = goal_oriented.GoalOrientedBatch(
         agent_seeds, np.array(buttons.layouts(red_button)), env.effects, env.n_actions,
         settings=goal_oriented.GoalOrientedSettings.stack(blocks, n))
-    result = _play(first, env, agent, first["n_trials"], presses, red_button, progress)
+    result = play(env, agent, first["n_trials"], presses, observe=observe, progress=progress,
+                  settings=first)
     return _grid.split(result, settings, n)
 
 
-def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progress):
-    """Plays every trial of a batched run and gathers a GoalOrientedResult.
+def play(env, agent, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
+         observe=None, progress=False, settings=None):
+    """Plays `n_trials` trials of a batched learner on a batched console, and gathers
+    a `GoalOrientedResult`: the loop of `run_goal_oriented`, open to any console and
+    learner of the same shape.
 
     After each trial the loop reduces what happened (the presses, their outcomes, the
     interest and the predictor) to the result's numbers for that trial, so that a run
-    keeps its result and nothing per press."""
+    keeps its result and nothing per press.
+
+    Args:
+      env: a batched console, one row per run (as `icm.envs.buttons.ButtonConsoleBatch`:
+        `new_trials()` gives the rows' layout indices, `press(actions)` their effect
+        indices; `n_actions`, `red_button`).
+      agent: a batched learner with a row per console row (as
+        `icm.learners.goal_oriented.GoalOrientedBatch`: `select_actions(layouts)`,
+        `learn(layouts, actions, effects)`, `interest.values()`, `interest_per`,
+        `predictor.effect`, `effects`).
+      n_trials: trials to play (>= 1).
+      presses_per_trial: presses per trial (see `icm.envs.buttons.PRESSES_PER_TRIAL`).
+      observe: None, or a function called after every press as
+        `observe(trial, layouts, actions, effects)` (index arrays, one entry per row):
+        a recorder of the presses, for example.
+      progress: show a progress bar over the trials when the run lasts over a second.
+      settings: the dict the result keeps as its `settings` (None: an empty dict).
+
+    Returns:
+      A `GoalOrientedResult`.
+
+    Raises:
+      ValueError: for a bad `n_trials` or `presses_per_trial`.
+    """
+    n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
+    presses_per_trial = buttons.PRESSES_PER_TRIAL.check(presses_per_trial, "presses_per_trial")
+    observe = _validate.function("observe", observe)
+    _validate.boolean("progress", progress)
+    settings = {} if settings is None else _validate.instance("settings", settings, dict)
+    red_button = env.red_button
     n_seeds, n_actions = len(env), env.n_actions
     practice = np.zeros((n_seeds, n_trials, len(TASKS)), dtype=np.int64)
     presses = np.zeros((n_seeds, n_trials, n_actions), dtype=np.int64)
@@ -380,6 +428,8 @@ def _play(settings, env, agent, n_trials, presses_per_trial, red_button, progres
             chosen = agent.select_actions(layout)
             observed = env.press(chosen)
             agent.learn(layout, chosen, observed)
+            if observe is not None:
+                observe(trial, layout, chosen, observed)
             both = observed == buttons.BOTH_BOXES  # a press of both: practice of both
             for i, box in enumerate(_TASK_EFFECTS):
                 practice[:, trial, i] += (observed == box) | both

@@ -103,19 +103,26 @@ class PanelSpec:
         return [dict(zip(names, combo)) for combo in itertools.product(*values)]
 
 
+PANEL_SEEDS = 100
+"""Runs behind each curve of the button panels (figures 5 and 6)."""
+PANEL_TRIALS = 60
+"""Trials per run of the actor-critic's panel (figure 6; its chapter runs
+`actor_critic.CHAPTER_TRIALS`); figure 5's panel runs its chapter's
+`goal_oriented.CHAPTER_TRIALS`."""
+
 PANELS = {
     "figure5": PanelSpec(
         title="Figure 5: interest in each task",
         run=_goal_oriented.run_goal_oriented,
         grid_run=_goal_oriented.run_goal_oriented_grid, curves=_goal_oriented.panel_curves,
         slider_names=("epsilon", "window", "new_task_factor"), choice_names=(),
-        fixed={"n_seeds": 100, "n_trials": 60, "seed": 0}),
+        fixed={"n_seeds": PANEL_SEEDS, "n_trials": _goal_oriented.CHAPTER_TRIALS, "seed": 0}),
     "figure6": PanelSpec(
         title="Figure 6: the actor-critic's prediction error",
         run=_actor_critic.run_actor_critic,
         grid_run=_actor_critic.run_actor_critic_grid, curves=_actor_critic.panel_curves,
         slider_names=("lr_actor", "lr_critic", "temperature"), choice_names=("variant",),
-        fixed={"n_seeds": 100, "n_trials": 60, "seed": 0}),
+        fixed={"n_seeds": PANEL_SEEDS, "n_trials": PANEL_TRIALS, "seed": 0}),
     "figure7": PanelSpec(
         title="Figure 7: what is left to learn about each rod",
         run=_rod_toppling.run_rod_toppling, grid_run=None,
@@ -277,10 +284,21 @@ class PanelGrid:
     curves: tuple
     cells: tuple = None
 
+    def __post_init__(self):
+        spec(self.name)  # a panel of PANELS, else a ValueError naming them
+        for field in ("settings", "curves"):
+            if not isinstance(getattr(self, field), (tuple, list)):
+                raise _validate.ArgumentTypeError(
+                    f"{field} must be a tuple, got {_validate.show(getattr(self, field))}")
+        if len(self.curves) != len(self.settings) or (
+                self.cells is not None and len(self.cells) != len(self.settings)):
+            raise ValueError(f"curves (and cells) must have one entry per setting "
+                             f"({len(self.settings)}), got {len(self.curves)}")
+
     @property
     def spec(self):
         """The panel's `PanelSpec`."""
-        return PANELS[self.name]
+        return spec(self.name)
 
     def index(self, **setting):
         """Position of `setting` (every control given) in the grid.

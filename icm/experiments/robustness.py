@@ -30,7 +30,7 @@ from icm import _validate
 from icm.envs import buttons, rods
 from icm.experiments._progress import progress_bar
 from icm.experiments.actor_critic import run_actor_critic
-from icm.experiments.goal_oriented import TASKS, run_goal_oriented
+from icm.experiments.goal_oriented import CHAPTER_TRIALS, TASKS, run_goal_oriented
 from icm.experiments.results import in_seeds
 from icm.experiments.rod_toppling import run_rod_toppling
 from icm.experiments.sweep import sweep
@@ -225,7 +225,7 @@ def _study(name, title, run_fn, fixed, settings, claims, per_seed):
 STUDIES = {
     "goal_oriented": _study(
         "goal_oriented", "goal-oriented learner, button console (Figure 5)",
-        run_goal_oriented, {"n_trials": 60},
+        run_goal_oriented, {"n_trials": CHAPTER_TRIALS},
         ("action_weight", "presses_per_trial", "reading"),
         [("red_first", "red mastered first", CLAIM_SHARE),
          ("interest_later", "interest moves to green later", MAJORITY),

@@ -2,6 +2,7 @@
 buttons and the rods, with and without noise, and the scenes with the noisy button and
 the wobbly rod."""
 
+import collections.abc
 import textwrap
 
 import numpy as np
@@ -10,22 +11,41 @@ from icm import _validate
 from icm.envs import buttons, icub, rods
 from icm.experiments import curiosity as _curiosity
 from icm.experiments.curiosity import RewardComparison, SignalComparison
+from icm.experiments.rod_toppling import WELL_PREDICTED_ERROR
 from icm.figures._common import (LINESTYLES, MARKERS, TASK_COLOURS, check_result, new_figure,
                                  legend_below, plot_mean_band, series_style)
 from icm.figures.icub import check_camera, check_image_size, render
+from icm.learners import interest
 
-SIGNAL_COLOURS = {"learning_progress": "#1b9e77", "prediction_error": "#d95f02",
-                  "novelty": "#7570b3", "random": "#7a7a7a"}
-"""One colour per interest signal (or intrinsic reward)."""
-SIGNAL_STYLES = {"learning_progress": {"linestyle": "-", "marker": "o"},
-                 "prediction_error": {"linestyle": "--", "marker": "s"},
-                 "novelty": {"linestyle": "-.", "marker": "^"},
-                 "random": {"linestyle": ":", "marker": "D"}}
-"""And a line style and marker each, so that no two differ by colour alone."""
+class _BySignal(collections.abc.Mapping):
+    """{signal name: what `read` gives of its class}, for every signal registered in
+    `icm.learners.interest.SIGNAL_CLASSES`, now (a signal registered later is in it)."""
+
+    def __init__(self, read):
+        self._read = read
+
+    def __getitem__(self, name):
+        return self._read(interest.SIGNAL_CLASSES[name])
+
+    def __iter__(self):
+        return iter(interest.SIGNAL_CLASSES)
+
+    def __len__(self):
+        return len(interest.SIGNAL_CLASSES)
+
+
+SIGNAL_COLOURS = _BySignal(lambda signal: signal.COLOUR)
+"""One colour per interest signal (or intrinsic reward): each signal's `COLOUR`."""
+SIGNAL_STYLES = _BySignal(lambda signal: {"linestyle": signal.LINESTYLE,
+                                          "marker": signal.MARKER})
+"""And a line style and marker each (its `LINESTYLE` and `MARKER`), so that no two
+differ by colour alone."""
 
 
 def _signal_style(signal):
     return SIGNAL_STYLES.get(signal, {"linestyle": LINESTYLES[0], "marker": MARKERS[-1]})
+
+
 WOBBLY_COLOUR = "#e6a817"
 """The wobbly rod's colour (as in assets/rods_wobbly.xml)."""
 BLOCK = 10
@@ -151,7 +171,7 @@ def wobbly_rod_figure(comparison):
              ylim=(0, 1), xlim=(1, comparison.settings["n_episodes"]))
     left.set_title(f"Where the episodes end, {n} seeds", fontsize=10)
     legend_below(left, ncols=2)
-    right.axhline(_curiosity._rod_toppling.WELL_PREDICTED_ERROR, color="black",
+    right.axhline(WELL_PREDICTED_ERROR, color="black",
                   linestyle="--", linewidth=1)
     right.set(xlabel="episode", ylabel="largest error left on a red pair", ylim=(0, 1.02),
               xlim=(1, comparison.settings["n_episodes"]))

@@ -12,6 +12,7 @@ from icm.envs import buttons
 from icm.experiments import goal_babbling as _babbling
 from icm.experiments.goal_babbling import GoalBabblingResult
 from icm.experiments.results import check_results
+from icm.learners import goal_choice
 from icm.figures._common import (LINESTYLES, MARKERS, check_result, figure_and_axes, legend_below,
                                  new_figure, plot_mean_band)
 
@@ -19,9 +20,7 @@ _MADE_BY = "icm.experiments.run_goal_babbling"
 STRATEGY_COLOURS = {"random_motor": "#7f7f7f", "random_goal": "#1f77b4",
                     "learning_progress": "#e66101"}
 """One colour per strategy."""
-STRATEGY_LABELS = {"random_motor": "random motor babbling",
-                   "random_goal": "random goal babbling",
-                   "learning_progress": "goals by learning progress"}
+STRATEGY_LABELS = {name: strategy.label for name, strategy in goal_choice.STRATEGIES.items()}
 """How the figures name the strategies."""
 _OUTCOME_COLOURS = {"touched": "#1f77b4", "other": "#b0b0b0"}
 
@@ -128,9 +127,10 @@ def goal_choice_figure(result, n_stretches=8):
         logarithmic scale, from the end of the random start.
     """
     check_result("result", result, GoalBabblingResult, _MADE_BY)
-    if result.strategy != "learning_progress":
-        raise ValueError(f"result must come from the learning_progress strategy, got "
-                         f"{result.strategy!r}")
+    if not goal_choice.STRATEGIES[result.strategy].by_interest:
+        raise ValueError(f"result must come from a strategy that follows the regions' "
+                         f"interest ({', '.join(n for n, s in goal_choice.STRATEGIES.items() if s.by_interest)}), "
+                         f"got {result.strategy!r}")
     n_stretches = _validate.integer_at_least("n_stretches", n_stretches, 1)
     start = min(_babbling.N_BOOTSTRAP, result.n_rollouts - 1)
     if result.n_rollouts - start < n_stretches:

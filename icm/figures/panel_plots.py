@@ -36,14 +36,37 @@ def draw_curves(curves, height=3.2, width_per_group=4.6):
     if not isinstance(groups, (list, tuple)) or not groups:
         raise _validate.ArgumentTypeError(f"curves['groups'] must be a non-empty list, got "
                                           f"{_validate.show(groups)}")
+    x = _validate.finite_array("curves['x']", curves["x"], ndim=1)
+    if len(x) < 1:
+        raise ValueError(f"curves['x'] must have at least one point, got "
+                         f"{_validate.show(curves['x'])}")
     for i, group in enumerate(groups):
         for key in ("title", "ylabel"):
             _validate.text(f"curves['groups'][{i}][{key!r}]", group.get(key)
                            if isinstance(group, dict) else None)
+        series = group.get("series")
+        if not isinstance(series, dict):
+            raise _validate.ArgumentTypeError(
+                f"curves['groups'][{i}]['series'] must be a dict {{name: (mean, low, "
+                f"high)}}, got {_validate.show(series)}")
+        for name, lines in series.items():
+            where = f"curves['groups'][{i}]['series'][{name!r}]"
+            if not isinstance(name, str) or name.split()[0] not in SERIES_COLOURS:
+                raise ValueError(f"the names of curves['groups'][{i}]['series'] must start "
+                                 f"with one of {', '.join(SERIES_COLOURS)}, got "
+                                 f"{_validate.show(name)}")
+            if not isinstance(lines, (tuple, list)) or len(lines) != 3:
+                raise _validate.ArgumentTypeError(
+                    f"{where} must be (mean, low, high), got {_validate.show(lines)}")
+            for part, line in zip(("mean", "low", "high"), lines):
+                line = np.asarray(line)
+                if line.ndim != 1 or len(line) != len(x):
+                    raise ValueError(
+                        f"{where} ({part}) must have one value per point of curves['x'] "
+                        f"({len(x)}), got {line.shape[0] if line.ndim == 1 else line.shape}")
     fig = Figure(figsize=(width_per_group * len(groups), height))
     fig.png_dpi, fig.quick_png = 96, True
     axes = fig.subplots(1, len(groups), squeeze=False)[0]
-    x = curves["x"]
     for ax, group in zip(axes, groups):
         for name, (mean, low, high) in group["series"].items():
             colour = SERIES_COLOURS[name.split()[0]]
@@ -117,6 +140,21 @@ def sweep_figure(settings, cells):
         raise _validate.ArgumentTypeError(
             f"settings and cells must be lists of the same non-zero length, got "
             f"{_validate.show(settings)} and {_validate.show(cells)}")
+    for i, (setting, cell) in enumerate(zip(settings, cells)):
+        for name, value, keys in (("settings", setting, ("epsilon", "window")),
+                                  ("cells", cell, ("gap", "red_first"))):
+            if not isinstance(value, dict):
+                raise _validate.ArgumentTypeError(
+                    f"{name}[{i}] must be a dict with {' and '.join(keys)}, got "
+                    f"{_validate.show(value)}")
+            missing = [k for k in keys if k not in value]
+            if missing:
+                raise ValueError(f"{name}[{i}] must have {' and '.join(keys)}; it lacks "
+                                 f"{', '.join(missing)}: {_validate.show(value)}")
+            for k in keys:  # a cell's numbers may be NaN (no seed mastered both)
+                if not _validate.is_real(value[k]):
+                    raise _validate.ArgumentTypeError(
+                        f"{name}[{i}][{k!r}] must be a number, got {_validate.show(value[k])}")
     epsilons = sorted({s["epsilon"] for s in settings})
     windows = sorted({s["window"] for s in settings})
     fig = Figure(figsize=(9.6, 3.8))

@@ -86,12 +86,23 @@ def softmax(preferences, temperature):
     if not p or not all(map(math.isfinite, p)) or np.ndim(preferences) != 1:
         raise ValueError(f"preferences must be a non-empty sequence of finite numbers, "
                          f"got {preferences!r}")
-    return np.array(_softmax(p, temperature))
+    return np.array(softmax_unchecked(p, temperature))
 
 
-def _softmax(preferences, temperature):
+def softmax_unchecked(preferences, temperature):
     """`softmax` on a list of floats, unchecked (the learner's inner loop). numpy's
-    exp, and a sum in order, exactly as `ActorCriticBatch` computes it."""
+    exp, and a sum in order, exactly as `ActorCriticBatch` computes it.
+
+    Args:
+      preferences: a non-empty list of floats (not checked).
+      temperature: a float > 0 (not checked).
+
+    Returns:
+      A float numpy array of probabilities summing to 1.
+
+    Raises:
+      FloatingPointError: for an infinite or NaN preference (a diverged actor).
+    """
     p = np.asarray(preferences, dtype=float)
     # (p - top) <= 0, so exp never overflows; a difference that overflows to -inf
     # (preferences 1e308 apart) gives exp 0.0, as it should.

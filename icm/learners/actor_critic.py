@@ -8,8 +8,8 @@ import numpy as np
 from icm import _streams, _validate
 from icm.learners._common import check_keys, check_state, check_values, read_observation
 from icm.learners import action_selection
-from icm.learners.action_selection import (_softmax, epsilon_greedy, epsilon_greedy_rows,
-                                           softmax)  # noqa: F401 (softmax: its API)
+from icm.learners.action_selection import (epsilon_greedy, epsilon_greedy_rows, softmax,
+                                           softmax_unchecked)  # noqa: F401 (softmax: its API)
 from icm._settings import Settings, Slider, setting, setting_from, settings_class
 from icm.learners import predictors as _predictors
 from icm.learners.predictors import NearestNeighbourPredictor, NearestNeighbourTable
@@ -225,7 +225,7 @@ class ActorCritic:
         preferences = self.actor.get(check_state("state", state))
         if preferences is None:
             return [1.0 / self.n_actions] * self.n_actions
-        return _softmax(preferences, self.temperature).tolist()
+        return softmax_unchecked(preferences, self.temperature).tolist()
 
     def select_action(self, observation):
         """Picks an action in the observation's state: drawn from the softmax policy,

@@ -7,13 +7,36 @@ that grows (`icm.learners.maturation`) and a teacher's demonstrations."""
 import numpy as np
 
 from icm import _validate
-from icm.learners.goal_choice import RandomGoals, RegionProgress, SplittingRegionProgress
+from icm._settings import Settings, setting_from, settings_class
+from icm.learners import goal_choice as _goal_choice
+from icm.learners import maturation as _maturation
+from icm.learners import sensorimotor as _sensorimotor
 from icm.learners.maturation import JointRangeMaturation
 from icm.learners.sensorimotor import NearestNeighbourInverse
 
 N_BOOTSTRAP = 20
 """The goal strategies start with this many random motor commands (the inverse model
 needs outcomes to start from). Our choice; the paper has no goal babbling."""
+
+
+@settings_class
+class GoalBabblingSettings(Settings):
+    """The goal-babbling learner's settings: its goal-choice strategy and, for learning
+    progress, its measure, regions, epsilon and window; its inverse model and
+    exploration noise; whether it grows up. Each is a `icm._settings.Setting`, declared
+    where it is used (`icm.learners.goal_choice`, `sensorimotor`, `maturation`): see
+    `GoalBabblingSettings.specs()` for its range and where it comes from (the paper has
+    no goal babbling). `icm.experiments.run_goal_babbling` and the command line read
+    it."""
+
+    strategy: str = setting_from(_goal_choice.STRATEGY, per_row=False)
+    exploration_noise: float = setting_from(_sensorimotor.EXPLORATION_NOISE, per_row=False)
+    epsilon: float = setting_from(_goal_choice.EPSILON, per_row=False)
+    window: int = setting_from(_goal_choice.WINDOW, per_row=False)
+    inverse_model: str = setting_from(_sensorimotor.INVERSE_MODEL, per_row=False)
+    measure: str = setting_from(_goal_choice.MEASURE, per_row=False)
+    regions: str = setting_from(_goal_choice.REGIONS, per_row=False)
+    maturation: str = setting_from(_maturation.MATURATION, per_row=False)
 
 
 class GoalBabblingAgent:
@@ -56,10 +79,12 @@ class GoalBabblingAgent:
                  n_bootstrap=N_BOOTSTRAP, maturation=None, demonstrations=None):
         self.inverse_model = _validate.instance("inverse_model", inverse_model,
                                                 NearestNeighbourInverse)
-        if goal_choice is not None:
-            _validate.instance("goal_choice", goal_choice,
-                               (RandomGoals, RegionProgress, SplittingRegionProgress),
-                               "RandomGoals, RegionProgress, SplittingRegionProgress or None")
+        if goal_choice is not None and not all(
+                callable(getattr(goal_choice, m, None)) for m in ("sample", "update", "values")):
+            raise _validate.ArgumentTypeError(
+                f"goal_choice must be a goal choice (with sample, update and values, as "
+                f"icm.learners.goal_choice.make_goal_choice makes) or None, got "
+                f"{_validate.show(goal_choice)}")
         self.goal_choice = goal_choice
         self.generators = list(generators)
         if len(self.generators) != inverse_model.n_rows:
@@ -87,6 +112,42 @@ class GoalBabblingAgent:
         self.demonstrations = demonstrations
         self.n_produced = 0
         self._goal_outcomes = None
+
+    @classmethod
+    def from_settings(cls, settings, generators, lower, upper, capacity, n_outcome, grid,
+                      home, goal_outcome=None, demonstrations=None, maturation=None):
+        """The agent of `settings`: its inverse model, goal choice and (if it grows up)
+        maturational clock built from them, one row per generator.
+
+        Args:
+          settings: a `GoalBabblingSettings` (None: the library's).
+          generators: one `numpy.random.Generator` per row.
+          lower, upper: the joints' ranges, arrays [joints].
+          capacity: the movements each row's inverse model keeps (>= 1).
+          n_outcome: the outcomes' dimensions.
+          grid: the goals' `icm.learners.goal_choice.RegionGrid`.
+          home: the resting posture, where a growing arm starts.
+          goal_outcome, demonstrations: as the constructor's.
+          maturation: the clock's `icm.learners.maturation.MaturationSettings` (None:
+            the library's), used when `settings.maturation` is "joint_range".
+
+        Returns:
+          A `GoalBabblingAgent`.
+        """
+        settings = GoalBabblingSettings() if settings is None else _validate.instance(
+            "settings", settings, GoalBabblingSettings)
+        generators = list(generators)
+        n_rows = len(generators)
+        model = _sensorimotor.make_inverse_model(
+            settings.inverse_model, n_rows, capacity, lower, upper, n_outcome,
+            exploration_noise=settings.exploration_noise)
+        choice = _goal_choice.make_goal_choice(settings.strategy, grid, n_rows,
+                                               settings.measure, settings.epsilon,
+                                               settings.window, settings.regions)
+        clock = None if settings.maturation == "none" else \
+            JointRangeMaturation.from_settings(n_rows, home, lower, upper, maturation)
+        return cls(model, choice, generators, goal_outcome, maturation=clock,
+                   demonstrations=demonstrations)
 
     @property
     def n_rows(self):

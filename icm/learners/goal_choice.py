@@ -18,20 +18,48 @@ grid); the regions' interest is learning progress, measured one of two ways
 `RandomGoals` is the baseline: goals uniform in the box.
 """
 
+import dataclasses
+
 import numpy as np
 
 from icm import _validate
+from icm._settings import Names, Setting
 from icm.learners.interest import InterestTable
 
-DEFAULT_EPSILON = 0.3
-"""Share of goals drawn in a region chosen uniformly, the rest in one chosen with
-probability proportional to its interest (explauto's default for its discretised
-progress). Not in the paper."""
-DEFAULT_WINDOW = 10
-"""Distances per region in the progress (explauto's window; the paper's is 5, over
-tasks, not regions)."""
 MEASURES = ("learning_progress", "competence_progress")
 """How a region's interest is measured (see the module docstring)."""
+EPSILON = Setting(
+    default=0.3, label="learning progress: share of goals in a region drawn uniformly",
+    kind="real", low=0.0, high=1.0,
+    source="the paper has no goal babbling: explauto's default for its discretised "
+           "progress; the rest of the goals go to a region drawn with probability "
+           "proportional to its interest")
+"""Learning progress's share of uniformly drawn regions."""
+WINDOW = Setting(
+    default=10, label="learning progress: distances per region in the progress",
+    kind="integer", low=2,
+    source="the paper has no goal babbling: explauto's window (the paper's is 5, over "
+           "tasks, not regions)")
+"""Distances per region in the progress."""
+MEASURE = Setting(
+    default="learning_progress", label="learning progress: how a region's progress is "
+    "measured (the paper's slope of distances, or SAGG-RIAC's competence progress)",
+    kind="choice", choices=MEASURES,
+    source="the paper's interest (section 3.1) applied to regions; competence progress "
+           "is SAGG-RIAC's (Baranes and Oudeyer 2013)")
+"""How learning progress measures a region's progress."""
+REGIONS = Setting(
+    default="fixed", label="learning progress: fixed regions, or regions that split as "
+    "goals accumulate", kind="choice", choices=Names(lambda: tuple(REGION_KINDS)),
+    source="the paper has no goal babbling: a fixed grid, or SAGG-RIAC's splitting")
+"""Learning progress's regions (`REGION_KINDS`)."""
+STRATEGY = Setting(
+    default="learning_progress", label="how the next movement is chosen",
+    kind="choice", choices=Names(lambda: tuple(STRATEGIES)),
+    source="the paper has no goal babbling: the strategies of `STRATEGIES`")
+"""The goal-choice strategy (`STRATEGIES`)."""
+DEFAULT_EPSILON = EPSILON.default
+DEFAULT_WINDOW = WINDOW.default
 
 
 def check_box(low, high):
@@ -123,18 +151,18 @@ class RegionProgress:
     Args:
       grid: a `RegionGrid`.
       n_rows: agents.
-      measure: one of `MEASURES`.
-      epsilon: share of uniformly chosen regions, in [0, 1].
-      window: distances per region in the progress (>= 2).
+      measure: one of `MEASURES` (see `MEASURE`).
+      epsilon: share of uniformly chosen regions (see `EPSILON`).
+      window: distances per region in the progress (see `WINDOW`).
     """
 
     def __init__(self, grid, n_rows, measure="learning_progress", epsilon=DEFAULT_EPSILON,
                  window=DEFAULT_WINDOW):
         self.grid = _validate.instance("grid", grid, RegionGrid)
         self.n_rows = _validate.integer_at_least("n_rows", n_rows, 1)
-        self.measure = _validate.one_of("measure", measure, MEASURES)
-        self.epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
-        self.window = _validate.integer_at_least("window", window, 2)
+        self.measure = MEASURE.check(measure, "measure")
+        self.epsilon = EPSILON.check(epsilon, "epsilon")
+        self.window = WINDOW.check(window, "window")
         self._bounds = grid.bounds()
         n_regions = grid.n_regions
         if self.measure == "learning_progress":
@@ -255,9 +283,9 @@ class SplittingRegionProgress:
                  window=DEFAULT_WINDOW, max_goals=DEFAULT_MAX_GOALS):
         self.grid = _validate.instance("grid", grid, RegionGrid)
         self.n_rows = _validate.integer_at_least("n_rows", n_rows, 1)
-        self.measure = _validate.one_of("measure", measure, MEASURES)
-        self.epsilon = _validate.in_closed_interval("epsilon", epsilon, 0.0, 1.0)
-        self.window = _validate.integer_at_least("window", window, 2)
+        self.measure = MEASURE.check(measure, "measure")
+        self.epsilon = EPSILON.check(epsilon, "epsilon")
+        self.window = WINDOW.check(window, "window")
         self.max_goals = _validate.integer_at_least("max_goals", max_goals, self.window + 1)
         self._centres = grid.bounds().mean(axis=1)
         box = np.stack([grid.low, grid.high])
@@ -347,3 +375,95 @@ class SplittingRegionProgress:
         self.members[k].append(high)
         self.split_dims[k].append(following)
         self.interests[k].append(self._interest(high))
+
+
+REGION_KINDS = {"fixed": RegionProgress, "splitting": SplittingRegionProgress}
+"""Learning progress's regions: a fixed grid, or regions that split as goals
+accumulate (the class of each)."""
+
+
+@dataclasses.dataclass(frozen=True)
+class GoalStrategy:
+    """One way to choose what to babble next, as `goal_strategy` registers it.
+
+    Attributes:
+      name: its name, the `strategy=` of `icm.experiments.run_goal_babbling`.
+      label: what the book calls it.
+      make: a function (grid, n_rows, measure, epsilon, window, regions) returning the
+        rows' goal choice (`sample`, `update`, `values`), or None for movements drawn
+        at random with no goal (random motor babbling).
+      by_interest: whether its goals follow the regions' interest (whose values a run
+        keeps after each rollout).
+    """
+
+    name: str
+    label: str
+    make: object
+    by_interest: bool
+
+
+STRATEGIES = {}
+"""The goal-choice strategies by name, in the order they are registered
+(`goal_strategy`): `make_goal_choice`, the goal-babbling runs, their settings and
+the command line read it."""
+
+
+def goal_strategy(name, label, by_interest=False):
+    """Registers the decorated function as the goal-choice strategy `name` (see
+    `GoalStrategy`), where it is defined.
+
+    Args:
+      name: the strategy's name (new).
+      label: what the book calls it.
+      by_interest: whether its goals follow the regions' interest.
+
+    Raises:
+      ValueError: for a name registered already.
+    """
+    name = _validate.text("name", name)
+    if name in STRATEGIES:
+        raise ValueError(f"name must be new, got {name!r}: registered already")
+
+    def register(make):
+        STRATEGIES[name] = GoalStrategy(name, _validate.text("label", label),
+                                        _validate.function("make", make, allow_none=False),
+                                        _validate.boolean("by_interest", by_interest))
+        return make
+    return register
+
+
+@goal_strategy("random_motor", "random motor babbling")
+def _random_motor(grid, n_rows, measure, epsilon, window, regions):
+    return None  # no goals: each movement drawn at random
+
+
+@goal_strategy("random_goal", "random goal babbling")
+def _random_goal(grid, n_rows, measure, epsilon, window, regions):
+    return RandomGoals(grid, n_rows)
+
+
+@goal_strategy("learning_progress", "goals by learning progress", by_interest=True)
+def _learning_progress(grid, n_rows, measure, epsilon, window, regions):
+    return REGION_KINDS[regions](grid, n_rows, measure, epsilon, window)
+
+
+def make_goal_choice(strategy, grid, n_rows, measure=MEASURE.default, epsilon=EPSILON.default,
+                     window=WINDOW.default, regions=REGIONS.default):
+    """The goal choice of a registered strategy for `n_rows` agents.
+
+    Args:
+      strategy: a name in `STRATEGIES`.
+      grid: a `RegionGrid`.
+      n_rows: agents (>= 1).
+      measure, epsilon, window: the progress's (see `RegionProgress`).
+      regions: one of `REGION_KINDS`.
+
+    Returns:
+      The rows' goal choice, or None (random motor babbling).
+
+    Raises:
+      ValueError: for a strategy or regions not registered.
+    """
+    strategy = STRATEGY.check(strategy, "strategy")
+    regions = REGIONS.check(regions, "regions")
+    return STRATEGIES[strategy].make(grid, n_rows, measure, epsilon, window, regions)

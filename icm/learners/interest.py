@@ -131,11 +131,20 @@ class InterestSignal:
     reading, new_task_mean, short_history), implements `record(task, error)` and
     `interest(task)` for one agent, and `table_values(table, rows)` (and, if it keeps
     state as errors come, `table_record`) for many; then `@interest_signal` registers
-    it. CONTRIBUTING shows an example.
+    it. `COLOUR`, `LINESTYLE`, `MARKER` and `KERNEL_CODE` say how the figures draw
+    it and whether the rods' compiled loop computes it. CONTRIBUTING shows an example.
     """
 
     NAME = None
     SETTINGS = ()
+    COLOUR = "#000000"
+    """Its colour in the figures (`icm.figures.curiosity.SIGNAL_COLOURS`)."""
+    LINESTYLE, MARKER = "-", "x"
+    """Its line style and marker in the figures, so that no two differ by colour alone."""
+    KERNEL_CODE = None
+    """The number by which the rods' compiled loop (`icm.experiments._rods_kernel`)
+    computes it, or None: the loop does not, and runs it refuse it by name there (it
+    still runs on the per-agent classes)."""
     WINDOW_SETTING = _MEAN_WINDOW
     """The setting that checks `window` in `InterestTable` (a mean needs one error, a
     slope two)."""
@@ -213,6 +222,7 @@ class LearningProgressInterest(InterestSignal):
     """
 
     NAME = "learning_progress"
+    COLOUR, LINESTYLE, MARKER, KERNEL_CODE = "#1b9e77", "-", "o", 1
     SETTINGS = ("window", "new_task_factor", "reading", "new_task_mean", "short_history")
     WINDOW_SETTING = WINDOW
 
@@ -308,6 +318,7 @@ class PredictionErrorInterest(InterestSignal):
     """
 
     NAME = "prediction_error"
+    COLOUR, LINESTYLE, MARKER, KERNEL_CODE = "#d95f02", "--", "s", 0
     SETTINGS = ("window",)
 
     def __init__(self, window=WINDOW.default):
@@ -345,6 +356,7 @@ class NoveltyInterest(InterestSignal):
         self._append(task, error)
 
     NAME = "novelty"
+    COLOUR, LINESTYLE, MARKER, KERNEL_CODE = "#7570b3", "-.", "^", 2
 
     def interest(self, task):
         """1 / sqrt(1 + times `task` was witnessed)."""
@@ -367,6 +379,7 @@ class RandomInterest(InterestSignal):
         self._append(task, error)
 
     NAME = "random"
+    COLOUR, LINESTYLE, MARKER, KERNEL_CODE = "#7a7a7a", ":", "D", 3
 
     def interest(self, task):
         """0.0, whatever the task."""

@@ -14,28 +14,55 @@ The clock's rule below is ours: the paper has no maturation.
 import numpy as np
 
 from icm import _validate
+from icm._settings import Setting, Settings, setting, settings_class
 from icm.learners.goal_choice import competence_progress
 
 MATURATIONS = ("none", "joint_range")
 """The maturational constraints a run may have: "none", or "joint_range"
 (`JointRangeMaturation`)."""
-DEFAULT_MATURATION = "none"
-"""A run grows up only when asked."""
-DEFAULT_START = 0.5
-"""The clock's value at birth: the share of the way from the resting posture to each
-joint's limits that the arm can reach (0: only the rest, 1: the full range). Our
-choice: about the smallest share from which some random movements touch the console
-(`icm.experiments.goal_babbling.touch_shares` measures it)."""
-DEFAULT_WINDOW = 40
-"""The learner's last goals (all regions together) over which its competence progress
-is measured. Our choice: over fewer goals, the progress mostly measures how far apart
-successive goals are."""
-DEFAULT_PLATEAU = 0.01
-"""Competence progress (m, in the outcome space) below which the learner counts as
-no longer progressing within its present body, and the clock advances. Our choice."""
-DEFAULT_STEP = 0.01
-"""How much the clock advances after each goal met on a plateau. Our choice: from
-`DEFAULT_START`, the full range after 50 such goals."""
+MATURATION = Setting(
+    default="none", label="grow up: the arm's reachable joint range grows from around "
+    "its resting posture as its competence stops progressing", kind="choice",
+    choices=MATURATIONS,
+    source="the paper has no maturation: McSAGG's maturational clock (Baranes and "
+           "Oudeyer 2011), on the joints' range; a run grows up only when asked")
+"""Which maturational constraint a run has (`MATURATIONS`)."""
+DEFAULT_MATURATION = MATURATION.default
+
+
+@settings_class
+class MaturationSettings(Settings):
+    """The maturational clock's settings (`JointRangeMaturation`): where it starts, the
+    goals its progress is measured over, the plateau below which it advances and by
+    how much. Each is a `icm._settings.Setting` (see `MaturationSettings.specs()`)."""
+
+    start: float = setting(
+        default=0.5, label="the clock at birth: the share of the way from the resting "
+        "posture to each joint's limits the arm can reach", kind="real", low=0.0, high=1.0,
+        low_open=True, per_row=False,
+        source="our choice: about the smallest share from which some random movements "
+               "touch the console (`icm.experiments.goal_babbling.touch_shares` measures "
+               "it)")
+    window: int = setting(
+        default=40, label="the last goals (all regions together) over which competence "
+        "progress is measured", kind="integer", low=2, per_row=False,
+        source="our choice: over fewer goals, the progress mostly measures how far apart "
+               "successive goals are")
+    plateau: float = setting(
+        default=0.01, label="competence progress (m) below which the clock advances",
+        kind="real", low=0.0, per_row=False,
+        source="our choice: below it the learner counts as no longer progressing within "
+               "its present body")
+    step: float = setting(
+        default=0.01, label="how much the clock advances after each goal met on a plateau",
+        kind="real", low=0.0, high=1.0, low_open=True, per_row=False,
+        source="our choice: from the start, the full range after 50 such goals")
+
+
+DEFAULT_START = MaturationSettings.spec("start").default
+DEFAULT_WINDOW = MaturationSettings.spec("window").default
+DEFAULT_PLATEAU = MaturationSettings.spec("plateau").default
+DEFAULT_STEP = MaturationSettings.spec("step").default
 
 
 class JointRangeMaturation:
@@ -74,13 +101,29 @@ class JointRangeMaturation:
         if np.any((self.home < self.lower) | (self.home > self.upper)):
             raise ValueError(f"home must lie within the joint ranges, got "
                              f"{_validate.show(self.home)}")
-        self.start = _validate.real("start", start, 0.0, 1.0, low_open=True)
-        self.window = _validate.integer_at_least("window", window, 2)
-        self.plateau = _validate.non_negative("plateau", plateau)
-        self.step = _validate.real("step", step, 0.0, 1.0, low_open=True)
+        specs = MaturationSettings.specs()
+        self.start = specs["start"].check(start, "start")
+        self.window = specs["window"].check(window, "window")
+        self.plateau = specs["plateau"].check(plateau, "plateau")
+        self.step = specs["step"].check(step, "step")
         self.psi = np.full(self.n_rows, self.start)
         self._competence = np.zeros((self.n_rows, self.window))  # newest last
         self._count = 0
+
+    @classmethod
+    def from_settings(cls, n_rows, home, lower, upper, settings=None):
+        """The clock of `settings` (a `MaturationSettings`; default the library's).
+
+        Args:
+          n_rows, home, lower, upper: as the constructor's.
+          settings: a `MaturationSettings`, or None.
+
+        Returns:
+          A `JointRangeMaturation`.
+        """
+        settings = MaturationSettings() if settings is None else _validate.instance(
+            "settings", settings, MaturationSettings)
+        return cls(n_rows, home, lower, upper, **settings.as_dict())
 
     def bounds(self):
         """Each row's reachable range now: (lower [rows, joints], upper [rows, joints])."""

@@ -19,11 +19,16 @@ gives none of these settings: its actions are scripted.
 import numpy as np
 
 from icm import _validate
+from icm._settings import Setting
 
-DEFAULT_EXPLORATION_NOISE = 0.05
-"""Standard deviation of the exploration noise, as a share of each joint's range
-(Forestier, Mollard and Oudeyer's 0.05; about 5 to 8 degrees), while the nearest
-outcome is `NOISE_DISTANCE` or more from the goal. Not in the paper."""
+EXPLORATION_NOISE = Setting(
+    default=0.05, label="the inverse model's noise far from a goal, a share of each "
+    "joint's range", kind="real", low=0.0, high=1.0, low_open=True,
+    source="the paper has no goal babbling: Forestier, Mollard and Oudeyer's 0.05 "
+           "(about 5 to 8 degrees)")
+"""Standard deviation of the exploration noise, as a share of each joint's range,
+while the nearest outcome is `NOISE_DISTANCE` or more from the goal."""
+DEFAULT_EXPLORATION_NOISE = EXPLORATION_NOISE.default
 NOISE_DISTANCE = 0.05
 """Below this distance (in outcome units: m) between the goal and the nearest outcome,
 the noise shrinks in proportion: local exploration gets finer as the goal gets closer,
@@ -40,6 +45,11 @@ DEFAULT_MAX_STEP = 0.1
 range: the linear model is trusted only near where it was fitted. Our choice."""
 INVERSE_MODELS = ("nearest_neighbour", "lwlr")
 """The inverse models, by name (see `make_inverse_model`)."""
+INVERSE_MODEL = Setting(
+    default="nearest_neighbour", label="the inverse model: nearest neighbour, or a "
+    "locally weighted linear step", kind="choice", choices=INVERSE_MODELS,
+    source="the paper has no goal babbling: explauto's two inverse models")
+"""Which inverse model (`INVERSE_MODELS`)."""
 
 
 class NearestNeighbourInverse:
@@ -71,8 +81,8 @@ class NearestNeighbourInverse:
             raise ValueError(f"upper must exceed lower in every joint, got lower "
                              f"{_validate.show(self.lower)} and upper {_validate.show(self.upper)}")
         n_outcome = _validate.integer_at_least("n_outcome", n_outcome, 1)
-        self.exploration_noise = _validate.real("exploration_noise", exploration_noise, 0.0,
-                                                1.0, low_open=True)
+        self.exploration_noise = EXPLORATION_NOISE.check(exploration_noise,
+                                                         "exploration_noise")
         self.noise_distance = _validate.positive("noise_distance", noise_distance)
         self.span = self.upper - self.lower
         self.movements = np.zeros((self.n_rows, capacity, len(self.lower)))
@@ -192,6 +202,6 @@ class LocallyWeightedInverse(NearestNeighbourInverse):
 def make_inverse_model(kind, n_rows, capacity, lower, upper, n_outcome, **settings):
     """An inverse model by name (`INVERSE_MODELS`): "nearest_neighbour" or "lwlr";
     `settings` are its keyword arguments."""
-    kind = _validate.one_of("inverse_model", kind, INVERSE_MODELS)
+    kind = INVERSE_MODEL.check(kind, "inverse_model")
     cls = NearestNeighbourInverse if kind == "nearest_neighbour" else LocallyWeightedInverse
     return cls(n_rows, capacity, lower, upper, n_outcome, **settings)

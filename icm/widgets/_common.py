@@ -1,12 +1,10 @@
 """Shared pieces of the interactive panel_data."""
 
-import os
-
 import ipywidgets
 
-from icm import _validate
+from icm import _book, _validate
 
-STATIC_ENV = "ICM_STATIC_PANELS"
+STATIC_ENV = _book.STATIC_ENV
 """When this environment variable is "1" (the book build sets it, see
 `book/_ext/execute_book.py`), the panels are drawn as their static, precomputed
 versions, which move in the HTML book without a kernel."""
@@ -16,7 +14,7 @@ def wants_static(static):
     """Whether a panel should be its static version: `static` if True or False; if
     None, whether the book is being built (`STATIC_ENV` is "1")."""
     if static is None:
-        return os.environ.get(STATIC_ENV) == "1"
+        return _book.static_panels()
     return _validate.boolean("static", static)
 
 

@@ -8,6 +8,7 @@ import numpy as np
 
 from icm import _streams, _validate
 from icm.envs._common import check_discrete_action, check_seed
+from icm.envs.suite import SUITE
 from icm.envs.buttons.rules import (DEFAULT_PRESSES_PER_TRIAL, PRESSES_PER_TRIAL,
                                         DEFAULT_RED_BUTTON, EFFECTS, GREEN, N_BUTTONS,
                                         NOISY_BUTTON, action_spec, check_red_button,
@@ -105,6 +106,10 @@ class ButtonTrials(dm_env.Environment):
         return action_spec(self.noisy_button)
 
 
+@SUITE.add("buttons", episodes=ButtonTrials,
+           physics="icm.envs.buttons.physics:PhysicsButtonConsole",
+           continuous="icm.envs.buttons.physics:load_continuous",
+           task="icm.envs.buttons.physics:ButtonsTask")
 class ButtonConsole(ButtonTrials):
     """The tabular button experiment: the paper's rules applied directly, no physics.
 

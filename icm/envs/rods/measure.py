@@ -11,7 +11,7 @@ import numpy as np
 from icm import _validate
 from icm.envs import icub
 from icm.envs._common import check_discrete_action
-from icm.envs.rods.physics import _RODS, PhysicsRodTable, RodsPhysics
+from icm.envs.rods.physics import ROD_GEOMS, PhysicsRodTable, RodsPhysics
 from icm.envs.rods.rules import (ACTIONS, N_COLUMNS, N_ROWS, ROD_NAMES, TOPPLE_MAP_FILE,
                                      WOBBLE_MAP_FILE, check_cell, load_topple_map)
 
@@ -19,7 +19,7 @@ from icm.envs.rods.rules import (ACTIONS, N_COLUMNS, N_ROWS, ROD_NAMES, TOPPLE_M
 def arm_touches_a_rod(physics):
     """True if any part of the arm is in contact with a rod."""
     _validate.instance("physics", physics, RodsPhysics)
-    rods = {physics.model.name2id(name, "geom") for name in _RODS}
+    rods = {physics.model.name2id(name, "geom") for name in ROD_GEOMS}
     robot = {physics.model.name2id(name, "body")
              for name in ("r_upper_arm", "r_forearm", "r_hand")}
     for contact in physics.data.contact[:physics.data.ncon]:

@@ -25,7 +25,8 @@ from icm.envs.rods.rules import (ACTIONS, DEFAULT_MAX_MOVES, DEFAULT_START_CELL,
                                      standable_cells)
 from icm.envs.rods.twin import RodEpisodes
 
-_RODS = [f"{name}_rod" for name in ROD_NAMES]  # red and blue, in every scene
+ROD_GEOMS = [f"{name}_rod" for name in ROD_NAMES]
+"""The geoms of the red and the blue rod, in every scene (`ROD_NAMES`' order)."""
 _WOBBLY_ROD = f"{WOBBLY}_rod"
 WOBBLE_REACH = 0.08
 """The hand passes beside the wobbly rod when its fingertip crosses the line level with

@@ -7,6 +7,7 @@ import numpy as np
 
 from icm import _streams, _validate
 from icm.envs._common import check_discrete_action, check_seed
+from icm.envs.suite import SUITE
 from icm.envs.rods import rules
 from icm.envs.rods.rules import (ACTIONS, DEFAULT_MAX_MOVES, DEFAULT_START_CELL, OFF_GRID,
                                      ROD_NAMES, action_spec, cell_number, check_max_moves,
@@ -103,6 +104,10 @@ class RodEpisodes(dm_env.Environment):
         return action_spec()
 
 
+@SUITE.add("rods", episodes=RodEpisodes,
+           physics="icm.envs.rods.physics:PhysicsRodTable",
+           continuous="icm.envs.rods.physics:load_continuous",
+           task="icm.envs.rods.physics:RodsTask")
 class RodTable(RodEpisodes):
     """The tabular rod experiment: the grid rules and the stored topple map, no physics.
 
