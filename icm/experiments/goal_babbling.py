@@ -458,7 +458,7 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
                       outcome_space=DEFAULT_OUTCOME_SPACE, inverse_model=DEFAULT_INVERSE_MODEL,
                       measure=DEFAULT_MEASURE, regions=DEFAULT_REGIONS,
                       depth_weight=DEPTH_WEIGHT, retract=False, threads=None,
-                      maturation=DEFAULT_MATURATION, demonstrations=()):
+                      maturation=DEFAULT_MATURATION, demonstrations=(), first_run=0):
     """Runs goal babbling on the simulated iCub, all seeds at once.
 
     Every rollout is a movement performed in physics from the start of a trial
@@ -507,6 +507,10 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
       maturation: one of `MATURATIONS` ("none" or "joint_range").
       demonstrations: the buttons the teacher shows, in order, each at most once (a
         tuple of integers 0 to 4; empty or None: no teacher).
+      first_run: the index of the first run (>= 0): the seeds are runs first_run to
+        first_run + n_seeds - 1 of the root seed, so that a large study can be run in
+        pieces (run 7 alone is run 7 of any larger batch; kept in
+        `settings["first_run"]`).
 
     Returns:
       A `GoalBabblingResult`.
@@ -519,8 +523,9 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
                                     exploration_noise, epsilon, window, outcome_space,
                                     inverse_model, measure, regions, depth_weight,
                                     retract, threads, maturation, demonstrations)
+    settings["first_run"] = _validate.integer_at_least("first_run", first_run, 0)
     lab = MovementLab(threads)
-    seeds = run_seeds(settings["seed"], n_seeds, 2)
+    seeds = run_seeds(settings["seed"], n_seeds, 2, first=settings["first_run"])
     arrays = _babble(settings, lab, [s[0] for s in seeds], progress)
     geometry = _geometry()
     outcomes, movements = arrays["outcomes"], arrays["movements"]
@@ -622,7 +627,8 @@ def presses_formed(result, rollouts):
     reached = outcome_vectors(result.outcomes, result.depths, space, weight)
     wanted = goal_outcomes(_geometry()["press_goals"], space, weight)
     distance = np.sqrt(((reached[:, :, None, :] - wanted[None, None]) ** 2).sum(axis=3))
-    seeds = [s[1] for s in run_seeds(settings["seed"], result.n_seeds, 2)]
+    seeds = [s[1] for s in run_seeds(settings["seed"], result.n_seeds, 2,
+                                     first=settings.get("first_run", 0))]
     lab = MovementLab(1)
     out = np.zeros((len(rollouts), result.n_seeds, buttons.N_BUTTONS), dtype=bool)
     for i, n in enumerate(rollouts):
@@ -786,7 +792,8 @@ class _Recorder:
         return effects
 
 
-def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True):
+def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True,
+                       first_run=0):
     """Runs the paper's goal-oriented learner on the physics console, with the movements
     the robot formed by goal babbling as its five press actions.
 
@@ -799,6 +806,9 @@ def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True)
       n_trials: trials per run (>= 1).
       seed: the root seed of the learner's runs (as in `run_goal_oriented`).
       progress: show a progress bar over the trials.
+      first_run: the index of the learner's first run (>= 0): row k uses run
+        first_run + k of `seed` (pass the babbling's own `first_run` to keep the
+        seed-by-seed pairing of a run made in pieces).
 
     Returns:
       A `FormedActionsResult`.
@@ -814,7 +824,8 @@ def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True)
         babbling.n_seeds, n_trials, buttons.DEFAULT_PRESSES_PER_TRIAL,
         buttons.DEFAULT_RED_BUTTON, False, True, seed, goal_oriented.GoalOrientedSettings())
     settings["formed_by"] = babbling.strategy
-    seeds = run_seeds(settings["seed"], babbling.n_seeds, 2)
+    settings["first_run"] = _validate.integer_at_least("first_run", first_run, 0)
+    seeds = run_seeds(settings["seed"], babbling.n_seeds, 2, first=settings["first_run"])
     lab = MovementLab()
     motions = [[lab.phases(m) for m in movements] for movements in babbling.press_movements]
     red = buttons.DEFAULT_RED_BUTTON

@@ -56,16 +56,30 @@ def _check_budgets():
                          f"({goal_babbling.DEFAULT_N_ROLLOUTS}), got {BUDGETS[-1]}")
 
 
-def run_variant(label, root, n_seeds=N_SEEDS, progress=False):
-    """Runs one variant on the first `n_seeds` seeds of one root seed and returns its
-    entry of the study: a dict of lists, one item per seed (the first k seeds of a
-    root seed are the same in any larger run, so a shorter rerun checks them).
+def budgets_of(n_rollouts):
+    """The budgets at which a run of `n_rollouts` rollouts tests its presses: those of
+    `BUDGETS` below it, and `n_rollouts` (`BUDGETS` at the default budget)."""
+    n_rollouts = _validate.integer_at_least("n_rollouts", n_rollouts, 1)
+    return tuple(b for b in BUDGETS if b < n_rollouts) + (n_rollouts,)
+
+
+def run_variant(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threads=None,
+                n_rollouts=goal_babbling.DEFAULT_N_ROLLOUTS):
+    """Runs one variant on seeds first_run to first_run + n_seeds - 1 of one root seed
+    and returns its entry of the study: a dict of lists, one item per seed (the first k
+    seeds of a root seed are the same in any larger run, so a shorter rerun checks
+    them, and a study can be run one seed at a time: `icm.experiments.studies`).
 
     Args:
       label: a key of `VARIANTS`.
       root: the root seed (an integer >= 0).
       n_seeds: seeds (>= 1).
       progress: show progress bars.
+      first_run: the index of the first seed of the root seed (>= 0).
+      threads: threads stepping the physics (as in `run_goal_babbling`; the results
+        do not depend on it).
+      n_rollouts: rollouts per seed (the study's is the default; fewer make a quick
+        trial run, its presses tested at `budgets_of(n_rollouts)`).
 
     Returns:
       {"pressed": [seed][budget][button] (0 or 1, budgets `BUDGETS`), "failures":
@@ -80,13 +94,15 @@ def run_variant(label, root, n_seeds=N_SEEDS, progress=False):
     root = _validate.seed("root", root)
     arguments = {"strategy": "learning_progress", **VARIANTS[label]}
     result = goal_babbling.run_goal_babbling(**arguments, n_seeds=n_seeds, seed=root,
-                                             progress=progress)
-    pressed = goal_babbling.presses_formed(result, BUDGETS)  # [budget, seed, button]
+                                             progress=progress, first_run=first_run,
+                                             threads=threads, n_rollouts=n_rollouts)
+    pressed = goal_babbling.presses_formed(result, budgets_of(n_rollouts))
     entry = {"pressed": np.moveaxis(pressed, 0, 1).astype(int).tolist(),
              "failures": goal_babbling.press_failures(result).tolist(),
              "test_error": result.final_test_error().tolist()}
     if label in LOOP_VARIANTS:
-        loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress)
+        loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress,
+                                                first_run=first_run)
         entry["red_first"] = loop.red_first().astype(int).tolist()
         entry["as_scripted"] = loop.as_scripted_per_seed.tolist()
     return entry

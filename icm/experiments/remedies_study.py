@@ -54,11 +54,12 @@ REACH_SEED = 0
 """Their seed."""
 
 
-def run_reach():
+def run_reach(n_movements=REACH_MOVEMENTS):
     """How often random movements touch the console for each reachable range of
-    `goal_babbling.RANGE_SHARES` (`goal_babbling.touch_shares` with `REACH_MOVEMENTS`
-    movements per share, seed `REACH_SEED`): the study's "reach"."""
-    return goal_babbling.touch_shares(goal_babbling.RANGE_SHARES, REACH_MOVEMENTS, REACH_SEED)
+    `goal_babbling.RANGE_SHARES` (`goal_babbling.touch_shares` with `n_movements`
+    movements per share, `REACH_MOVEMENTS` in the study, seed `REACH_SEED`): the
+    study's "reach"."""
+    return goal_babbling.touch_shares(goal_babbling.RANGE_SHARES, n_movements, REACH_SEED)
 
 
 def coverage_edges():
@@ -83,16 +84,30 @@ def coverage_counts(result, stop=None):
     return counts.astype(np.int64)
 
 
-def run_condition(label, root, n_seeds=N_SEEDS, progress=False):
-    """Runs one condition on the first `n_seeds` seeds of one root seed and returns its
-    entry of the study (the first k seeds of a root seed are the same in any larger
-    run, so a shorter rerun checks them).
+def budgets_of(n_rollouts):
+    """The budgets at which a run of `n_rollouts` rollouts tests its presses: those of
+    `BUDGETS` below it, and `n_rollouts` (`BUDGETS` at the default budget)."""
+    n_rollouts = _validate.integer_at_least("n_rollouts", n_rollouts, 1)
+    return tuple(b for b in BUDGETS if b < n_rollouts) + (n_rollouts,)
+
+
+def run_condition(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threads=None,
+                  n_rollouts=goal_babbling.DEFAULT_N_ROLLOUTS):
+    """Runs one condition on seeds first_run to first_run + n_seeds - 1 of one root seed
+    and returns its entry of the study (the first k seeds of a root seed are the same
+    in any larger run, so a shorter rerun checks them, and a study can be run one seed
+    at a time: `icm.experiments.studies`).
 
     Args:
       label: a key of `CONDITIONS`.
       root: the root seed (an integer >= 0).
       n_seeds: seeds (>= 1).
       progress: show progress bars.
+      first_run: the index of the first seed of the root seed (>= 0).
+      threads: threads stepping the physics (as in `run_goal_babbling`; the results
+        do not depend on it).
+      n_rollouts: rollouts per seed (the study's is the default; fewer make a quick
+        trial run, its presses tested at `budgets_of(n_rollouts)`).
 
     Returns:
       A dict: "pressed" [seed][budget][button] (0 or 1, budgets `BUDGETS`),
@@ -107,15 +122,18 @@ def run_condition(label, root, n_seeds=N_SEEDS, progress=False):
     root = _validate.seed("root", root)
     arguments = {"strategy": "learning_progress", **CONDITIONS[label]}
     result = goal_babbling.run_goal_babbling(**arguments, n_seeds=n_seeds, seed=root,
-                                             progress=progress)
-    pressed = goal_babbling.presses_formed(result, BUDGETS)  # [budget, seed, button]
-    loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress)
+                                             progress=progress, first_run=first_run,
+                                             threads=threads, n_rollouts=n_rollouts)
+    budgets = budgets_of(n_rollouts)
+    pressed = goal_babbling.presses_formed(result, budgets)  # [budget, seed, button]
+    loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress,
+                                            first_run=first_run)
     return {"pressed": np.moveaxis(pressed, 0, 1).astype(int).tolist(),
             "first_press": result.first_presses().tolist(),
             "test_error": result.final_test_error().tolist(),
             "red_first": loop.red_first().astype(int).tolist(),
             "as_scripted": loop.as_scripted_per_seed.tolist(),
-            "maturity": result.maturity[:, np.array(BUDGETS) - 1].tolist(),
+            "maturity": result.maturity[:, np.array(budgets) - 1].tolist(),
             "coverage": {"early": coverage_counts(result, EARLY).tolist(),
                          "all": coverage_counts(result).tolist()}}
 

@@ -1,0 +1,448 @@
+"""The long studies behind the chapters, each cut into units of work that run on the
+sweep engine (`icm.experiments.sweep.run_units`): on every core of this machine
+(joblib), or on a Dask cluster, with the same numbers either way.
+
+A study is registered in `STUDIES` with:
+
+- its units: JSON lists that carry everything deciding a unit's result, its seeds
+  included (e.g. ["growing up", 300, 12, 1]: condition, root seed, first seed index,
+  seeds), so that no result depends on which worker ran it or when;
+- its unit function, of the settings and one unit;
+- its size options (seeds, and for example rollouts), so that a tiny run takes
+  seconds;
+- how the units' results are assembled into the study's file, in the order of the
+  units, whichever order they finished in.
+
+`run_study` runs one: every finished unit is appended to a journal beside the output
+file, so a study killed half-way (Ctrl-C or SIGKILL) continues from the units it saved
+and writes the same file; the file is written at the end, atomically. It records what
+produced it under "produced_by": the study, its settings, the versions of icm, NumPy
+and MuJoCo, the seeds, and the units. How long the run took (which depends on the
+machine, not on the numbers) goes to a sibling file, ``<out>.runs.jsonl``, one line per
+run, so that the study's own file is byte-identical between a serial run, joblib and
+a Dask cluster.
+
+From the command line: ``python -m icm study NAME --seeds N --backend joblib|dask
+[--scheduler ADDRESS] --out FILE`` (see `icm.cli`).
+"""
+
+import dataclasses
+import functools
+import json
+import os
+import pathlib
+import platform
+import tempfile
+import time
+
+from icm import _validate
+from icm.experiments.sweep import _append, read_journal, run_units
+
+
+@dataclasses.dataclass(frozen=True)
+class Study:
+    """One registered study.
+
+    Attributes:
+      name: its name on the command line.
+      description: one line for `--help`.
+      seeds: (default seeds, what a seed count means), e.g. (80, "per condition").
+      options: the other size options: {name: (default, minimum, help)}.
+      units: settings -> the list of units.
+      run_unit: a module-level function (settings, unit) -> the unit's result, a
+        JSON value.
+      assemble: (settings, units, results) -> the study's dict.
+      check: settings -> settings, raising ValueError for a bad combination.
+      indent: the JSON file's indentation (None: compact), as its committed file has it.
+    """
+
+    name: str
+    description: str
+    seeds: tuple
+    options: dict
+    units: object
+    run_unit: object
+    assemble: object
+    check: object = None
+    indent: object = None
+
+
+def versions():
+    """The versions of what computes a study: Python, icm, NumPy and MuJoCo."""
+    import mujoco
+    import numpy
+
+    import icm
+
+    return {"python": platform.python_version(), "icm": icm.__version__,
+            "numpy": numpy.__version__, "mujoco": mujoco.__version__}
+
+
+# --- the remedies study (icm.experiments.remedies_study) ---------------------------
+
+def _remedies_check(settings):
+    from icm.experiments import remedies_study as rs
+
+    n_roots = len(rs.ROOTS)
+    if settings["seeds"] % n_roots:
+        raise ValueError(f"seeds must be a multiple of the {n_roots} root seeds "
+                         f"{list(rs.ROOTS)} (the same number of seeds on each), got "
+                         f"{settings['seeds']}")
+    return settings
+
+
+def _remedies_units(settings):
+    from icm.experiments import remedies_study as rs
+
+    per_root = settings["seeds"] // len(rs.ROOTS)
+    kept = settings.get("imported_seeds", 0)
+    units = [["reach"]]
+    for label in rs.CONDITIONS:
+        for root in rs.ROOTS:
+            if kept:
+                units.append([label, root, 0, kept])
+            units.extend([label, root, i, 1] for i in range(kept, per_root))
+    return units
+
+
+def _remedies_unit(settings, unit):
+    from icm.experiments import remedies_study as rs
+
+    if unit == ["reach"]:
+        return rs.run_reach(settings["reach_movements"])
+    label, root, first, n = unit
+    return rs.run_condition(label, root, n_seeds=n, first_run=first, threads=1,
+                            n_rollouts=settings["rollouts"])
+
+
+def _remedies_assemble(settings, units, results):
+    from icm.experiments import remedies_study as rs
+
+    study = {"budgets": list(rs.budgets_of(settings["rollouts"])),
+             "n_seeds": settings["seeds"] // len(rs.ROOTS),
+             "n_rollouts": settings["rollouts"], "runs": {}}
+    done = {json.dumps(u): r for u, r in zip(units, results)}
+    study["reach"] = done[json.dumps(["reach"])]
+    for label in rs.CONDITIONS:
+        study["runs"][label] = {}
+        for root in rs.ROOTS:
+            parts = sorted((u[2], r) for u, r in zip(units, results)
+                           if u[:2] == [label, root])
+            study["runs"][label][str(root)] = join_entries([r for _, r in parts])
+    return study
+
+
+def join_entries(entries):
+    """One entry of a study from entries of consecutive seed blocks: the per-seed lists
+    joined in order, the dicts of counts ("coverage") summed cell by cell."""
+    out = {}
+    for key, value in entries[0].items():
+        if isinstance(value, list):
+            out[key] = [item for entry in entries for item in entry[key]]
+        elif isinstance(value, dict):
+            out[key] = {k: _add([entry[key][k] for entry in entries]) for k in value}
+        else:
+            raise ValueError(f"entries: {key!r} is neither per seed nor counts")
+    return out
+
+
+def _add(grids):
+    """The cell-by-cell sum of nested lists of integers of one shape."""
+    if isinstance(grids[0], list):
+        return [_add(list(cells)) for cells in zip(*grids)]
+    return sum(grids)
+
+
+# --- the goal-babbling study (icm.experiments.goal_babbling_study) -----------------
+
+def _babbling_check(settings):
+    from icm.experiments import goal_babbling_study as gs
+
+    n_roots = len(gs.TUNING_ROOTS)
+    if settings["seeds"] % n_roots:
+        raise ValueError(f"seeds must be a multiple of the {n_roots} tuning root seeds "
+                         f"{list(gs.TUNING_ROOTS)}, got {settings['seeds']}")
+    return settings
+
+
+def _babbling_plan(settings):
+    from icm.experiments import goal_babbling_study as gs
+
+    return {label: gs.TUNING_ROOTS + (gs.HELD_OUT_ROOTS if label in gs.HELD_OUT_VARIANTS
+                                      else ())
+            for label in gs.VARIANTS}
+
+
+def _babbling_units(settings):
+    from icm.experiments import goal_babbling_study as gs
+
+    per_root = settings["seeds"] // len(gs.TUNING_ROOTS)
+    return [[label, root, i, 1] for label, roots in _babbling_plan(settings).items()
+            for root in roots for i in range(per_root)]
+
+
+def _babbling_unit(settings, unit):
+    from icm.experiments import goal_babbling_study as gs
+
+    label, root, first, n = unit
+    return gs.run_variant(label, root, n_seeds=n, first_run=first, threads=1,
+                          n_rollouts=settings["rollouts"])
+
+
+def _babbling_assemble(settings, units, results):
+    from icm.experiments import goal_babbling_study as gs
+
+    study = {"budgets": list(gs.budgets_of(settings["rollouts"])),
+             "n_seeds": settings["seeds"] // len(gs.TUNING_ROOTS),
+             "n_rollouts": settings["rollouts"], "runs": {}}
+    for label, roots in _babbling_plan(settings).items():
+        study["runs"][label] = {}
+        for root in roots:
+            parts = sorted((u[2], r) for u, r in zip(units, results) if u[:2] == [label, root])
+            study["runs"][label][str(root)] = join_entries([r for _, r in parts])
+    return study
+
+
+STUDIES = {}
+"""The registered studies, by name."""
+
+
+def register(study):
+    """Adds `study` (a `Study`) to `STUDIES`."""
+    _validate.instance("study", study, Study)
+    STUDIES[study.name] = study
+    return study
+
+
+def _remedies_default_rollouts():
+    from icm.experiments import goal_babbling
+
+    return goal_babbling.DEFAULT_N_ROLLOUTS
+
+
+register(Study(
+    name="remedies",
+    description="growing up and being shown against the three strategies "
+                "(icm.experiments.remedies_study; assets/remedies_study.json)",
+    seeds=(80, "per condition, spread evenly over the root seeds 100, 200, 300, 400"),
+    options={"rollouts": (1000, 1, "rollouts per seed"),
+             "reach_movements": (1000, 1, "random movements per range share in 'reach'")},
+    units=_remedies_units, run_unit=_remedies_unit, assemble=_remedies_assemble,
+    check=_remedies_check))
+
+register(Study(
+    name="goal-babbling",
+    description="the variants of the goal-babbling learner "
+                "(icm.experiments.goal_babbling_study; assets/goal_babbling_study.json)",
+    seeds=(20, "per variant and root pair: split over the tuning roots 100 and 200 "
+               "(and the held-out roots 300 and 400 for the default and its baseline)"),
+    options={"rollouts": (1000, 1, "rollouts per seed")},
+    units=_babbling_units, run_unit=_babbling_unit, assemble=_babbling_assemble,
+    check=_babbling_check, indent=1))
+
+
+# --- running a study ---------------------------------------------------------------
+
+def check_settings(name, seeds=None, **options):
+    """The full settings of study `name`: {"seeds": ..., option: value}, defaults
+    filled in, each checked (ValueError naming the bad one)."""
+    study = STUDIES[_validate.one_of("name", name, tuple(STUDIES))]
+    unknown = sorted(set(options) - set(study.options) - {"imported_seeds"})
+    if unknown:
+        raise ValueError(f"{unknown[0]!r} is not an option of study {name!r}; allowed: "
+                         f"{', '.join(study.options) or 'none'}")
+    settings = {"seeds": _validate.integer_at_least(
+        "seeds", study.seeds[0] if seeds is None else seeds, 1)}
+    for option, (default, minimum, _) in study.options.items():
+        value = options.get(option)
+        settings[option] = _validate.integer_at_least(option, default if value is None
+                                                      else value, minimum)
+    if options.get("imported_seeds"):
+        settings["imported_seeds"] = options["imported_seeds"]
+    return study.check(settings) if study.check else settings
+
+
+def journal_of(out):
+    """The journal beside the output file `out`: ``<out>.journal``."""
+    return pathlib.Path(str(out) + ".journal")
+
+
+def run_log_of(out):
+    """The run log beside the output file `out`: ``<out>.runs.jsonl``."""
+    return pathlib.Path(str(out) + ".runs.jsonl")
+
+
+def dumps(study, data):
+    """The study file's text: `data` as JSON (compact, or with the study's indent)."""
+    if study.indent is None:
+        return json.dumps(data, separators=(",", ":")) + "\n"
+    return json.dumps(data, indent=study.indent) + "\n"
+
+
+def write_atomically(path, text):
+    """Writes `text` to `path` through a temporary file in the same folder and a
+    rename, so that `path` is never half written."""
+    path = pathlib.Path(path)
+    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8") as file:
+            file.write(text)
+            file.flush()
+            os.fsync(file.fileno())
+        os.replace(temporary, path)
+    except BaseException:
+        if os.path.exists(temporary):
+            os.unlink(temporary)
+        raise
+
+
+def run_study(name, out, seeds=None, backend="joblib", n_jobs=-1, client=None,
+              scheduler=None, progress=True, extra=None, **options):
+    """Runs study `name` and writes its file `out`.
+
+    Args:
+      name: a key of `STUDIES`.
+      out: the file to write (a path); its journal (`journal_of`) keeps the finished
+        units until the file is written, and a run log (`run_log_of`) gets one line.
+      seeds: the study's seeds (see its `Study.seeds`; default its own).
+      backend, n_jobs, client, scheduler, progress: as in `sweep.run_units` ("serial",
+        "joblib" or "dask").
+      extra: None, or a dict of further keys for "produced_by" (e.g. what was imported
+        from an earlier file, and how it was checked).
+      **options: the study's size options (see its `Study.options`).
+
+    Returns:
+      The study's dict, as written.
+    """
+    study = STUDIES[_validate.one_of("name", name, tuple(STUDIES))]
+    settings = check_settings(name, seeds, **options)
+    if not isinstance(out, (str, os.PathLike)):
+        raise _validate.ArgumentTypeError(f"out must be a file path, got {_validate.show(out)}")
+    out = pathlib.Path(out)
+    if not out.parent.is_dir():
+        raise ValueError(f"out: the folder {str(out.parent)!r} does not exist")
+    units = study.units(settings)
+    journal = journal_of(out)
+    before = len(read_journal(journal))
+    started, wall = time.strftime("%Y-%m-%dT%H:%M:%S%z"), time.perf_counter()
+    results, cpu = run_units(functools.partial(study.run_unit, settings), units,
+                                   backend=backend, n_jobs=n_jobs, client=client,
+                                   scheduler=scheduler, progress=progress,
+                                   journal=journal)
+    data = study.assemble(settings, units, results)
+    data["produced_by"] = {"study": name, "command": command_of(name, settings),
+                           "settings": settings, "versions": versions(),
+                           "seeds": seeds_of(name, settings), "units": units,
+                           **(extra or {})}
+    write_atomically(out, dumps(study, data))
+    with open(run_log_of(out), "a", encoding="utf-8") as log:
+        log.write(json.dumps({
+            "started": started, "settings": settings, "backend": backend,
+            "n_jobs": n_jobs if backend == "joblib" else None,
+            "scheduler": scheduler, "units": len(units),
+            "units_from_journal": before, "wall_seconds": round(time.perf_counter() - wall, 1),
+            "unit_cpu_seconds_total": round(sum(cpu), 1),
+            "unit_cpu_seconds": [round(c, 2) for c in cpu],
+            "cpu_count": os.cpu_count()}) + "\n")
+    journal.unlink(missing_ok=True)
+    return data
+
+
+def command_of(name, settings):
+    """The command line that runs study `name` with `settings`."""
+    options = " ".join(f"--{k.replace('_', '-')} {v}" for k, v in settings.items()
+                       if k not in ("seeds", "imported_seeds"))
+    return f"python -m icm study {name} --seeds {settings['seeds']} {options}".strip()
+
+
+def seeds_of(name, settings):
+    """What seeds a study's units use, in words."""
+    if name in ("remedies", "goal-babbling"):
+        return ("unit [label, root, first, n]: seeds first..first+n-1 of root seed "
+                "'root' (icm.experiments._seeding.run_seeds: child i of "
+                "numpy.random.SeedSequence(root)); the goal-oriented learner on the formed "
+                "presses uses the same children of the same root")
+    return STUDIES[name].seeds[1]
+
+
+def import_seeds(name, out, source, seeds=None, backend="joblib", n_jobs=-1, client=None,
+                 scheduler=None, progress=True, **options):
+    """Makes the seeds of an earlier file of study `name` (fewer seeds per root, same
+    rollouts) done units of a larger run into `out`, after recomputing a sample of them.
+
+    The earlier file's entries of root r hold seeds 0..k-1 of r, the first seeds of
+    any larger run. Before trusting them, one seed of every label (seed i of root
+    r, cycling over both) is recomputed alone and must give the same per-seed numbers,
+    and the first label's whole block on its first root is recomputed and must give
+    the same entry, counts included. Then each entry is written to the journal of
+    `out` as the unit [label, root, 0, k], and `run_study(..., imported_seeds=k,
+    extra=...)` finishes the study.
+
+    Returns:
+      (k, extra): the seeds per root imported, and the "produced_by" keys saying what
+      was imported and how it was checked.
+
+    Raises:
+      ValueError: if the earlier file is of other settings, or a recomputed unit
+        differs from it.
+    """
+    import hashlib
+
+    study = STUDIES[_validate.one_of("name", name, tuple(STUDIES))]
+    source = pathlib.Path(source)
+    text = source.read_text()
+    old = json.loads(text)
+    settings = check_settings(name, seeds, **options)
+    kept = old["n_seeds"]
+    if old["n_rollouts"] != settings["rollouts"]:
+        raise ValueError(f"source: {source} has {old['n_rollouts']} rollouts, the run "
+                         f"{settings['rollouts']}")
+    full = study.units(settings)
+    if kept * len({u[1] for u in full if len(u) == 4}) >= settings["seeds"]:
+        raise ValueError(f"seeds must be more than the source's ({kept} per root), got "
+                         f"{settings['seeds']}")
+    labels = list(old["runs"])
+    checks = []
+    for c, label in enumerate(labels):
+        roots = [int(r) for r in old["runs"][label]]
+        checks.append([label, roots[c % len(roots)], c % kept, 1])
+    first = [labels[0], int(next(iter(old["runs"][labels[0]]))), 0, kept]
+    checks.append(first)
+    if "reach" in old:
+        checks.append(["reach"])
+    results, _ = run_units(functools.partial(study.run_unit, settings), checks,
+                                 backend=backend, n_jobs=n_jobs, client=client,
+                                 scheduler=scheduler, progress=progress)
+    for unit, result in zip(checks, results):
+        if unit == ["reach"]:
+            if result != old["reach"]:
+                raise ValueError(f"source: recomputing 'reach' does not give the numbers of "
+                                 f"{source}")
+            continue
+        label, root, i, n = unit
+        entry = old["runs"][label][str(root)]
+        if n == kept:
+            same = result == entry
+        else:
+            same = all(result[key] == entry[key][i:i + 1] for key in result
+                       if isinstance(result[key], list))
+        if not same:
+            raise ValueError(f"source: recomputing unit {unit} does not give the numbers "
+                             f"of {source}; its seeds cannot be imported")
+    journal = journal_of(out)
+    with open(journal, "a", encoding="utf-8") as file:
+        if "reach" in old:
+            _append(file, ["reach"], old["reach"], 0.0)
+        for label in old["runs"]:
+            for root, entry in old["runs"][label].items():
+                _append(file, [label, int(root), 0, kept], entry, 0.0)
+    extra = {"imported": {
+        "from": source.name, "sha256": hashlib.sha256(text.encode()).hexdigest(),
+        "seeds_per_root": kept,
+        "units": [[label, int(root), 0, kept] for label in old["runs"]
+                  for root in old["runs"][label]] + ([["reach"]] if "reach" in old else []),
+        "checked": checks,
+        "check": ("each checked unit recomputed here and identical to the source: one "
+                  "seed of every label (its per-seed numbers), one whole block (its "
+                  "entry, counts included), and 'reach'")}}
+    return kept, extra
