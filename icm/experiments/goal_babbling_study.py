@@ -2,10 +2,13 @@
 the learner at the default budget on root seeds that no test uses, kept in
 assets/goal_babbling_study.json because they take minutes, not seconds.
 
-`run_study` runs them with `run_goal_babbling` (and `run_formed_actions`); `main`
-writes the file (`python -m icm.experiments.goal_babbling_study`, about 15 minutes of
-CPU); `load_study` reads it; a test reruns the first seeds of some of it (the first k
-seeds of a root seed are the same in any larger run) and expects the same numbers.
+`run_variant` runs one variant on seeds of one root seed with `run_goal_babbling`
+(and `run_formed_actions`); `python -m icm study goal-babbling`
+(`icm.experiments.studies`) writes the file on every core or on a Dask cluster, one
+seed of one variant a unit (`python -m icm.experiments.goal_babbling_study` with the
+defaults; about 15 minutes of CPU); `load_study` reads it; a test reruns the first
+seeds of some of it (the first k seeds of a root seed are the same in any larger run)
+and expects the same numbers.
 """
 
 import json
@@ -108,61 +111,11 @@ def run_variant(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threa
     return entry
 
 
-def run_study(progress=True, partial=None, save=None):
-    """Every variant on `TUNING_ROOTS`, and `HELD_OUT_VARIANTS` on `HELD_OUT_ROOTS`:
-    {"budgets": [...], "n_seeds": N_SEEDS, "n_rollouts": ..., "runs": {label: {root:
-    entry}}} (entries as `run_variant` returns them; roots as strings, as JSON keys
-    are).
-
-    Args:
-      progress: show progress bars.
-      partial: a study of the same budgets and seeds, whose entries are kept rather
-        than run again (to finish an interrupted study), or None.
-      save: None, or a function called with the study so far after every entry.
-    """
-    study = {"budgets": list(BUDGETS), "n_seeds": N_SEEDS,
-             "n_rollouts": goal_babbling.DEFAULT_N_ROLLOUTS, "runs": {}}
-    plan = {label: TUNING_ROOTS + (HELD_OUT_ROOTS if label in HELD_OUT_VARIANTS else ())
-            for label in VARIANTS}
-    return fill_study(study, plan, run_variant, progress, partial, save)
-
-
-def fill_study(study, plan, run, progress=True, partial=None, save=None):
-    """Fills `study["runs"]` for every label and root seed of `plan` ({label: root
-    seeds}) with `run(label, root, progress=progress)`, in order, keeping the entries
-    that `partial` already holds; returns `study`. The shared loop of this module's
-    study and of `icm.experiments.remedies_study`'s.
-
-    Args:
-      study: the study to fill: a dict with "budgets", "n_seeds", "n_rollouts" and
-        "runs" (roots are kept as strings, as JSON keys are).
-      plan: {label: sequence of root seeds}.
-      run: the function that runs one entry.
-      progress: passed to `run`.
-      partial: a study of the same budgets, seeds and rollouts, or None.
-      save: None, or a function called with the study so far after every entry.
-
-    Raises:
-      ValueError: for a `partial` of other budgets, seeds or rollouts.
-    """
-    keys = ("budgets", "n_seeds", "n_rollouts")
-    if partial is not None and {k: partial.get(k) for k in keys} != {k: study[k] for k in keys}:
-        raise ValueError("partial must be a study of the same budgets, seeds and rollouts, "
-                         f"{ {k: study[k] for k in keys} }, got "
-                         f"{ {k: partial.get(k) for k in keys} }")
-    for label, roots in plan.items():
-        study["runs"][label] = {}
-        for root in roots:
-            kept = (partial or {}).get("runs", {}).get(label, {}).get(str(root))
-            study["runs"][label][str(root)] = kept if kept is not None else \
-                run(label, root, progress=progress)
-            if save is not None:
-                save(study)
-    return study
-
-
 def load_study():
-    """The study as `run_study` returns it, read from assets/goal_babbling_study.json."""
+    """The study, read from assets/goal_babbling_study.json: {"budgets": [...],
+    "n_seeds": (per root seed), "n_rollouts": ..., "runs": {label: {root: entry}}}
+    (every variant on `TUNING_ROOTS`, and `HELD_OUT_VARIANTS` on `HELD_OUT_ROOTS`;
+    entries as `run_variant` returns them; roots as strings, as JSON keys are)."""
     return json.loads(asset_path(STUDY_FILE).read_text())
 
 
@@ -203,12 +156,13 @@ def _pool(entries):
 
 
 def main():
-    """Runs the study and writes assets/goal_babbling_study.json, after every entry (a
-    study left unfinished there is finished, not started again)."""
+    """Runs the study on every core and writes assets/goal_babbling_study.json
+    (`python -m icm study goal-babbling` does the same with more choices: a Dask
+    cluster, fewer seeds, ...). A run stopped half-way continues from its journal."""
+    from icm.experiments import studies
+
     path = ASSETS / STUDY_FILE
-    partial = json.loads(path.read_text()) if path.exists() else None
-    write = lambda study: path.write_text(json.dumps(study, indent=1) + "\n")
-    write(run_study(partial=partial, save=write))
+    studies.run_study("goal-babbling", path, seeds=N_SEEDS * len(TUNING_ROOTS))
     print(f"wrote {path}")
 
 

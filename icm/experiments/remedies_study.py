@@ -3,11 +3,12 @@
 maturational constraints and a teacher, against the three strategies, all on the same
 seeds and budget, kept in assets/remedies_study.json because they take minutes.
 
-`run_condition` runs one condition on one root seed with `run_goal_babbling` (and
-`run_formed_actions`); `main` writes the file (`python -m
-icm.experiments.remedies_study`, about an hour of CPU); `load_study` reads it; a
-test reruns the first seeds of some of it (the first k seeds of a root seed are the
-same in any larger run) and expects the same numbers.
+`run_condition` runs one condition on seeds of one root seed with `run_goal_babbling`
+(and `run_formed_actions`); `python -m icm study remedies` (`icm.experiments.studies`)
+writes the file on every core or on a Dask cluster, one seed of one condition a unit
+(`python -m icm.experiments.remedies_study` with the defaults; about two hours of
+CPU); `load_study` reads it; a test reruns the first seeds of some of it (the first k
+seeds of a root seed are the same in any larger run) and expects the same numbers.
 """
 
 import json
@@ -38,8 +39,10 @@ end buttons, farthest from the resting hand."""
 ROOTS = goal_babbling_study.TUNING_ROOTS + goal_babbling_study.HELD_OUT_ROOTS
 """Root seeds on which every condition runs: those of `goal_babbling_study`, which no
 test uses (the maturation's settings were chosen on its tuning roots, the first two)."""
-N_SEEDS = 10
-"""Seeds per root seed."""
+N_SEEDS = 20
+"""Seeds per root seed (80 per condition). The first 10 of each root were computed
+first, in one process; the next 10 on the sweep engine, one seed a unit
+(`icm.experiments.studies`); seed i of a root is the same either way."""
 BUDGETS = goal_babbling_study.BUDGETS
 """Rollouts after which the presses formed so far are tested (`presses_formed`)."""
 EARLY = 200
@@ -138,40 +141,23 @@ def run_condition(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, thr
                          "all": coverage_counts(result).tolist()}}
 
 
-def run_study(progress=True, partial=None, save=None):
-    """Every condition on every root seed of `ROOTS`: {"budgets": [...], "n_seeds":
-    N_SEEDS, "n_rollouts": ..., "reach": `run_reach()`, "runs": {label: {root:
-    entry}}} (entries as `run_condition` returns them; roots as strings, as JSON keys
-    are).
-
-    Args:
-      progress: show progress bars.
-      partial: a study of the same budgets and seeds, whose entries are kept rather
-        than run again (to finish an interrupted study), or None.
-      save: None, or a function called with the study so far after every entry.
-    """
-    if BUDGETS[-1] != goal_babbling.DEFAULT_N_ROLLOUTS:
-        raise ValueError(f"BUDGETS must end at the default budget "
-                         f"({goal_babbling.DEFAULT_N_ROLLOUTS}), got {BUDGETS[-1]}")
-    study = {"budgets": list(BUDGETS), "n_seeds": N_SEEDS,
-             "n_rollouts": goal_babbling.DEFAULT_N_ROLLOUTS, "runs": {}}
-    study["reach"] = (partial or {}).get("reach") or run_reach()
-    return goal_babbling_study.fill_study(study, {label: ROOTS for label in CONDITIONS},
-                                          run_condition, progress, partial, save)
-
-
 def load_study():
-    """The study as `run_study` returns it, read from assets/remedies_study.json."""
+    """The study, read from assets/remedies_study.json: {"budgets": [...], "n_seeds": (per
+    root seed), "n_rollouts": ..., "reach": `run_reach()`, "runs": {label: {root:
+    entry}}} (entries as `run_condition` returns them for all the seeds of a root;
+    roots as strings, as JSON keys are), and "produced_by" (`icm.experiments.studies`:
+    the settings, versions, seeds and units that produced it)."""
     return json.loads(asset_path(STUDY_FILE).read_text())
 
 
 def main():
-    """Runs the study and writes assets/remedies_study.json, after every entry (a study
-    left unfinished there is finished, not started again)."""
+    """Runs the study on every core and writes assets/remedies_study.json
+    (`python -m icm study remedies` does the same with more choices: a Dask cluster,
+    fewer seeds, ...). A run stopped half-way continues from its journal."""
+    from icm.experiments import studies
+
     path = ASSETS / STUDY_FILE
-    partial = json.loads(path.read_text()) if path.exists() else None
-    write = lambda study: path.write_text(json.dumps(study, separators=(",", ":")) + "\n")
-    write(run_study(partial=partial, save=write))
+    studies.run_study("remedies", path, seeds=N_SEEDS * len(ROOTS))
     print(f"wrote {path}")
 
 

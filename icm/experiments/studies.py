@@ -203,6 +203,117 @@ def _babbling_assemble(settings, units, results):
     return study
 
 
+def plain(value):
+    """`value` with NumPy scalars and arrays made Python numbers and lists (JSON)."""
+    if isinstance(value, dict):
+        return {str(k): plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [plain(v) for v in value]
+    if hasattr(value, "tolist"):
+        return plain(value.tolist())
+    return value
+
+
+# --- the robustness maps (icm.experiments.robustness) ------------------------------
+
+ROBUSTNESS_SEED = 0
+"""The root seed of the maps' runs (that of `robustness.run_robustness`'s default)."""
+
+
+def _robustness_units(settings):
+    from icm.experiments import robustness
+
+    units = []
+    for name, study in robustness.STUDIES.items():
+        for (a, b), grid in robustness._pair_grids(study):
+            units.extend([name, a, va, b, vb] for va in grid[a] for vb in grid[b])
+    return units
+
+
+def _robustness_unit(settings, unit):
+    """One map point and its block of seeds: the rows `robustness.run_robustness`'s
+    sweep keeps for it (the point, `seed_index`, a boolean per claim)."""
+    from icm.experiments import robustness
+    from icm.experiments.sweep import _run_point
+
+    name, a, va, b, vb = unit
+    study = robustness.STUDIES[name]
+    others = {n: v for n, v in study.defaults().items() if n not in (a, b)}
+    fixed = {**study.fixed, **others}
+    if settings.get("length") is not None:
+        key = "n_trials" if "n_trials" in fixed else "n_episodes"
+        fixed[key] = settings["length"]
+    return plain(_run_point(study.run_fn, settings["seeds"], ROBUSTNESS_SEED, fixed,
+                            {a: va, b: vb}, per_seed=study.per_seed))
+
+
+def _robustness_assemble(settings, units, results):
+    maps = {}
+    for (name, a, _, b, _), rows in zip(units, results):
+        maps.setdefault(name, {}).setdefault(f"{a}|{b}", []).extend(rows)
+    return {"n_seeds": settings["seeds"], "seed": ROBUSTNESS_SEED,
+            "length": settings.get("length"), "maps": maps}
+
+
+def robustness_results(data):
+    """The `robustness.RobustnessResult` of each learner from a robustness study's dict
+    (as `python -m icm study robustness` writes it): {name: result}."""
+    import pandas as pd
+
+    from icm.experiments import robustness
+
+    return {name: robustness.RobustnessResult(
+                robustness.STUDIES[name], {"n_seeds": data["n_seeds"], "seed": data["seed"]},
+                {tuple(pair.split("|")): pd.DataFrame(rows) for pair, rows in maps.items()})
+            for name, maps in data["maps"].items()}
+
+
+# --- the curiosity comparisons (icm.experiments.curiosity) -------------------------
+
+CURIOSITY_SEED = 0
+"""The root seed of the comparisons' runs (that of the curiosity functions' default)."""
+
+
+def _curiosity_units(settings):
+    import itertools
+
+    from icm.learners import goal_oriented, interest, q_learning
+
+    return ([["signal", s, per, noisy] for s, per, noisy in itertools.product(
+                interest.SIGNALS, goal_oriented.INTEREST_PER, (False, True))]
+            + [["reward", r, wobbly] for r, wobbly in itertools.product(
+                q_learning.REWARDS, (False, True))])
+
+
+def _curiosity_unit(settings, unit):
+    """One setting of `curiosity.run_signal_comparison` or `run_reward_comparison` on
+    all the study's seeds (the same seeds for every setting, as there): its runs'
+    `seed_summaries()`."""
+    from icm.experiments import goal_oriented, rod_toppling
+
+    if unit[0] == "signal":
+        _, signal, per, noisy = unit
+        result = goal_oriented.run_goal_oriented(
+            n_seeds=settings["seeds"], n_trials=settings["trials"], interest=signal,
+            interest_per=per, noisy_button=noisy, seed=CURIOSITY_SEED, progress=False)
+    else:
+        _, reward, wobbly = unit
+        result = rod_toppling.run_rod_toppling(
+            n_seeds=settings["seeds"], n_episodes=settings["episodes"], reward=reward,
+            wobbly_rod=wobbly, seed=CURIOSITY_SEED, progress=False)
+    return plain(result.seed_summaries())
+
+
+def _curiosity_assemble(settings, units, results):
+    signals = {"|".join(map(str, u[1:])): r for u, r in zip(units, results)
+               if u[0] == "signal"}
+    rewards = {"|".join(map(str, u[1:])): r for u, r in zip(units, results)
+               if u[0] == "reward"}
+    return {"n_seeds": settings["seeds"], "n_trials": settings["trials"],
+            "n_episodes": settings["episodes"], "seed": CURIOSITY_SEED,
+            "signals": signals, "rewards": rewards}
+
+
 STUDIES = {}
 """The registered studies, by name."""
 
@@ -239,6 +350,26 @@ register(Study(
     options={"rollouts": (1000, 1, "rollouts per seed")},
     units=_babbling_units, run_unit=_babbling_unit, assemble=_babbling_assemble,
     check=_babbling_check, indent=1))
+
+register(Study(
+    name="robustness",
+    description="the maps of what the results depend on: every pair of each learner's "
+                "unpublished settings (icm.experiments.robustness), one map point and its "
+                "seeds a unit",
+    seeds=(200, "per map point, the same at every point"),
+    options={"length": (0, 0, "trials (episodes on the rods) per run; 0: each "
+                              "learner's chapter's")},
+    units=_robustness_units, run_unit=_robustness_unit, assemble=_robustness_assemble,
+    check=lambda settings: {**settings, "length": settings["length"] or None}))
+
+register(Study(
+    name="curiosity",
+    description="the interest signals on the buttons and the intrinsic rewards on the rods "
+                "(icm.experiments.curiosity), one setting and its seeds a unit",
+    seeds=(100, "per setting, the same for every setting"),
+    options={"trials": (100, 1, "trials per run on the buttons"),
+             "episodes": (300, 1, "episodes per run on the rods")},
+    units=_curiosity_units, run_unit=_curiosity_unit, assemble=_curiosity_assemble))
 
 
 # --- running a study ---------------------------------------------------------------
@@ -362,7 +493,11 @@ def seeds_of(name, settings):
                 "'root' (icm.experiments._seeding.run_seeds: child i of "
                 "numpy.random.SeedSequence(root)); the goal-oriented learner on the formed "
                 "presses uses the same children of the same root")
-    return STUDIES[name].seeds[1]
+    if name == "robustness":
+        return (f"every map point runs seeds 0..n-1 of root seed {ROBUSTNESS_SEED} "
+                "(the same seeds at every point, as in robustness.run_robustness)")
+    return (f"every setting runs seeds 0..n-1 of root seed {CURIOSITY_SEED} (the same "
+            "seeds for every setting, as in icm.experiments.curiosity)")
 
 
 def import_seeds(name, out, source, seeds=None, backend="joblib", n_jobs=-1, client=None,
