@@ -153,9 +153,23 @@ def test_every_registered_study_runs_tiny(tmp_path):
     babbling = json.loads((tmp_path / "goal-babbling.json").read_text())
     assert list(babbling["runs"]["learning progress"]) == ["100", "200", "300", "400"]
     assert list(babbling["runs"]["LWLR inverse model"]) == ["100", "200"]
-    maps = studies.robustness_results(json.loads((tmp_path / "robustness.json").read_text()))
+    data = json.loads((tmp_path / "robustness.json").read_text())
+    maps = studies.robustness_results(data)
     assert set(maps) == {"goal_oriented", "actor_critic", "rod_toppling"}
     assert len(maps["goal_oriented"].points()) > 0
+    # A map point's unit gives the rows run_robustness's sweep gives for that point.
+    from icm.experiments import robustness
+
+    study = robustness.STUDIES["rod_toppling"]
+    (a, b), grid = robustness._pair_grids(study)[0]
+    point = {a: grid[a][-1], b: grid[b][-1]}
+    others = {n: v for n, v in study.defaults().items() if n not in (a, b)}
+    frame = sweep(study.run_fn, {a: [point[a]], b: [point[b]]}, n_seeds=2, seed=0,
+                  per_seed=study.per_seed, progress=False,
+                  **{**study.fixed, "n_episodes": 3}, **others)
+    rows = [r for r in data["maps"]["rod_toppling"][f"{a}|{b}"]
+            if r[a] == point[a] and r[b] == point[b]]
+    assert rows == json.loads(json.dumps(studies.plain(frame.to_dict("records"))))
 
 
 def test_seed_blocks_join_into_one_entry():
