@@ -150,6 +150,39 @@ def load_study():
     return json.loads(asset_path(STUDY_FILE).read_text())
 
 
+RUN_LOG = STUDY_FILE + ".runs.jsonl"
+"""The file in assets/ that records the runs that wrote the study (one JSON line per
+run: backend, workers, wall seconds, every unit's CPU seconds; see
+`icm.experiments.studies.run_study`)."""
+
+
+def study_times():
+    """How much computing the study file took, from its run log (`RUN_LOG`) and its
+    "produced_by": a dict with "seeds_per_condition", "conditions", "units_computed"
+    (the units run by the engine; the imported ones, recorded with 0 CPU seconds, are
+    not counted), "cpu_hours"
+    (their CPU time, summed over the units), "wall_hours" (the runs' wall time),
+    "workers" and "backend" (of the last run), and "imported_seeds_per_condition" (the
+    seeds kept from the earlier file after the check recorded in "produced_by", 0 if
+    none)."""
+    study = load_study()
+    runs = [json.loads(line) for line in asset_path(RUN_LOG).read_text().splitlines()
+            if line.strip()]
+    runs = [r for r in runs if r["settings"] == study["produced_by"]["settings"]]
+    if not runs:
+        raise ValueError(f"{RUN_LOG} has no run of the study's settings "
+                         f"{study['produced_by']['settings']}")
+    last = runs[-1]
+    imported = study["produced_by"].get("imported", {}).get("seeds_per_root", 0)
+    computed = [cpu for cpu in last["unit_cpu_seconds"] if cpu > 0]  # imported: 0
+    return {"seeds_per_condition": study["n_seeds"] * len(ROOTS),
+            "conditions": len(study["runs"]), "units_computed": len(computed),
+            "cpu_hours": sum(last["unit_cpu_seconds"]) / 3600,
+            "wall_hours": sum(r["wall_seconds"] for r in runs) / 3600,
+            "workers": last["n_jobs"], "backend": last["backend"],
+            "imported_seeds_per_condition": imported * len(ROOTS)}
+
+
 def main():
     """Runs the study on every core and writes assets/remedies_study.json
     (`python -m icm study remedies` does the same with more choices: a Dask cluster,
