@@ -66,7 +66,8 @@ def test_a_study_is_byte_identical_serially_on_joblib_and_on_a_dask_cluster(tmp_
 
 
 def _journal_lines(path):
-    return path.read_text().count("\n") if path.exists() else 0
+    """The units a journal holds (its lines after the header)."""
+    return max(path.read_text().count("\n") - 1, 0) if path.exists() else 0
 
 
 def test_a_study_killed_half_way_resumes_from_its_journal_to_the_same_bytes(tmp_path,
@@ -91,11 +92,27 @@ def test_a_study_killed_half_way_resumes_from_its_journal_to_the_same_bytes(tmp_
     # A write cut short by the kill: the last line half there. It is dropped and rerun.
     with open(journal, "a") as file:
         file.write('{"unit":["signal","nov')
-    assert len(read_journal(journal)) == saved
+    assert len(read_journal(journal, {**TINY})) == saved
     subprocess.run(command, env=env, cwd=tmp_path, check=True, capture_output=True)
     assert out.read_bytes() == serial_bytes
     log = json.loads(studies.run_log_of(out).read_text().splitlines()[-1])
     assert log["units_from_journal"] == saved
+
+
+def test_a_journal_of_other_settings_is_refused(tmp_path):
+    out = tmp_path / "study.json"
+    studies.journal_of(out).write_text(json.dumps({"header": {**TINY, "trials": 11}})
+                                       + "\n")
+    with pytest.raises(ValueError, match="written by a run of other settings"):
+        _tiny(out, backend="serial")
+    journal = tmp_path / "j"
+    run_units(abs, [-1, -2], backend="serial", progress=False, journal=journal,
+              header={"a": 1})
+    assert run_units(abs, [-1, -2, -3], backend="serial", progress=False,
+                     journal=journal, header={"a": 1})[0] == [1, 2, 3]
+    with pytest.raises(ValueError, match="other settings"):
+        run_units(abs, [-1], backend="serial", progress=False, journal=journal,
+                  header={"a": 2})
 
 
 def test_a_journal_with_a_broken_line_in_the_middle_is_refused(tmp_path):
@@ -129,7 +146,7 @@ def test_a_dask_worker_killed_mid_run_costs_only_its_unit_and_the_result_is_unch
     assert marker.exists()  # a worker did die
     assert results == [u * u for u in range(8)]
     assert sorted(json.loads(line)["unit"] for line in
-                  (tmp_path / "journal").read_text().splitlines()) == list(range(8))
+                  (tmp_path / "journal").read_text().splitlines()[1:]) == list(range(8))
 
 
 def test_every_registered_study_runs_tiny(tmp_path):

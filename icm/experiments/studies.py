@@ -36,7 +36,8 @@ import tempfile
 import time
 
 from icm import _validate
-from icm.experiments.sweep import _append, read_journal, run_units
+from icm.experiments import goal_babbling, remedies_study
+from icm.experiments.sweep import _append, read_journal, run_units, start_journal
 
 
 @dataclasses.dataclass(frozen=True)
@@ -325,19 +326,14 @@ def register(study):
     return study
 
 
-def _remedies_default_rollouts():
-    from icm.experiments import goal_babbling
-
-    return goal_babbling.DEFAULT_N_ROLLOUTS
-
-
 register(Study(
     name="remedies",
     description="growing up and being shown against the three strategies "
                 "(icm.experiments.remedies_study; assets/remedies_study.json)",
     seeds=(80, "per condition, spread evenly over the root seeds 100, 200, 300, 400"),
-    options={"rollouts": (1000, 1, "rollouts per seed"),
-             "reach_movements": (1000, 1, "random movements per range share in 'reach'")},
+    options={"rollouts": (goal_babbling.DEFAULT_N_ROLLOUTS, 1, "rollouts per seed"),
+             "reach_movements": (remedies_study.REACH_MOVEMENTS, 1,
+                                 "random movements per range share in 'reach'")},
     units=_remedies_units, run_unit=_remedies_unit, assemble=_remedies_assemble,
     check=_remedies_check))
 
@@ -347,7 +343,7 @@ register(Study(
                 "(icm.experiments.goal_babbling_study; assets/goal_babbling_study.json)",
     seeds=(20, "per variant and root pair: split over the tuning roots 100 and 200 "
                "(and the held-out roots 300 and 400 for the default and its baseline)"),
-    options={"rollouts": (1000, 1, "rollouts per seed")},
+    options={"rollouts": (goal_babbling.DEFAULT_N_ROLLOUTS, 1, "rollouts per seed")},
     units=_babbling_units, run_unit=_babbling_unit, assemble=_babbling_assemble,
     check=_babbling_check, indent=1))
 
@@ -454,12 +450,12 @@ def run_study(name, out, seeds=None, backend="joblib", n_jobs=-1, client=None,
         raise ValueError(f"out: the folder {str(out.parent)!r} does not exist")
     units = study.units(settings)
     journal = journal_of(out)
-    before = len(read_journal(journal))
+    before = len(read_journal(journal, settings))
     started, wall = time.strftime("%Y-%m-%dT%H:%M:%S%z"), time.perf_counter()
     results, cpu = run_units(functools.partial(study.run_unit, settings), units,
                                    backend=backend, n_jobs=n_jobs, client=client,
                                    scheduler=scheduler, progress=progress,
-                                   journal=journal)
+                                   journal=journal, header=settings)
     data = study.assemble(settings, units, results)
     data["produced_by"] = {"study": name, "command": command_of(name, settings),
                            "settings": settings, "versions": versions(),
@@ -565,6 +561,9 @@ def import_seeds(name, out, source, seeds=None, backend="joblib", n_jobs=-1, cli
             raise ValueError(f"source: recomputing unit {unit} does not give the numbers "
                              f"of {source}; its seeds cannot be imported")
     journal = journal_of(out)
+    header = check_settings(name, seeds, imported_seeds=kept, **options)
+    read_journal(journal, header)  # refuses a journal of other settings
+    start_journal(journal, header)
     with open(journal, "a", encoding="utf-8") as file:
         if "reach" in old:
             _append(file, ["reach"], old["reach"], 0.0)

@@ -221,27 +221,42 @@ def _check_unit(unit):
     return unit
 
 
-def read_journal(path):
+def read_journal(path, header=None):
     """The units a journal holds: {unit's JSON text: (result, cpu seconds)}. A last
     line cut short by a killed process is dropped (its unit runs again); any other
-    unreadable line raises ValueError."""
+    unreadable line raises ValueError, and so does a journal whose header (its first
+    line, {"header": ...}: what the units were computed with) is not `header`."""
     done = {}
     if path is None or not os.path.exists(path):
         return done
     with open(path, encoding="utf-8") as file:
         lines = file.read().split("\n")
+    found = None
     for number, line in enumerate(lines, 1):
         if not line:
             continue
         try:
             record = json.loads(line)
+            if number == 1 and isinstance(record, dict) and set(record) == {"header"}:
+                found = record["header"]
+                continue
             done[_key(record["unit"])] = (record["result"], record["cpu"])
         except (ValueError, KeyError, TypeError):
             if number == len(lines):  # no newline after it: a write cut short
                 continue
             raise ValueError(f"journal {path}: line {number} is not a unit's record "
                              f"({line[:80]!r})") from None
+    if (found is not None or done) and found != json.loads(json.dumps(header)):
+        raise ValueError(f"journal {path} was written by a run of other settings "
+                         f"({found}), not {header}: remove it to start again")
     return done
+
+
+def start_journal(path, header):
+    """Creates the journal `path` with its header line, unless it exists."""
+    if not os.path.exists(path):
+        with open(path, "w", encoding="utf-8") as file:
+            file.write(json.dumps({"header": header}, separators=(",", ":")) + "\n")
 
 
 def _append(file, unit, result, cpu):
@@ -253,7 +268,7 @@ def _append(file, unit, result, cpu):
 
 
 def run_units(fn, units, backend="joblib", n_jobs=-1, client=None, scheduler=None,
-              progress=True, journal=None, retries=2):
+              progress=True, journal=None, retries=2, header=None):
     """Computes `fn(unit)` for every unit, on this machine or on a Dask cluster.
 
     Each unit must carry everything that decides its result, its seeds included (for
@@ -279,6 +294,9 @@ def run_units(fn, units, backend="joblib", n_jobs=-1, client=None, scheduler=Non
         killed half-way continues where it stopped.
       retries: how many times Dask reruns a unit whose function raised (a unit whose
         worker died is rerun by Dask's scheduler in any case).
+      header: what the units are computed with (a JSON value, e.g. the study's
+        settings), written as the journal's first line; a journal of another header
+        is refused, so that no run reuses units computed with other settings.
 
     Returns:
       (results, cpu): two lists in the order of `units`: each unit's result, and the
@@ -313,8 +331,10 @@ def run_units(fn, units, backend="joblib", n_jobs=-1, client=None, scheduler=Non
         raise _validate.ArgumentTypeError(f"scheduler must be an address such as "
                                           f"'tcp://127.0.0.1:8786', got "
                                           f"{_validate.show(scheduler)}")
-    done = read_journal(journal)
+    done = read_journal(journal, header)
     todo = [u for u, k in zip(units, keys) if k not in done]
+    if journal is not None:
+        start_journal(journal, header)
     file = None if journal is None else open(journal, "a", encoding="utf-8")
     try:
         for unit, result, cpu in progress_bar(
