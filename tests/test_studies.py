@@ -280,6 +280,12 @@ def test_the_remedies_file_records_what_produced_it_and_its_imported_seeds_were_
         for entry in by_root.values():
             assert len(entry["test_error"]) == study["n_seeds"]
             assert np.array(entry["pressed"]).shape[0] == study["n_seeds"]
+    # What computing it took, for the chapter: 40 seeds a condition imported, 40 new.
+    times = remedies_study.study_times()
+    kept = imported["seeds_per_root"] * len(remedies_study.ROOTS)
+    assert times["seeds_per_condition"] == 80 and times["imported_seeds_per_condition"] == kept
+    assert times["units_computed"] == len(remedies_study.CONDITIONS) * (80 - kept)
+    assert 0 < times["cpu_hours"] and 0 < times["wall_hours"]
 
 
 def test_the_engine_module_is_the_sweep_module():
