@@ -36,7 +36,7 @@ import tempfile
 import time
 
 from icm import _validate
-from icm.experiments import goal_babbling, remedies_study
+from icm.experiments import goal_babbling, goal_babbling_study, remedies_study
 from icm.experiments.sweep import _append, read_journal, run_units, start_journal
 
 
@@ -82,24 +82,20 @@ def versions():
 # --- the remedies study (icm.experiments.remedies_study) ---------------------------
 
 def _remedies_check(settings):
-    from icm.experiments import remedies_study as rs
-
-    n_roots = len(rs.ROOTS)
+    n_roots = len(remedies_study.ROOTS)
     if settings["seeds"] % n_roots:
         raise ValueError(f"seeds must be a multiple of the {n_roots} root seeds "
-                         f"{list(rs.ROOTS)} (the same number of seeds on each), got "
+                         f"{list(remedies_study.ROOTS)} (the same number of seeds on each), got "
                          f"{settings['seeds']}")
     return settings
 
 
 def _remedies_units(settings):
-    from icm.experiments import remedies_study as rs
-
-    per_root = settings["seeds"] // len(rs.ROOTS)
+    per_root = settings["seeds"] // len(remedies_study.ROOTS)
     kept = settings.get("imported_seeds", 0)
     units = [["reach"]]
-    for label in rs.CONDITIONS:
-        for root in rs.ROOTS:
+    for label in remedies_study.CONDITIONS:
+        for root in remedies_study.ROOTS:
             if kept:
                 units.append([label, root, 0, kept])
             units.extend([label, root, i, 1] for i in range(kept, per_root))
@@ -107,26 +103,22 @@ def _remedies_units(settings):
 
 
 def _remedies_unit(settings, unit):
-    from icm.experiments import remedies_study as rs
-
     if unit == ["reach"]:
-        return rs.run_reach(settings["reach_movements"])
+        return remedies_study.run_reach(settings["reach_movements"])
     label, root, first, n = unit
-    return rs.run_condition(label, root, n_seeds=n, first_run=first, threads=1,
+    return remedies_study.run_condition(label, root, n_seeds=n, first_run=first, threads=1,
                             n_rollouts=settings["rollouts"])
 
 
 def _remedies_assemble(settings, units, results):
-    from icm.experiments import remedies_study as rs
-
-    study = {"budgets": list(rs.budgets_of(settings["rollouts"])),
-             "n_seeds": settings["seeds"] // len(rs.ROOTS),
+    study = {"budgets": list(remedies_study.budgets_of(settings["rollouts"])),
+             "n_seeds": settings["seeds"] // len(remedies_study.ROOTS),
              "n_rollouts": settings["rollouts"], "runs": {}}
     done = {json.dumps(u): r for u, r in zip(units, results)}
     study["reach"] = done[json.dumps(["reach"])]
-    for label in rs.CONDITIONS:
+    for label in remedies_study.CONDITIONS:
         study["runs"][label] = {}
-        for root in rs.ROOTS:
+        for root in remedies_study.ROOTS:
             parts = sorted((u[2], r) for u, r in zip(units, results)
                            if u[:2] == [label, root])
             study["runs"][label][str(root)] = join_entries([r for _, r in parts])
@@ -157,44 +149,35 @@ def _add(grids):
 # --- the goal-babbling study (icm.experiments.goal_babbling_study) -----------------
 
 def _babbling_check(settings):
-    from icm.experiments import goal_babbling_study as gs
-
-    n_roots = len(gs.TUNING_ROOTS)
+    n_roots = len(goal_babbling_study.TUNING_ROOTS)
     if settings["seeds"] % n_roots:
         raise ValueError(f"seeds must be a multiple of the {n_roots} tuning root seeds "
-                         f"{list(gs.TUNING_ROOTS)}, got {settings['seeds']}")
+                         f"{list(goal_babbling_study.TUNING_ROOTS)}, got {settings['seeds']}")
     return settings
 
 
 def _babbling_plan(settings):
-    from icm.experiments import goal_babbling_study as gs
-
-    return {label: gs.TUNING_ROOTS + (gs.HELD_OUT_ROOTS if label in gs.HELD_OUT_VARIANTS
-                                      else ())
-            for label in gs.VARIANTS}
+    study = goal_babbling_study
+    return {label: study.TUNING_ROOTS + (study.HELD_OUT_ROOTS
+                                         if label in study.HELD_OUT_VARIANTS else ())
+            for label in study.VARIANTS}
 
 
 def _babbling_units(settings):
-    from icm.experiments import goal_babbling_study as gs
-
-    per_root = settings["seeds"] // len(gs.TUNING_ROOTS)
+    per_root = settings["seeds"] // len(goal_babbling_study.TUNING_ROOTS)
     return [[label, root, i, 1] for label, roots in _babbling_plan(settings).items()
             for root in roots for i in range(per_root)]
 
 
 def _babbling_unit(settings, unit):
-    from icm.experiments import goal_babbling_study as gs
-
     label, root, first, n = unit
-    return gs.run_variant(label, root, n_seeds=n, first_run=first, threads=1,
+    return goal_babbling_study.run_variant(label, root, n_seeds=n, first_run=first, threads=1,
                           n_rollouts=settings["rollouts"])
 
 
 def _babbling_assemble(settings, units, results):
-    from icm.experiments import goal_babbling_study as gs
-
-    study = {"budgets": list(gs.budgets_of(settings["rollouts"])),
-             "n_seeds": settings["seeds"] // len(gs.TUNING_ROOTS),
+    study = {"budgets": list(goal_babbling_study.budgets_of(settings["rollouts"])),
+             "n_seeds": settings["seeds"] // len(goal_babbling_study.TUNING_ROOTS),
              "n_rollouts": settings["rollouts"], "runs": {}}
     for label, roots in _babbling_plan(settings).items():
         study["runs"][label] = {}
