@@ -397,7 +397,8 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
                                                                               2, 3, 4]
     table = remedies_study.comparison_table(study)
     assert table.count("\n") == 1 + len(remedies_study.CONDITIONS)
-    assert "| shown all five | 40 | " in table and "none left" in table
+    seeds = remedies_study.N_SEEDS * len(remedies_study.ROOTS)  # 80 a condition
+    assert f"| shown all five | {seeds} | " in table and "none left" in table
     firsts = remedies_study.first_press_table(study)
     assert firsts.count("\n") == 1 + len(remedies_study.CONDITIONS)
     assert firsts.count("(shown)") == 1 + 2 + 5 and "| random motor babbling | never |" in firsts

@@ -394,6 +394,9 @@ def write_atomically(path, text):
     rename, so that `path` is never half written."""
     path = pathlib.Path(path)
     handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(temporary, 0o666 & ~umask)  # as open() would make it, not mkstemp's 0o600
     try:
         with os.fdopen(handle, "w", encoding="utf-8") as file:
             file.write(text)
