@@ -259,8 +259,99 @@ COMMANDS = {
 """name -> (help text, function(args) -> Figure, function(subparser) adding options)."""
 
 
+def _add_study_command(subparsers):
+    """`python -m icm study NAME ...`: runs a long study (`icm.experiments.studies`)."""
+    from icm.experiments import studies
+
+    text = ("Run a long study (every local core with joblib, or a Dask cluster) and write "
+            "its JSON file; a run killed half-way continues from its journal "
+            "(<out>.journal) when started again with the same options.")
+    sub = subparsers.add_parser("study", help="run a long study: "
+                                + ", ".join(studies.STUDIES), description=text)
+    sub.add_argument("name", choices=tuple(studies.STUDIES), metavar="NAME",
+                     help="; ".join(f"{n}: {s.description}" for n, s in
+                                    studies.STUDIES.items()))
+    sub.add_argument("--seeds", type=_positive_int, default=None,
+                     help="seeds; " + "; ".join(f"{n}: {s.seeds[1]} (default {s.seeds[0]})"
+                                               for n, s in studies.STUDIES.items()))
+    options = {}
+    for study in studies.STUDIES.values():
+        for option, (default, minimum, help_text) in study.options.items():
+            options.setdefault(option, (minimum, []))[1].append(
+                f"{study.name}: {help_text} (default {default})")
+    for option, (minimum, helps) in options.items():
+        sub.add_argument(f"--{option.replace('_', '-')}", type=_integer_at_least(minimum),
+                         default=None, help="; ".join(helps))
+    sub.add_argument("--backend", choices=("joblib", "dask", "serial"), default="joblib",
+                     help="joblib: processes on this machine (default); dask: a Dask "
+                          "cluster (--scheduler, or a local one with --jobs workers); "
+                          "serial: this process")
+    sub.add_argument("--jobs", type=_integer_at_least(-1), default=-1,
+                     help="joblib processes, or the workers of the local Dask cluster "
+                          "(default -1: one per core)")
+    sub.add_argument("--scheduler", default=None,
+                     help="the address of an existing Dask cluster's scheduler, e.g. "
+                          "tcp://10.0.0.5:8786 (with --backend dask)")
+    sub.add_argument("--import-seeds", type=pathlib.Path, default=None, metavar="FILE",
+                     help="an earlier file of the study with fewer seeds per root: its "
+                          "seeds are kept after recomputing a sample of them")
+    sub.add_argument("--out", type=pathlib.Path, required=True,
+                     help="the JSON file to write")
+    sub.add_argument("--no-progress", action="store_true", help="no progress bar")
+    return sub
+
+
+def run_study_command(args, parser):
+    """Runs `python -m icm study` with parsed `args`; returns the exit status."""
+    from icm.experiments import studies
+
+    study = studies.STUDIES[args.name]
+    options = {o: getattr(args, o) for o in study.options}
+    given = [o for o in set().union(*(s.options for s in studies.STUDIES.values()))
+             if o not in study.options and getattr(args, o) is not None]
+    if given:
+        parser.exit(2, f"{parser.prog} study: error: --{given[0].replace('_', '-')} is not "
+                       f"an option of study {args.name!r}\n")
+    if args.scheduler is not None and args.backend != "dask":
+        parser.exit(2, f"{parser.prog} study: error: --scheduler needs --backend dask\n")
+    if args.jobs == 0:
+        parser.exit(2, f"{parser.prog} study: error: --jobs must be >= 1 or -1, got 0\n")
+    common = dict(backend=args.backend, progress=not args.no_progress)
+    cluster = client = None
+    try:
+        if args.backend == "dask" and args.scheduler is None:
+            import os
+
+            from dask import distributed
+
+            workers = os.cpu_count() if args.jobs == -1 else args.jobs
+            cluster = distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
+                                               processes=True, dashboard_address=None)
+            client = distributed.Client(cluster)
+            common["client"] = client
+        elif args.backend == "dask":
+            common["scheduler"] = args.scheduler
+        else:
+            common["n_jobs"] = args.jobs
+        extra = None
+        if args.import_seeds is not None:
+            kept, extra = studies.import_seeds(args.name, args.out, args.import_seeds,
+                                               args.seeds, **common, **options)
+            options["imported_seeds"] = kept
+        studies.run_study(args.name, args.out, args.seeds, extra=extra, **common, **options)
+    except (ValueError, OSError) as error:
+        parser.exit(2, f"{parser.prog} study: error: {error}\n")
+    finally:
+        if client is not None:
+            client.close()
+        if cluster is not None:
+            cluster.close()
+    print(f"wrote {args.out}")
+    return 0
+
+
 def build_parser():
-    """The argument parser of `python -m icm` (one subcommand per figure)."""
+    """The argument parser of `python -m icm` (one subcommand per figure, and `study`)."""
     parser = argparse.ArgumentParser(
         prog="python -m icm",
         description="Rebuild the paper's figures from the icm package and save them as "
@@ -275,6 +366,7 @@ def build_parser():
                          help=f"image file to write, .png, .pdf or .svg (default {name}.png)")
         sub.add_argument("--dpi", type=_dpi, default=150,
                          help=f"resolution of a .png, 1 to {MAX_DPI} (default 150)")
+    _add_study_command(subparsers)
     return parser
 
 
@@ -282,6 +374,8 @@ def main(argv=None):
     """Runs the command line; returns the exit status (0 on success)."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    if args.figure == "study":
+        return run_study_command(args, parser)
     _check_out(parser, args.out)
     _, make_figure, _ = COMMANDS[args.figure]
     try:

@@ -77,7 +77,9 @@ SLOW = ("tests/test_remedies.py::test_the_study_file_is_what_the_library_compute
         "tests/test_goal_babbling_runs.py::test_the_chapters_runs_are_what_the_library_computes",
         "tests/test_physics.py::test_thousands_of_random_actions_stay_stable",
         "tests/test_memory.py::test_memory_bound_holds_and_is_within_one_and_a_half_times_the_peak",
-        "tests/test_build_under_load.py::")
+        "tests/test_build_under_load.py::",
+        "tests/test_studies.py::test_every_registered_study_runs_tiny",
+        "tests/test_studies.py::test_remedies_seeds_run_one_at_a_time_are_those_of_a_batched_run")
 """Tests (node ids, or their start) that take minutes: the reruns of the stored studies
 and the chapters' claims on many seeds, the physics' thousands of random actions, the
 memory bounds (a large run each, in a process of its own), the slowest chapter under

@@ -708,24 +708,3 @@ def test_the_presses_formed_figure_draws_and_refuses_bad_input(study):
             "labels", "LWLR", "value")
 
 
-def test_a_study_is_finished_from_where_it_stopped_and_saved_after_every_entry():
-    calls, saved = [], []
-
-    def run(label, root, progress):
-        calls.append((label, root, progress))
-        return {"label": label, "root": root}
-
-    fresh = lambda: {"budgets": [1, 2], "n_seeds": 3, "n_rollouts": 2, "runs": {}}
-    plan = {"a": (1, 2), "b": (1,)}
-    partial = {**fresh(), "runs": {"a": {"2": {"kept": True}}}}
-    study = goal_babbling_study.fill_study(fresh(), plan, run, progress=False,
-                                           partial=partial, save=lambda s: saved.append(
-                                               {k: dict(v) for k, v in s["runs"].items()}))
-    assert calls == [("a", 1, False), ("b", 1, False)]  # ("a", 2) was kept
-    assert study["runs"] == {"a": {"1": {"label": "a", "root": 1}, "2": {"kept": True}},
-                             "b": {"1": {"label": "b", "root": 1}}}
-    assert len(saved) == 3 and saved[-1] == study["runs"] and saved[0] == {
-        "a": {"1": {"label": "a", "root": 1}}}
-    other = {**fresh(), "n_seeds": 4}
-    with pytest.raises(ValueError, match="partial must be a study of the same budgets"):
-        goal_babbling_study.fill_study(fresh(), plan, run, partial=other)

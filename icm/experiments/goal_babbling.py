@@ -190,7 +190,8 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
                       outcome_space=DEFAULT_OUTCOME_SPACE, inverse_model=DEFAULT_INVERSE_MODEL,
                       measure=DEFAULT_MEASURE, regions=DEFAULT_REGIONS,
                       depth_weight=DEPTH_WEIGHT, retract=False, threads=None,
-                      maturation=DEFAULT_MATURATION, demonstrations=(), settings=None):
+                      maturation=DEFAULT_MATURATION, demonstrations=(), settings=None,
+                      first_run=0):
     """Runs goal babbling on the simulated iCub, all seeds at once.
 
     Every rollout is a movement performed in physics from the start of a trial
@@ -245,6 +246,10 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
         default replaces that setting. The ranges and the sources of `strategy`,
         `exploration_noise`, `epsilon`, `window`, `inverse_model`, `measure`,
         `regions` and `maturation` are their `Setting`s.
+      first_run: the index of the first run (>= 0): the seeds are runs first_run to
+        first_run + n_seeds - 1 of the root seed, so that a large study can be run in
+        pieces (run 7 alone is run 7 of any larger batch; kept in
+        `settings["first_run"]`).
 
     Returns:
       A `GoalBabblingResult`.
@@ -258,8 +263,9 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
                                     inverse_model, measure, regions, depth_weight,
                                     retract, threads, maturation, demonstrations,
                                     settings)
+    settings["first_run"] = _validate.integer_at_least("first_run", first_run, 0)
     lab = MovementLab(threads)
-    seeds = run_seeds(settings["seed"], n_seeds, 2)
+    seeds = run_seeds(settings["seed"], n_seeds, 2, first=settings["first_run"])
     arrays = _babble(settings, lab, [s[0] for s in seeds], progress)
     geometry = console_geometry()
     outcomes, movements = arrays["outcomes"], arrays["movements"]
@@ -417,7 +423,8 @@ def presses_formed(result, rollouts):
     reached = outcome_vectors(result.outcomes, result.depths, space, weight)
     wanted = goal_outcomes(console_geometry()["press_goals"], space, weight)
     distance = np.sqrt(((reached[:, :, None, :] - wanted[None, None]) ** 2).sum(axis=3))
-    seeds = [s[1] for s in run_seeds(settings["seed"], result.n_seeds, 2)]
+    seeds = [s[1] for s in run_seeds(settings["seed"], result.n_seeds, 2,
+                                     first=settings.get("first_run", 0))]
     lab = MovementLab(1)
     out = np.zeros((len(rollouts), result.n_seeds, buttons.N_BUTTONS), dtype=bool)
     for i, n in enumerate(rollouts):
@@ -519,7 +526,8 @@ class FormedActionsResult:
         return comes_first(mastery[:, 0], mastery[:, 1])
 
 
-def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True):
+def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True,
+                       first_run=0):
     """Runs the paper's goal-oriented learner on the physics console, with the movements
     the robot formed by goal babbling as its five press actions.
 
@@ -532,6 +540,9 @@ def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True)
       n_trials: trials per run (>= 1).
       seed: the root seed of the learner's runs (as in `run_goal_oriented`).
       progress: show a progress bar over the trials.
+      first_run: the index of the learner's first run (>= 0): row k uses run
+        first_run + k of `seed` (pass the babbling's own `first_run` to keep the
+        seed-by-seed pairing of a run made in pieces).
 
     Returns:
       A `FormedActionsResult`.
@@ -543,6 +554,7 @@ def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True)
                        "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
     n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
     _validate.boolean("progress", progress)
+    first_run = _validate.integer_at_least("first_run", first_run, 0)
     lab = MovementLab()
     motions = [[lab.phases(m) for m in movements] for movements in babbling.press_movements]
     red, presses = buttons.DEFAULT_RED_BUTTON, buttons.DEFAULT_PRESSES_PER_TRIAL
@@ -558,9 +570,10 @@ def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True)
     learner, = _goal_oriented.run_goal_oriented_grid(
         [{}], n_seeds=babbling.n_seeds, n_trials=n_trials, presses_per_trial=presses,
         red_button=red, physics=True, seed=seed, progress=progress,
-        make_env=formed_console, observe=record)
+        make_env=formed_console, observe=record, first_run=first_run)
     settings = learner.settings
     settings["formed_by"] = babbling.strategy
+    settings["first_run"] = first_run
     table = buttons.outcome_table(red)
     matches = np.array([table[layout, actions] == effects
                         for layout, actions, effects in log])  # [press, seed]

@@ -2,10 +2,13 @@
 the learner at the default budget on root seeds that no test uses, kept in
 assets/goal_babbling_study.json because they take minutes, not seconds.
 
-`run_study` runs them with `run_goal_babbling` (and `run_formed_actions`); `main`
-writes the file (`python -m icm.experiments.goal_babbling_study`, about 15 minutes of
-CPU); `load_study` reads it; a test reruns the first seeds of some of it (the first k
-seeds of a root seed are the same in any larger run) and expects the same numbers.
+`run_variant` runs one variant on seeds of one root seed with `run_goal_babbling`
+(and `run_formed_actions`); `python -m icm study goal-babbling`
+(`icm.experiments.studies`) writes the file on every core or on a Dask cluster, one
+seed of one variant a unit (`python -m icm.experiments.goal_babbling_study` with the
+defaults; about 15 minutes of CPU); `load_study` reads it; a test reruns the first
+seeds of some of it (the first k seeds of a root seed are the same in any larger run)
+and expects the same numbers.
 """
 
 import json
@@ -56,16 +59,30 @@ def _check_budgets():
                          f"({goal_babbling.DEFAULT_N_ROLLOUTS}), got {BUDGETS[-1]}")
 
 
-def run_variant(label, root, n_seeds=N_SEEDS, progress=False):
-    """Runs one variant on the first `n_seeds` seeds of one root seed and returns its
-    entry of the study: a dict of lists, one item per seed (the first k seeds of a
-    root seed are the same in any larger run, so a shorter rerun checks them).
+def budgets_of(n_rollouts):
+    """The budgets at which a run of `n_rollouts` rollouts tests its presses: those of
+    `BUDGETS` below it, and `n_rollouts` (`BUDGETS` at the default budget)."""
+    n_rollouts = _validate.integer_at_least("n_rollouts", n_rollouts, 1)
+    return tuple(b for b in BUDGETS if b < n_rollouts) + (n_rollouts,)
+
+
+def run_variant(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threads=None,
+                n_rollouts=goal_babbling.DEFAULT_N_ROLLOUTS):
+    """Runs one variant on seeds first_run to first_run + n_seeds - 1 of one root seed
+    and returns its entry of the study: a dict of lists, one item per seed (the first k
+    seeds of a root seed are the same in any larger run, so a shorter rerun checks
+    them, and a study can be run one seed at a time: `icm.experiments.studies`).
 
     Args:
       label: a key of `VARIANTS`.
       root: the root seed (an integer >= 0).
       n_seeds: seeds (>= 1).
       progress: show progress bars.
+      first_run: the index of the first seed of the root seed (>= 0).
+      threads: threads stepping the physics (as in `run_goal_babbling`; the results
+        do not depend on it).
+      n_rollouts: rollouts per seed (the study's is the default; fewer make a quick
+        trial run, its presses tested at `budgets_of(n_rollouts)`).
 
     Returns:
       {"pressed": [seed][budget][button] (0 or 1, budgets `BUDGETS`), "failures":
@@ -80,73 +97,25 @@ def run_variant(label, root, n_seeds=N_SEEDS, progress=False):
     root = _validate.seed("root", root)
     arguments = {"strategy": "learning_progress", **VARIANTS[label]}
     result = goal_babbling.run_goal_babbling(**arguments, n_seeds=n_seeds, seed=root,
-                                             progress=progress)
-    pressed = goal_babbling.presses_formed(result, BUDGETS)  # [budget, seed, button]
+                                             progress=progress, first_run=first_run,
+                                             threads=threads, n_rollouts=n_rollouts)
+    pressed = goal_babbling.presses_formed(result, budgets_of(n_rollouts))
     entry = {"pressed": np.moveaxis(pressed, 0, 1).astype(int).tolist(),
              "failures": goal_babbling.press_failures(result).tolist(),
              "test_error": result.final_test_error().tolist()}
     if label in LOOP_VARIANTS:
-        loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress)
+        loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress,
+                                                first_run=first_run)
         entry["red_first"] = loop.red_first().astype(int).tolist()
         entry["as_scripted"] = loop.as_scripted_per_seed.tolist()
     return entry
 
 
-def run_study(progress=True, partial=None, save=None):
-    """Every variant on `TUNING_ROOTS`, and `HELD_OUT_VARIANTS` on `HELD_OUT_ROOTS`:
-    {"budgets": [...], "n_seeds": N_SEEDS, "n_rollouts": ..., "runs": {label: {root:
-    entry}}} (entries as `run_variant` returns them; roots as strings, as JSON keys
-    are).
-
-    Args:
-      progress: show progress bars.
-      partial: a study of the same budgets and seeds, whose entries are kept rather
-        than run again (to finish an interrupted study), or None.
-      save: None, or a function called with the study so far after every entry.
-    """
-    study = {"budgets": list(BUDGETS), "n_seeds": N_SEEDS,
-             "n_rollouts": goal_babbling.DEFAULT_N_ROLLOUTS, "runs": {}}
-    plan = {label: TUNING_ROOTS + (HELD_OUT_ROOTS if label in HELD_OUT_VARIANTS else ())
-            for label in VARIANTS}
-    return fill_study(study, plan, run_variant, progress, partial, save)
-
-
-def fill_study(study, plan, run, progress=True, partial=None, save=None):
-    """Fills `study["runs"]` for every label and root seed of `plan` ({label: root
-    seeds}) with `run(label, root, progress=progress)`, in order, keeping the entries
-    that `partial` already holds; returns `study`. The shared loop of this module's
-    study and of `icm.experiments.remedies_study`'s.
-
-    Args:
-      study: the study to fill: a dict with "budgets", "n_seeds", "n_rollouts" and
-        "runs" (roots are kept as strings, as JSON keys are).
-      plan: {label: sequence of root seeds}.
-      run: the function that runs one entry.
-      progress: passed to `run`.
-      partial: a study of the same budgets, seeds and rollouts, or None.
-      save: None, or a function called with the study so far after every entry.
-
-    Raises:
-      ValueError: for a `partial` of other budgets, seeds or rollouts.
-    """
-    keys = ("budgets", "n_seeds", "n_rollouts")
-    if partial is not None and {k: partial.get(k) for k in keys} != {k: study[k] for k in keys}:
-        raise ValueError("partial must be a study of the same budgets, seeds and rollouts, "
-                         f"{ {k: study[k] for k in keys} }, got "
-                         f"{ {k: partial.get(k) for k in keys} }")
-    for label, roots in plan.items():
-        study["runs"][label] = {}
-        for root in roots:
-            kept = (partial or {}).get("runs", {}).get(label, {}).get(str(root))
-            study["runs"][label][str(root)] = kept if kept is not None else \
-                run(label, root, progress=progress)
-            if save is not None:
-                save(study)
-    return study
-
-
 def load_study():
-    """The study as `run_study` returns it, read from assets/goal_babbling_study.json."""
+    """The study, read from assets/goal_babbling_study.json: {"budgets": [...],
+    "n_seeds": (per root seed), "n_rollouts": ..., "runs": {label: {root: entry}}}
+    (every variant on `TUNING_ROOTS`, and `HELD_OUT_VARIANTS` on `HELD_OUT_ROOTS`;
+    entries as `run_variant` returns them; roots as strings, as JSON keys are)."""
     return json.loads(asset_path(STUDY_FILE).read_text())
 
 
@@ -187,12 +156,13 @@ def _pool(entries):
 
 
 def main():
-    """Runs the study and writes assets/goal_babbling_study.json, after every entry (a
-    study left unfinished there is finished, not started again)."""
+    """Runs the study on every core and writes assets/goal_babbling_study.json
+    (`python -m icm study goal-babbling` does the same with more choices: a Dask
+    cluster, fewer seeds, ...). A run stopped half-way continues from its journal."""
+    from icm.experiments import studies
+
     path = ASSETS / STUDY_FILE
-    partial = json.loads(path.read_text()) if path.exists() else None
-    write = lambda study: path.write_text(json.dumps(study, indent=1) + "\n")
-    write(run_study(partial=partial, save=write))
+    studies.run_study("goal-babbling", path, seeds=N_SEEDS * len(TUNING_ROOTS))
     print(f"wrote {path}")
 
 

@@ -310,7 +310,7 @@ GRID_ARGUMENTS = _grid.grid_arguments(run_goal_oriented)
 `icm.learners.goal_oriented.GoalOrientedSettings` that are per row."""
 
 
-def run_goal_oriented_grid(grid, make_env=None, observe=None, **arguments):
+def run_goal_oriented_grid(grid, make_env=None, observe=None, first_run=0, **arguments):
     """Runs `run_goal_oriented(**arguments, **setting)` for every setting of `grid`, all
     in one batch (each setting's seeds are rows of the batched learner, which takes
     these settings per row).
@@ -328,6 +328,9 @@ def run_goal_oriented_grid(grid, make_env=None, observe=None, **arguments):
         `press`, `n_actions`, `effects`, `red_button`), for example a physics console
         whose presses are movements the robot formed.
       observe: None, or a function called after every press (see `play`).
+      first_run: the index of the first run (>= 0): a setting's rows are runs
+        first_run to first_run + n_seeds - 1 of the root seed (run 7 alone is run 7 of
+        any larger batch), so that a long study can run in pieces.
       **arguments: any other arguments of `run_goal_oriented`, the same for every
         setting (n_seeds, n_trials, seed, progress, learner settings, ...).
 
@@ -340,6 +343,7 @@ def run_goal_oriented_grid(grid, make_env=None, observe=None, **arguments):
     """
     _validate.function("make_env", make_env)
     _validate.function("observe", observe)
+    first_run = _validate.integer_at_least("first_run", first_run, 0)
     blocks, others, progress = _grid.check_settings_grid(grid, run_goal_oriented, arguments)
     settings = [_check_run_arguments(**others, settings=block) for block in blocks]
     first, n = settings[0], settings[0]["n_seeds"]
@@ -351,7 +355,7 @@ def run_goal_oriented_grid(grid, make_env=None, observe=None, **arguments):
                          "window": max(s["window"] for s in settings),
                          "one_action_weight": len({s["action_weight"] for s in settings}) == 1
                      })[0])
-    seeds = run_seeds(first["seed"], n, 2) * len(settings)
+    seeds = run_seeds(first["seed"], n, 2, first=first_run) * len(settings)
     env_seeds, agent_seeds = [s[0] for s in seeds], [s[1] for s in seeds]
     red_button, presses = first["red_button"], first["presses_per_trial"]
     if make_env is not None:

@@ -3,11 +3,12 @@
 maturational constraints and a teacher, against the three strategies, all on the same
 seeds and budget, kept in assets/remedies_study.json because they take minutes.
 
-`run_condition` runs one condition on one root seed with `run_goal_babbling` (and
-`run_formed_actions`); `main` writes the file (`python -m
-icm.experiments.remedies_study`, about an hour of CPU); `load_study` reads it; a
-test reruns the first seeds of some of it (the first k seeds of a root seed are the
-same in any larger run) and expects the same numbers.
+`run_condition` runs one condition on seeds of one root seed with `run_goal_babbling`
+(and `run_formed_actions`); `python -m icm study remedies` (`icm.experiments.studies`)
+writes the file on every core or on a Dask cluster, one seed of one condition a unit
+(`python -m icm.experiments.remedies_study` with the defaults; about two hours of
+CPU); `load_study` reads it; a test reruns the first seeds of some of it (the first k
+seeds of a root seed are the same in any larger run) and expects the same numbers.
 """
 
 import json
@@ -40,8 +41,10 @@ fingertip: button 1 is about as far as button 4)."""
 ROOTS = goal_babbling_study.TUNING_ROOTS + goal_babbling_study.HELD_OUT_ROOTS
 """Root seeds on which every condition runs: those of `goal_babbling_study`, which no
 test uses (the maturation's settings were chosen on its tuning roots, the first two)."""
-N_SEEDS = 10
-"""Seeds per root seed."""
+N_SEEDS = 20
+"""Seeds per root seed (80 per condition). The first 10 of each root were computed
+first, in one process; the next 10 on the sweep engine, one seed a unit
+(`icm.experiments.studies`); seed i of a root is the same either way."""
 BUDGETS = goal_babbling_study.BUDGETS
 """Rollouts after which the presses formed so far are tested (`presses_formed`)."""
 EARLY = 200
@@ -56,11 +59,12 @@ REACH_SEED = 0
 """Their seed."""
 
 
-def run_reach():
+def run_reach(n_movements=REACH_MOVEMENTS):
     """How often random movements touch the console for each reachable range of
-    `goal_babbling.RANGE_SHARES` (`goal_babbling.touch_shares` with `REACH_MOVEMENTS`
-    movements per share, seed `REACH_SEED`): the study's "reach"."""
-    return goal_babbling.touch_shares(goal_babbling.RANGE_SHARES, REACH_MOVEMENTS, REACH_SEED)
+    `goal_babbling.RANGE_SHARES` (`goal_babbling.touch_shares` with `n_movements`
+    movements per share, `REACH_MOVEMENTS` in the study, seed `REACH_SEED`): the
+    study's "reach"."""
+    return goal_babbling.touch_shares(goal_babbling.RANGE_SHARES, n_movements, REACH_SEED)
 
 
 def coverage_edges():
@@ -85,16 +89,30 @@ def coverage_counts(result, stop=None):
     return counts.astype(np.int64)
 
 
-def run_condition(label, root, n_seeds=N_SEEDS, progress=False):
-    """Runs one condition on the first `n_seeds` seeds of one root seed and returns its
-    entry of the study (the first k seeds of a root seed are the same in any larger
-    run, so a shorter rerun checks them).
+def budgets_of(n_rollouts):
+    """The budgets at which a run of `n_rollouts` rollouts tests its presses: those of
+    `BUDGETS` below it, and `n_rollouts` (`BUDGETS` at the default budget)."""
+    n_rollouts = _validate.integer_at_least("n_rollouts", n_rollouts, 1)
+    return tuple(b for b in BUDGETS if b < n_rollouts) + (n_rollouts,)
+
+
+def run_condition(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threads=None,
+                  n_rollouts=goal_babbling.DEFAULT_N_ROLLOUTS):
+    """Runs one condition on seeds first_run to first_run + n_seeds - 1 of one root seed
+    and returns its entry of the study (the first k seeds of a root seed are the same
+    in any larger run, so a shorter rerun checks them, and a study can be run one seed
+    at a time: `icm.experiments.studies`).
 
     Args:
       label: a key of `CONDITIONS`.
       root: the root seed (an integer >= 0).
       n_seeds: seeds (>= 1).
       progress: show progress bars.
+      first_run: the index of the first seed of the root seed (>= 0).
+      threads: threads stepping the physics (as in `run_goal_babbling`; the results
+        do not depend on it).
+      n_rollouts: rollouts per seed (the study's is the default; fewer make a quick
+        trial run, its presses tested at `budgets_of(n_rollouts)`).
 
     Returns:
       A dict: "pressed" [seed][budget][button] (0 or 1, budgets `BUDGETS`),
@@ -109,51 +127,73 @@ def run_condition(label, root, n_seeds=N_SEEDS, progress=False):
     root = _validate.seed("root", root)
     arguments = {"strategy": "learning_progress", **CONDITIONS[label]}
     result = goal_babbling.run_goal_babbling(**arguments, n_seeds=n_seeds, seed=root,
-                                             progress=progress)
-    pressed = goal_babbling.presses_formed(result, BUDGETS)  # [budget, seed, button]
-    loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress)
+                                             progress=progress, first_run=first_run,
+                                             threads=threads, n_rollouts=n_rollouts)
+    budgets = budgets_of(n_rollouts)
+    pressed = goal_babbling.presses_formed(result, budgets)  # [budget, seed, button]
+    loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress,
+                                            first_run=first_run)
     return {"pressed": np.moveaxis(pressed, 0, 1).astype(int).tolist(),
             "first_press": result.first_presses().tolist(),
             "test_error": result.final_test_error().tolist(),
             "red_first": loop.red_first().astype(int).tolist(),
             "as_scripted": loop.as_scripted_per_seed.tolist(),
-            "maturity": result.maturity[:, np.array(BUDGETS) - 1].tolist(),
+            "maturity": result.maturity[:, np.array(budgets) - 1].tolist(),
             "coverage": {"early": coverage_counts(result, EARLY).tolist(),
                          "all": coverage_counts(result).tolist()}}
 
 
-def run_study(progress=True, partial=None, save=None):
-    """Every condition on every root seed of `ROOTS`: {"budgets": [...], "n_seeds":
-    N_SEEDS, "n_rollouts": ..., "reach": `run_reach()`, "runs": {label: {root:
-    entry}}} (entries as `run_condition` returns them; roots as strings, as JSON keys
-    are).
-
-    Args:
-      progress: show progress bars.
-      partial: a study of the same budgets and seeds, whose entries are kept rather
-        than run again (to finish an interrupted study), or None.
-      save: None, or a function called with the study so far after every entry.
-    """
-    if BUDGETS[-1] != goal_babbling.DEFAULT_N_ROLLOUTS:
-        raise ValueError(f"BUDGETS must end at the default budget "
-                         f"({goal_babbling.DEFAULT_N_ROLLOUTS}), got {BUDGETS[-1]}")
-    study = {"budgets": list(BUDGETS), "n_seeds": N_SEEDS,
-             "n_rollouts": goal_babbling.DEFAULT_N_ROLLOUTS, "runs": {}}
-    study["reach"] = (partial or {}).get("reach") or run_reach()
-    return goal_babbling_study.fill_study(study, {label: ROOTS for label in CONDITIONS},
-                                          run_condition, progress, partial, save)
-
-
 def load_study():
-    """The study as `run_study` returns it, read from assets/remedies_study.json."""
+    """The study, read from assets/remedies_study.json: {"budgets": [...], "n_seeds": (per
+    root seed), "n_rollouts": ..., "reach": `run_reach()`, "runs": {label: {root:
+    entry}}} (entries as `run_condition` returns them for all the seeds of a root;
+    roots as strings, as JSON keys are), and "produced_by" (`icm.experiments.studies`:
+    the settings, versions, seeds and units that produced it)."""
     return json.loads(asset_path(STUDY_FILE).read_text())
 
 
+RUN_LOG = STUDY_FILE + ".runs.jsonl"
+"""The file in assets/ that records the runs that wrote the study (one JSON line per
+run: backend, workers, wall seconds, every unit's CPU seconds; see
+`icm.experiments.studies.run_study`)."""
+
+
+def study_times():
+    """How much computing the study file took, from its run log (`RUN_LOG`) and its
+    "produced_by": a dict with "seeds_per_condition", "conditions", "units_computed"
+    (the units run by the engine; the imported ones, recorded with 0 CPU seconds, are
+    not counted), "cpu_hours"
+    (their CPU time, summed over the units), "wall_hours" (the runs' wall time),
+    "workers" and "backend" (of the last run), and "imported_seeds_per_condition" (the
+    seeds kept from the earlier file after the check recorded in "produced_by", 0 if
+    none)."""
+    study = load_study()
+    runs = [json.loads(line) for line in asset_path(RUN_LOG).read_text().splitlines()
+            if line.strip()]
+    runs = [r for r in runs if r["settings"] == study["produced_by"]["settings"]]
+    if not runs:
+        raise ValueError(f"{RUN_LOG} has no run of the study's settings "
+                         f"{study['produced_by']['settings']}")
+    last = runs[-1]
+    imported = study["produced_by"].get("imported", {}).get("seeds_per_root", 0)
+    computed = [cpu for cpu in last["unit_cpu_seconds"] if cpu > 0]  # imported: 0
+    return {"seeds_per_condition": study["n_seeds"] * len(ROOTS),
+            "conditions": len(study["runs"]), "units_computed": len(computed),
+            "cpu_hours": sum(last["unit_cpu_seconds"]) / 3600,
+            "wall_hours": sum(r["wall_seconds"] for r in runs) / 3600,
+            "workers": last["n_jobs"], "backend": last["backend"],
+            "imported_seeds_per_condition": imported * len(ROOTS)}
+
+
 def main():
-    """Runs the study and writes assets/remedies_study.json, after every entry (a study
-    left unfinished there is finished, not started again); with the argument
-    "test-error", writes assets/remedies_test_error.json (`run_test_error_split`)."""
+    """Runs the study on every core and writes assets/remedies_study.json
+    (`python -m icm study remedies` does the same with more choices: a Dask cluster,
+    fewer seeds, ...; a run stopped half-way continues from its journal); with the
+    argument "test-error", writes assets/remedies_test_error.json
+    (`run_test_error_split`)."""
     import sys
+
+    from icm.experiments import studies
 
     if sys.argv[1:] == ["test-error"]:
         path = ASSETS / TEST_ERROR_FILE
@@ -161,9 +201,7 @@ def main():
         print(f"wrote {path}")
         return
     path = ASSETS / STUDY_FILE
-    partial = json.loads(path.read_text()) if path.exists() else None
-    write = lambda study: path.write_text(json.dumps(study, separators=(",", ":")) + "\n")
-    write(run_study(partial=partial, save=write))
+    studies.run_study("remedies", path, seeds=N_SEEDS * len(ROOTS))
     print(f"wrote {path}")
 
 
