@@ -17,6 +17,7 @@ LAYERS = (
     ("icm.envs",),
     ("icm.learners",),
     ("icm.experiments",),
+    ("icm.chapters",),
     ("icm.figures", "icm.viewer"),
     ("icm.widgets", "icm.exercises"),
     ("icm.cli", "icm.course", "icm.__main__", "icm"),

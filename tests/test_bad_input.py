@@ -624,13 +624,11 @@ def test_sweep_refuses_a_function_that_does_not_return_a_run_result():
 
 
 def test_robustness_verdicts_need_shares_and_thresholds_in_0_1():
-    from icm.experiments import robustness
-
-    refused(lambda: robustness.verdict(NAN, 1.0, 0.9), "low", "nan", "value")
-    refused(lambda: robustness.verdict(0.5, 1.2, 0.9), "high", "1.2", "value")
-    refused(lambda: robustness.verdict(0.5, 0.6, 1.5), "threshold", "1.5", "value")
-    refused(lambda: robustness.verdict(0.7, 0.6, 0.5), "low", "0.7", "value")
-    assert robustness.verdict(0.95, 1.0, 0.9) == "holds"
+    refused(lambda: stats.verdict(NAN, 1.0, 0.9), "low", "nan", "value")
+    refused(lambda: stats.verdict(0.5, 1.2, 0.9), "high", "1.2", "value")
+    refused(lambda: stats.verdict(0.5, 0.6, 1.5), "threshold", "1.5", "value")
+    refused(lambda: stats.verdict(0.7, 0.6, 0.5), "low", "0.7", "value")
+    assert stats.verdict(0.95, 1.0, 0.9) == "holds"
 
 
 @pytest.fixture(scope="module")

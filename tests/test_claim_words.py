@@ -17,7 +17,7 @@ import claim_words  # noqa: E402 (book/_ext)
 
 from icm.experiments import curiosity, robustness  # noqa: E402
 
-CHAPTERS = {"curiosity": curiosity.BOLD_CLAIMS, "robustness": robustness.BOLD_CLAIMS,
+CHAPTERS = {"curiosity": curiosity.BOLD_CLAIMS, "robustness": chapters.robustness.BOLD_CLAIMS,
             "forming_actions": {}}
 """The chapters whose bold claims are checked, with their registries (Forming actions'
 verdicts are glued words, Holm-corrected in icm.experiments.remedies_study; its bold

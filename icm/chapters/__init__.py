@@ -1,0 +1,7 @@
+"""The chapters of the book, one module per chapter that states claims or quotes
+numbers: its claims in words, their checks, its Markdown tables and the numbers its
+text glues, computed from the results `icm.experiments` returns."""
+
+from icm.chapters import robustness
+
+__all__ = ["robustness"]
