@@ -662,7 +662,7 @@ def test_physics_environments_name_the_seed_they_refuse():
 
 
 def test_figures_refuse_bad_sizes_labels_and_kinds():
-    from icm.experiments import curiosity
+    from icm.experiments import coin_rewards
     from icm.figures.curiosity import coin_flip_figure as _coin_flip
 
     curves = {"x": np.arange(1, 4), "xlabel": "trial",
@@ -672,7 +672,7 @@ def test_figures_refuse_bad_sizes_labels_and_kinds():
     refused(lambda: icm.figures.draw_curves({**curves, "groups": [{**curves["groups"][0],
                                                                    "title": 5}]}),
             "title", "5", "type")
-    paid = curiosity.outcome_rewards(rewards=("novelty",), n_tries=3, n_seeds=2)
+    paid = coin_rewards.outcome_rewards(rewards=("novelty",), n_tries=3, n_seeds=2)
     refused(lambda: _coin_flip({("novelty", "sideways"): paid[("novelty", "coin")]}),
             "curves", "sideways", "value")
     goal = icm.experiments.run_goal_oriented(n_seeds=2, n_trials=3, progress=False)
