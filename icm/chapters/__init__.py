@@ -2,6 +2,6 @@
 numbers: its claims in words, their checks, its Markdown tables and the numbers its
 text glues, computed from the results `icm.experiments` returns."""
 
-from icm.chapters import curiosity, robustness
+from icm.chapters import curiosity, forming_actions, robustness
 
-__all__ = ["curiosity", "robustness"]
+__all__ = ["curiosity", "forming_actions", "robustness"]
