@@ -1,6 +1,8 @@
-"""Summaries over seeds: means with confidence bands, and "from when on" trial numbers."""
+"""Summaries over seeds: means with confidence bands, "from when on" trial numbers, the
+Wilson interval of a share of seeds and the verdict it gives on a threshold."""
 
 import functools
+import statistics
 
 import numpy as np
 
@@ -253,3 +255,75 @@ def at_bound(values, low=0.0, high=1.0):
     if np.all(values == low):
         return "floor"
     return None
+
+
+LEVEL = 0.95
+"""Confidence level of the interval around every measured share."""
+
+
+VERDICTS = ("holds", "unclear", "fails")
+"""What a measured share says about a claim that needs a threshold share (`verdict`)."""
+
+
+def share_interval(successes, n, level=LEVEL):
+    """The Wilson score interval of a share of `successes` out of `n`.
+
+    Unlike mean +/- z standard errors it stays within [0, 1] and does not shrink to a
+    point when every seed (or none) succeeds: 200 successes out of 200 give
+    [0.981, 1].
+
+    Args:
+      successes: integer (or integer array) in 0..n.
+      n: number of trials (integer >= 1, or an array like `successes`).
+      level: confidence level in (0, 1).
+
+    Returns:
+      (low, high), floats (or arrays).
+
+    Raises:
+      ValueError: for counts that are not integers with 0 <= successes <= n, n >= 1,
+        or a level outside (0, 1).
+    """
+    level = _validate.real("level", level, 0.0, 1.0, low_open=True, high_open=True)
+    k, n_ = np.asarray(successes), np.asarray(n)
+    for name, value in (("successes", k), ("n", n_)):
+        if value.dtype.kind not in "iu":
+            raise _validate.ArgumentTypeError(f"{name} must hold integers, got "
+                                              f"{_validate.show(value)}")
+    if np.any(n_ < 1) or np.any(k < 0) or np.any(k > n_):
+        raise ValueError(f"successes must be in 0..n and n >= 1, got successes "
+                         f"{_validate.show(k)} and n {_validate.show(n_)}")
+    z = statistics.NormalDist().inv_cdf(0.5 + level / 2)  # not scipy: 2 s to import
+    p = k / n_
+    denominator = 1 + z**2 / n_
+    centre = (p + z**2 / (2 * n_)) / denominator
+    half = z * np.sqrt(p * (1 - p) / n_ + z**2 / (4 * n_**2)) / denominator
+    # Exactly 0 (1) when no (every) seed succeeds, whatever the rounding.
+    low = np.where(k == 0, 0.0, np.clip(centre - half, 0.0, 1.0))
+    high = np.where(k == n_, 1.0, np.clip(centre + half, 0.0, 1.0))
+    if low.ndim == 0:
+        return float(low), float(high)
+    return low, high
+
+
+def verdict(low, high, threshold):
+    """"holds" if the interval [low, high] is at or above `threshold`, "fails" if it
+    is below it, "unclear" if it straddles it.
+
+    Args:
+      low, high: the interval of a share (numbers in [0, 1], low <= high).
+      threshold: the share a claim needs, in [0, 1].
+
+    Raises:
+      ValueError: for a bound or threshold outside [0, 1] (NaN included), or low > high.
+    """
+    low = _validate.in_closed_interval("low", low, 0.0, 1.0)
+    high = _validate.in_closed_interval("high", high, 0.0, 1.0)
+    threshold = _validate.in_closed_interval("threshold", threshold, 0.0, 1.0)
+    if low > high:
+        raise ValueError(f"low must be at most high, got low {low!r} and high {high!r}")
+    if low >= threshold:
+        return "holds"
+    if high < threshold:
+        return "fails"
+    return "unclear"

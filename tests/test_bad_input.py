@@ -624,13 +624,11 @@ def test_sweep_refuses_a_function_that_does_not_return_a_run_result():
 
 
 def test_robustness_verdicts_need_shares_and_thresholds_in_0_1():
-    from icm.experiments import robustness
-
-    refused(lambda: robustness.verdict(NAN, 1.0, 0.9), "low", "nan", "value")
-    refused(lambda: robustness.verdict(0.5, 1.2, 0.9), "high", "1.2", "value")
-    refused(lambda: robustness.verdict(0.5, 0.6, 1.5), "threshold", "1.5", "value")
-    refused(lambda: robustness.verdict(0.7, 0.6, 0.5), "low", "0.7", "value")
-    assert robustness.verdict(0.95, 1.0, 0.9) == "holds"
+    refused(lambda: stats.verdict(NAN, 1.0, 0.9), "low", "nan", "value")
+    refused(lambda: stats.verdict(0.5, 1.2, 0.9), "high", "1.2", "value")
+    refused(lambda: stats.verdict(0.5, 0.6, 1.5), "threshold", "1.5", "value")
+    refused(lambda: stats.verdict(0.7, 0.6, 0.5), "low", "0.7", "value")
+    assert stats.verdict(0.95, 1.0, 0.9) == "holds"
 
 
 @pytest.fixture(scope="module")
@@ -664,7 +662,7 @@ def test_physics_environments_name_the_seed_they_refuse():
 
 
 def test_figures_refuse_bad_sizes_labels_and_kinds():
-    from icm.experiments import curiosity
+    from icm.experiments import coin_rewards
     from icm.figures.curiosity import coin_flip_figure as _coin_flip
 
     curves = {"x": np.arange(1, 4), "xlabel": "trial",
@@ -674,7 +672,7 @@ def test_figures_refuse_bad_sizes_labels_and_kinds():
     refused(lambda: icm.figures.draw_curves({**curves, "groups": [{**curves["groups"][0],
                                                                    "title": 5}]}),
             "title", "5", "type")
-    paid = curiosity.outcome_rewards(rewards=("novelty",), n_tries=3, n_seeds=2)
+    paid = coin_rewards.outcome_rewards(rewards=("novelty",), n_tries=3, n_seeds=2)
     refused(lambda: _coin_flip({("novelty", "sideways"): paid[("novelty", "coin")]}),
             "curves", "sideways", "value")
     goal = icm.experiments.run_goal_oriented(n_seeds=2, n_trials=3, progress=False)

@@ -9,7 +9,7 @@ import pytest
 
 import icm
 from icm import _validate, cli
-from icm.experiments import curiosity, goal_babbling, panel_data
+from icm.experiments import coin_rewards, goal_babbling, panel_data
 from icm.figures import panel_plots
 
 ICM_DIR = pathlib.Path(icm.__file__).resolve().parent
@@ -44,11 +44,11 @@ def test_goal_shares_refuses_bools_among_the_edges(babbling):
 
 
 def test_outcome_rewards_refuses_a_call_of_hours_and_says_how_long():
-    refused(lambda: curiosity.outcome_rewards(n_seeds=2000, n_tries=10**4, progress=False),
+    refused(lambda: coin_rewards.outcome_rewards(n_seeds=2000, n_tries=10**4, progress=False),
             "n_seeds x n_tries", "20,000,000 (about 0.1 hours)", "value")
-    refused(lambda: curiosity.outcome_rewards(n_seeds=2, n_tries=3, progress="yes"),
+    refused(lambda: coin_rewards.outcome_rewards(n_seeds=2, n_tries=3, progress="yes"),
             "progress", "yes", "type")
-    small = curiosity.outcome_rewards(n_seeds=2, n_tries=3, progress=False)
+    small = coin_rewards.outcome_rewards(n_seeds=2, n_tries=3, progress=False)
     assert small[("prediction_error", "coin")].shape == (2, 3)
 
 

@@ -15,12 +15,12 @@ sys.path.insert(0, str(ROOT / "book" / "_ext"))
 
 import claim_words  # noqa: E402 (book/_ext)
 
-from icm.experiments import curiosity, robustness  # noqa: E402
+from icm import chapters  # noqa: E402
 
-CHAPTERS = {"curiosity": curiosity.BOLD_CLAIMS, "robustness": robustness.BOLD_CLAIMS,
-            "forming_actions": {}}
+CHAPTERS = {"curiosity": chapters.curiosity.BOLD_CLAIMS,
+            "robustness": chapters.robustness.BOLD_CLAIMS, "forming_actions": {}}
 """The chapters whose bold claims are checked, with their registries (Forming actions'
-verdicts are glued words, Holm-corrected in icm.experiments.remedies_study; its bold
+verdicts are glued words, Holm-corrected in icm.chapters.forming_actions; its bold
 text says none of the words)."""
 
 
@@ -33,14 +33,12 @@ def _cells(chapter):
 
 def _checked(code_cells):
     """The claim names a chapter checks when it is built: the keys of every claims dict
-    it passes to `results.require(..., module.X_CLAIMS)`."""
-    import icm.experiments as experiments
-
+    it passes to `results.require(..., chapters.module.X_CLAIMS)`."""
     names = set()
     for code in code_cells:
-        for module, attribute in re.findall(r"require\([^;]*?,\s*(?:icm\.experiments\.)?"
+        for module, attribute in re.findall(r"require\([^;]*?,\s*(?:icm\.)?chapters\."
                                             r"(\w+)\.(\w+_CLAIMS)\)", code):
-            names |= set(getattr(getattr(experiments, module), attribute))
+            names |= set(getattr(getattr(chapters, module), attribute))
     return names
 
 

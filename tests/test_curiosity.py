@@ -12,8 +12,9 @@ import numpy as np
 import pytest
 
 import icm
+from icm import chapters
 from icm.envs import buttons, rods
-from icm.experiments import curiosity
+from icm.experiments import coin_rewards, curiosity
 from icm.figures import curiosity as curiosity_figures
 from icm.learners import interest, q_learning
 from test_bad_input import refused
@@ -72,7 +73,7 @@ def test_an_unknown_signal_is_a_value_error_listing_the_known_ones(call):
     (lambda: curiosity.run_reward_comparison(rewards=("curious",)), "rewards[i]", "'curious'",
      "value"),
     (lambda: curiosity.run_reward_comparison(wobbly=()), "wobbly", "()", "value"),
-    (lambda: curiosity.outcome_rewards(n_tries=0), "n_tries", "0", "value"),
+    (lambda: coin_rewards.outcome_rewards(n_tries=0), "n_tries", "0", "value"),
     (lambda: icm.experiments.run_rod_toppling(window=1, progress=False), "window", "1", "value"),
     (lambda: icm.experiments.run_rod_toppling(wobbly_rod="yes", progress=False), "wobbly_rod",
      "'yes'", "type"),
@@ -211,7 +212,7 @@ def test_the_noisy_button_costs_every_learner_a_little(comparison):
 
 def test_the_chapters_claims_on_the_buttons_hold_here_and_fail_when_they_should(comparison):
     found = comparison.claims()
-    assert set(found) == set(curiosity.SIGNAL_CLAIMS) and all(found.values()), found
+    assert set(found) == set(chapters.curiosity.SIGNAL_CLAIMS) and all(found.values()), found
     assert comparison.fastest() == ("novelty", "region")
     results = dict(comparison.results)
     swapped = curiosity.SignalComparison(comparison.settings, {
@@ -266,7 +267,7 @@ def test_novelty_and_the_random_walk_are_not_trapped_but_slow(rewards):
 
 def test_the_chapters_claims_on_the_rods_hold_here_and_fail_when_they_should(rewards):
     found = rewards.claims()
-    assert set(found) == set(curiosity.REWARD_CLAIMS) and all(found.values()), found
+    assert set(found) == set(chapters.curiosity.REWARD_CLAIMS) and all(found.values()), found
     results = dict(rewards.results)
     swapped = curiosity.RewardComparison(rewards.settings, {
         **results, ("prediction_error", True): results[("novelty", True)],
@@ -276,7 +277,7 @@ def test_the_chapters_claims_on_the_rods_hold_here_and_fail_when_they_should(rew
 
 
 def test_a_coin_pays_prediction_error_and_hardly_learning_progress():
-    paid = curiosity.outcome_rewards(n_seeds=100, n_tries=60, seed=SEED)
+    paid = coin_rewards.outcome_rewards(n_seeds=100, n_tries=60, seed=SEED)
     late = slice(30, None)
     assert paid[("prediction_error", "coin")][:, late].mean() > 0.4
     assert paid[("prediction_error", "sure")][:, late].mean() < 1e-3
@@ -297,7 +298,7 @@ def test_figures_draw(comparison, rewards):
     for fig in (curiosity_figures.signal_mastery_figure(comparison),
                 curiosity_figures.noisy_share_figure(comparison),
                 curiosity_figures.wobbly_rod_figure(rewards),
-                curiosity_figures.coin_flip_figure(curiosity.outcome_rewards(n_seeds=5))):
+                curiosity_figures.coin_flip_figure(coin_rewards.outcome_rewards(n_seeds=5))):
         assert fig.png()[:4] == b"\x89PNG"
 
 
@@ -311,15 +312,15 @@ def test_moves_in_words():
 
 
 def test_a_coin_claims_hold_here_and_fail_when_they_should():
-    paid = curiosity.outcome_rewards(n_seeds=50, n_tries=60, seed=SEED)
-    found = curiosity.coin_claims(paid)
-    assert set(found) == set(curiosity.COIN_CLAIMS) and all(found.values()), found
-    assert curiosity.late_tries(paid) == slice(30, None)
+    paid = coin_rewards.outcome_rewards(n_seeds=50, n_tries=60, seed=SEED)
+    found = chapters.curiosity.coin_claims(paid)
+    assert set(found) == set(chapters.curiosity.COIN_CLAIMS) and all(found.values()), found
+    assert chapters.curiosity.late_tries(paid) == slice(30, None)
     swapped = {**paid, ("novelty", "sure"): paid[("learning_progress", "sure")],
                ("prediction_error", "sure"): paid[("prediction_error", "coin")]}
-    wrong = [name for name, held in curiosity.coin_claims(swapped).items() if not held]
+    wrong = [name for name, held in chapters.curiosity.coin_claims(swapped).items() if not held]
     assert wrong == ["error_pays_the_coin", "novelty_blind"], wrong
-    refused(lambda: curiosity.coin_claims({}), "paid", "{}", "type")
+    refused(lambda: chapters.curiosity.coin_claims({}), "paid", "{}", "type")
 
 
 def test_red_first_in_words(comparison):

@@ -25,7 +25,7 @@ import pytest
 
 import icm.experiments
 from icm import _validate
-from icm.experiments import actor_critic, curiosity, goal_oriented
+from icm.experiments import actor_critic, coin_rewards, curiosity, goal_oriented
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -34,7 +34,7 @@ MEASURE = textwrap.dedent("""
     os.environ.setdefault("MUJOCO_GL", "egl")
     import icm.experiments
     from icm import _validate
-    from icm.experiments import curiosity
+    from icm.experiments import coin_rewards, curiosity
     run = {function}
     run({warm})  # loads the run's code once
     bounds = []
@@ -107,7 +107,7 @@ CASES = {
         f"n_seeds=2, n_episodes=2, {QUIET}"),
     "rods physics": (RODS, f"n_seeds=8, n_episodes=1, physics=True, {QUIET}",
                      f"n_seeds=1, n_episodes=1, physics=True, {QUIET}"),
-    "outcome rewards": ("curiosity.outcome_rewards", "n_seeds=2000, n_tries=1000",
+    "outcome rewards": ("coin_rewards.outcome_rewards", "n_seeds=2000, n_tries=1000",
                         "n_seeds=2, n_tries=2"),
     "reward comparison": ("curiosity.run_reward_comparison",
                           f"n_seeds=200, n_episodes=1000, rewards=('prediction_error', "
@@ -164,7 +164,7 @@ REFUSED = {  # function: (call, the free memory the machine is said to have)
         lambda: between_one_setting_and_two(actor_critic.memory_needed, 2000, 300)),
     "run_rod_toppling": (lambda: icm.experiments.run_rod_toppling(
         n_seeds=2000, n_episodes=300, progress=False), lambda: FIVE_MB),
-    "outcome_rewards": (lambda: curiosity.outcome_rewards(n_seeds=2000, n_tries=3000),
+    "outcome_rewards": (lambda: coin_rewards.outcome_rewards(n_seeds=2000, n_tries=3000),
                         lambda: FIVE_MB),
     "run_signal_comparison": (lambda: curiosity.run_signal_comparison(
         n_seeds=2000, n_trials=300, progress=False), lambda: FIVE_MB),
@@ -197,4 +197,4 @@ def test_outcome_rewards_is_refused_instead_of_failing_in_numpy():
     with pytest.raises(ValueError, match=r"outcome_rewards with rewards=3, "
                                          r"n_seeds=1000000, n_tries=1000000 would need "
                                          r"about [\d.]+ TB"):
-        curiosity.outcome_rewards(n_seeds=10**6, n_tries=10**6)
+        coin_rewards.outcome_rewards(n_seeds=10**6, n_tries=10**6)

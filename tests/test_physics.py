@@ -649,7 +649,7 @@ def test_body_dimensions_are_read_from_the_model():
 
 
 def test_the_twins_claims_hold_on_other_seeds_and_fail_when_they_should():
-    from icm.experiments import twins
+    from icm.chapters import simulated_icub as chapter
 
     button_check = icm.envs.compare_twins("buttons", n_steps=20, seed=4, action_seed=5)
     rod_check = icm.envs.compare_twins("rods", n_steps=40, seed=4, action_seed=5)
@@ -657,14 +657,14 @@ def test_the_twins_claims_hold_on_other_seeds_and_fail_when_they_should():
     run = dict(n_seeds=2, n_trials=4, seed=4, progress=False)
     physics_run = icm.experiments.run_goal_oriented(physics=True, **run)
     tabular_run = icm.experiments.run_goal_oriented(**run)
-    found = twins.claims(button_check, rod_check, topple_map, physics_run, tabular_run)
-    assert set(found) == set(twins.CLAIMS) and all(found.values()), found
+    found = chapter.claims(button_check, rod_check, topple_map, physics_run, tabular_run)
+    assert set(found) == set(chapter.CLAIMS) and all(found.values()), found
     other = icm.experiments.run_goal_oriented(**{**run, "seed": 5})
-    wrong = twins.claims({**button_check, "mismatches": 1}, rod_check,
-                         {**topple_map, "topples": {**topple_map["topples"],
-                                                    twins.FOREARM_PAIR: None}},
-                         physics_run, other)
+    wrong = chapter.claims({**button_check, "mismatches": 1}, rod_check,
+                           {**topple_map, "topples": {**topple_map["topples"],
+                                                      chapter.FOREARM_PAIR: None}},
+                           physics_run, other)
     assert [name for name, held in wrong.items() if not held] == [
         "buttons_agree", "learner_same", "forearm_topples_red"]
-    refused(lambda: twins.claims([], rod_check, topple_map, physics_run, tabular_run),
+    refused(lambda: chapter.claims([], rod_check, topple_map, physics_run, tabular_run),
             "button_check", "[]", "type")

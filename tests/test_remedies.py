@@ -10,7 +10,7 @@ import pytest
 
 from icm.envs import buttons
 from icm.envs.buttons.movements import MovementLab
-from icm import stats
+from icm import chapters, stats
 from icm.experiments import goal_babbling, remedies_study, replication
 from icm.figures import forming_actions
 from icm.learners import goal_babbling as agents
@@ -299,7 +299,7 @@ def test_the_remedies_figures_draw_readably_and_refuse_bad_input(study):
              if line.get_markerfacecolor() == "white"]
     assert [line.get_label() for line in shown] == ["shown buttons 0 and 4"]
     # The alternative text gives the medians the chapter's table gives.
-    medians = remedies_study.summary(study)["growing up"]["median_first_press"]
+    medians = chapters.forming_actions.summary(study)["growing up"]["median_first_press"]
     assert "growing up: " + ", ".join(f"{m:.0f}" for m in medians) in first.summary
     alone = forming_actions.first_press_figure(study, ["learning progress"])
     assert not any("teacher" in t.get_text() for t in alone.axes[-1].get_legend().get_texts())
@@ -383,7 +383,7 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
     # clear difference; a lower test error: better (lower is better).
     for lp_first in ([300] * 5, [-1] * 5):
         fake = _fake_study(study, lp_first, [50] * 5)
-        verdicts = remedies_study.verdicts(fake)
+        verdicts = chapters.forming_actions.verdicts(fake)
         assert verdicts["grow_others_pressed_early"] == 5.0
         assert verdicts["shown2_others_pressed_early"] == 3.0  # buttons 1, 2, 3
         assert verdicts["grow_others_pressed_early_verdict"].startswith("clearly better")
@@ -391,20 +391,20 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
         assert verdicts["grow_test_error"] == pytest.approx(-0.01)
         assert verdicts["grow_test_error_verdict"] == "clearly better"
         assert "shown5_others_formed" not in verdicts  # no button left unshown
-    worse = remedies_study.verdicts(_fake_study(study, [50] * 5, [300] * 5))
+    worse = chapters.forming_actions.verdicts(_fake_study(study, [50] * 5, [300] * 5))
     assert worse["shown1_others_pressed_early_verdict"] == (
         "clearly worse (learning progress at the ceiling; shown button 2 at the floor)")
-    sentence = remedies_study.first_press_comparison(_fake_study(study, [-1] * 5, [50] * 5),
-                                                     "shown button 2")
+    sentence = chapters.forming_actions.first_press_comparison(
+        _fake_study(study, [-1] * 5, [50] * 5), "shown button 2")
     assert sentence.startswith("button 0 at rollout 50 (never (median) with learning "
                                "progress alone)") and "button 2" not in sentence
     slow = _fake_study(study, [50] * 5, [300] * 5)
-    assert remedies_study.shown_sooner_sentence(
+    assert chapters.forming_actions.shown_sooner_sentence(
         _fake_study(study, [-1] * 5, [50] * 5)).startswith("sooner than learning progress "
                                                            "alone in all 8 cases")
     # The held-out rule: worse on the tuning roots, the same on the held-out ones, is
     # no clear difference (the tuning roots do not count; pooled, it would be worse).
-    held = remedies_study.verdicts(_fake_study(study, [50] * 5, [50] * 5,
+    held = chapters.forming_actions.verdicts(_fake_study(study, [50] * 5, [50] * 5,
                                                tuning_first=[300] * 5))
     assert held["grow_others_pressed_early_verdict"].startswith("no clear difference")
     assert held["grow_others_pressed_early"] == 0.0
@@ -412,21 +412,21 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
     # An arm at the ceiling is named: every seed formed all five.
     assert held["grow_all_pressed_verdict"] == ("no clear difference (learning progress "
                                                 "at the ceiling; growing up at the ceiling)")
-    assert remedies_study.shown_sooner_sentence(slow).startswith(
+    assert chapters.forming_actions.shown_sooner_sentence(slow).startswith(
         "not sooner in shown button 2, button 2 (at rollout 300, against at rollout 50)")
-    assert [c["button"] for c in remedies_study.shown_first_presses(slow)] == [2, 0, 4, 0, 1,
-                                                                              2, 3, 4]
-    table = remedies_study.comparison_table(study)
+    assert [c["button"] for c in chapters.forming_actions.shown_first_presses(slow)] == [
+        2, 0, 4, 0, 1, 2, 3, 4]
+    table = chapters.forming_actions.comparison_table(study)
     assert table.count("\n") == 1 + len(remedies_study.CONDITIONS)
     n_seeds = len(remedies_study.ROOTS) * study["n_seeds"]
     assert f"| shown all five | {n_seeds} | " in table and "none left" in table
-    firsts = remedies_study.first_press_table(study)
+    firsts = chapters.forming_actions.first_press_table(study)
     assert firsts.count("\n") == 1 + len(remedies_study.CONDITIONS)
     assert firsts.count("(shown)") == 1 + 2 + 5 and "| random motor babbling | never |" in firsts
     assert all(line.count("|") == 7 for line in firsts.splitlines())  # condition and 5 buttons
-    refused(lambda: remedies_study.verdicts({"runs": {}}), "study", "runs", "type")
-    refused(lambda: remedies_study.paired_difference(study, "growing up", "learning progress",
-                                                     "speed"), "measure", "'speed'", "value")
+    refused(lambda: chapters.forming_actions.verdicts({"runs": {}}), "study", "runs", "type")
+    refused(lambda: chapters.forming_actions.paired_difference(
+        study, "growing up", "learning progress", "speed"), "measure", "'speed'", "value")
     refused(lambda: remedies_study.pooled(study, "growing up", roots=[5]), "roots", "'5'",
             "value")
 
@@ -459,7 +459,7 @@ def test_the_chapters_claims_hold_on_the_tests_own_seeds(study, own_study):
     # The chapter says, from the study's verdicts, which remedy clearly did better or
     # worse than learning progress alone in what; on the tests' seeds, none of those
     # differences is reversed, and the large ones (STRICT) hold strictly.
-    chapter = remedies_study.verdicts(study)
+    chapter = chapters.forming_actions.verdicts(study)
     own = {name: float((c["arm"] - c["baseline"]).mean()) for name, c in
            remedies_study.comparisons(own_study, roots=[CLAIMS_ROOT]).items()}
     clear = [name[:-len("_verdict")] for name, words in chapter.items()
@@ -471,14 +471,14 @@ def test_the_chapters_claims_hold_on_the_tests_own_seeds(study, own_study):
         if name in STRICT:
             assert sign * own[name] > 0, (name, chapter[name], own[name])
     # Every clock at the full range by the budget; all five shown, all five formed.
-    rows = remedies_study.summary(own_study)
+    rows = chapters.forming_actions.summary(own_study)
     assert rows["growing up"]["maturity_full"] == 1.0
     assert rows["shown all five"]["all_pressed_share"] == 1.0
     # Every button shown pressed by the robot itself sooner (median) than without a
     # teacher, as the chapter says from the study.
-    assert remedies_study.shown_sooner_sentence(study).startswith("sooner")
-    assert remedies_study.shown_sooner_sentence(own_study).startswith("sooner")
-    for case in remedies_study.shown_first_presses(own_study):
+    assert chapters.forming_actions.shown_sooner_sentence(study).startswith("sooner")
+    assert chapters.forming_actions.shown_sooner_sentence(own_study).startswith("sooner")
+    for case in chapters.forming_actions.shown_first_presses(own_study):
         assert case["median"] is not None and (case["baseline"] is None
                                                or case["median"] < case["baseline"]), case
 
@@ -490,7 +490,7 @@ def test_the_chapters_verdicts_are_holm_corrected(study):
     # clear that Holm does not (on the stored study: growing up's test error, p about
     # 0.005 alone); the chapter's words follow Holm.
     corrected = remedies_study.chapter_verdicts(study)
-    words = remedies_study.verdicts(study)
+    words = chapters.forming_actions.verdicts(study)
     assert words["n_family"] == len(corrected) == len(remedies_study.chapter_family(study))
     raw_only = [name for name, v in corrected.items()
                 if v["p"] < stats.FAMILY_RATE and not v["clear"]]
@@ -516,14 +516,14 @@ def test_every_clear_verdict_has_its_replication(study):
 
 def test_a_verdict_the_replication_contradicts_is_not_called_clear(study):
     stored = replication.load_replications()["forming_actions"]
-    words = remedies_study.verdicts(study)
+    words = chapters.forming_actions.verdicts(study)
     for name, outcome in stored["verdicts"].items():
         if not outcome["replicated"]:
             assert "not replicated" in words[f"{name}_verdict"], name
     # Made up: every replication failed; every clear verdict then says so.
     failed = {**stored, "verdicts": {name: {**outcome, "replicated": False}
                                      for name, outcome in stored["verdicts"].items()}}
-    contradicted = remedies_study.verdicts(study, replications=failed)
+    contradicted = chapters.forming_actions.verdicts(study, replications=failed)
     for name in stored["verdicts"]:
         verdict = contradicted[f"{name}_verdict"]
         assert not verdict.startswith("clearly") or verdict.endswith(
@@ -557,8 +557,8 @@ def test_the_split_test_error_is_the_studys_on_the_same_seeds(study):
             assert (np.array(parts["own"]) >= np.array(parts["all"]) - 1e-12).all()
             if label == "learning progress":
                 assert parts["own"] == parts["all"]
-    rows = remedies_study.teacher_test_error(split)
-    table = remedies_study.teacher_test_error_table(split)
+    rows = chapters.forming_actions.teacher_test_error(split)
+    table = chapters.forming_actions.teacher_test_error_table(split)
     assert table.count("\n") == 1 + len(remedies_study.TEACHING)
     assert f"{100 * rows['shown1_own'][0]:+.2f}" in table
 

@@ -10,9 +10,9 @@ import pytest
 
 from conftest import ROOT
 from test_bad_input import refused
-from icm import stats
-from icm.experiments import (robustness, run_actor_critic, run_goal_oriented,
-                             run_rod_toppling, sweep)
+from icm import chapters, stats
+from icm.experiments import (robustness, robustness_readings, run_actor_critic,
+                             run_goal_oriented, run_rod_toppling, sweep)
 from icm.figures import Figure, robustness_map
 
 SEED = 1
@@ -23,25 +23,25 @@ N_SEEDS = 200
 # --- share intervals and verdicts --------------------------------------------------
 
 def test_wilson_interval_known_values_and_edges():
-    low, high = robustness.share_interval(200, 200)
+    low, high = stats.share_interval(200, 200)
     assert high == 1.0 and low == pytest.approx(0.98115, abs=1e-4)
-    low, high = robustness.share_interval(0, 200)
+    low, high = stats.share_interval(0, 200)
     assert low == 0.0 and high == pytest.approx(1 - 0.98115, abs=1e-4)
     # Wilson 95% for 180 of 200: 0.8506 to 0.9343 (textbook formula).
-    low, high = robustness.share_interval(180, 200)
+    low, high = stats.share_interval(180, 200)
     assert (low, high) == (pytest.approx(0.8506, abs=1e-3), pytest.approx(0.9343, abs=1e-3))
     # Arrays, and a wider interval for fewer seeds or a higher level.
-    lows, highs = robustness.share_interval(np.array([90, 180]), np.array([100, 200]))
+    lows, highs = stats.share_interval(np.array([90, 180]), np.array([100, 200]))
     assert highs[0] - lows[0] > highs[1] - lows[1]
-    wide = robustness.share_interval(180, 200, level=0.99)
+    wide = stats.share_interval(180, 200, level=0.99)
     assert wide[0] < low and wide[1] > high
 
 
 def test_verdict_reads_the_whole_interval():
-    assert robustness.verdict(0.91, 0.99, 0.9) == "holds"
-    assert robustness.verdict(0.9, 0.99, 0.9) == "holds"
-    assert robustness.verdict(0.85, 0.93, 0.9) == "unclear"
-    assert robustness.verdict(0.70, 0.89, 0.9) == "fails"
+    assert stats.verdict(0.91, 0.99, 0.9) == "holds"
+    assert stats.verdict(0.9, 0.99, 0.9) == "holds"
+    assert stats.verdict(0.85, 0.93, 0.9) == "unclear"
+    assert stats.verdict(0.70, 0.89, 0.9) == "fails"
 
 
 @pytest.mark.parametrize("args, name, shown, kind", [
@@ -53,7 +53,7 @@ def test_verdict_reads_the_whole_interval():
     ((1, 2, 1.0), "level", "1.0", "value"),
 ])
 def test_share_interval_rejects_bad_counts(args, name, shown, kind):
-    refused(lambda: robustness.share_interval(*args), name, shown, kind)
+    refused(lambda: stats.share_interval(*args), name, shown, kind)
 
 
 # --- the per-seed claims -----------------------------------------------------------
@@ -195,7 +195,7 @@ def test_every_point_holds_what_a_direct_run_there_gives(small):
     held = [r["interest_later"] for r in robustness.goal_oriented_claims(direct)]
     share, low, high = small.share("interest_later", action_weight=1.0, reading="literal")
     assert share == np.mean(held)
-    assert (low, high) == robustness.share_interval(int(np.sum(held)), 40)
+    assert (low, high) == stats.share_interval(int(np.sum(held)), 40)
     assert small.verdict("always") == "holds"
     table = small.pair_table("red_first", ("action_weight", "presses_per_trial"))
     assert table["share"][1, 0] == small.share("red_first", action_weight=1.0)[0]
@@ -223,11 +223,11 @@ def test_interaction_is_the_contrast_of_the_shares(small):
 
 
 def test_tables_name_every_setting_and_claim(small):
-    dependencies = robustness.dependency_table([small])
+    dependencies = chapters.robustness.dependency_table([small])
     for text in ("weight", "presses", "reading", "red mastered first", "always"):
         assert text in dependencies
     assert dependencies.count("\n") == 1 + 3 * 4
-    interactions = robustness.interaction_table([small])
+    interactions = chapters.robustness.interaction_table([small])
     assert interactions.count("\n") == 1 + 3 * 4
 
 
@@ -258,8 +258,8 @@ def test_the_map_draws_every_pair_and_claim_with_marks_and_the_default(small):
     (lambda r: r.pair_table("red_first", ("reading", "action_weight")), "pair",
      "('reading', 'action_weight')", "value"),
     (lambda r: r.holding_values("red_first", "epsilon"), "setting", "'epsilon'", "value"),
-    (lambda r: robustness.dependency_table([]), "results", "[]", "type"),
-    (lambda r: robustness.interaction_table(["x"]), "results[0]", "'x'", "type"),
+    (lambda r: chapters.robustness.dependency_table([]), "results", "[]", "type"),
+    (lambda r: chapters.robustness.interaction_table(["x"]), "results[0]", "'x'", "type"),
     (lambda r: robustness_map("x"), "result", "'x'", "type"),
     (lambda r: robustness.check_point("goal_oriented", "red_first", epsilon=0.1), "setting",
      "'epsilon'", "value"),
@@ -378,27 +378,28 @@ def test_the_studies_sweep_exactly_the_settings_declared_swept():
 def test_every_unpublished_choice_is_swept_read_otherwise_or_said_why():
     for name, study in robustness.STUDIES.items():
         swept = {s.name for s in study.settings}
-        read = {r.name for r in robustness.readings(name)}
-        for setting, spec in robustness.unpublished_settings(name).items():
+        read = {r.name for r in robustness_readings.readings(name)}
+        for setting, spec in robustness_readings.unpublished_settings(name).items():
             said = (name, setting) in robustness.NOT_MEASURED
             assert (setting in swept) + (setting in read) + said == 1, (name, setting)
     for (name, setting), reason in robustness.NOT_MEASURED.items():
-        spec = robustness.unpublished_settings(name)[setting]
+        spec = robustness_readings.unpublished_settings(name)[setting]
         assert reason and not spec.other_readings()
     # The choices the issue lists are among the readings.
-    keys = {(n, r.name, r.value) for n in robustness.STUDIES for r in robustness.readings(n)}
+    keys = {(n, r.name, r.value) for n in robustness.STUDIES
+            for r in robustness_readings.readings(n)}
     for key in [("goal_oriented", "tie", "earliest"), ("goal_oriented", "short_history", "zero"),
                 ("goal_oriented", "new_task_mean", "witnessed"),
                 ("rod_toppling", "max_moves", None), ("rod_toppling", "off_grid", "end")]:
         assert key in keys
     for setting in ("temperature", "lr_actor", "lr_critic", "gamma"):
-        assert setting in {r.name for r in robustness.readings("actor_critic")}
-    assert "epsilon" in {r.name for r in robustness.readings("goal_oriented")}
+        assert setting in {r.name for r in robustness_readings.readings("actor_critic")}
+    assert "epsilon" in {r.name for r in robustness_readings.readings("goal_oriented")}
 
 
 @pytest.fixture(scope="module")
 def goal_readings():
-    return robustness.run_readings("goal_oriented", n_seeds=40, seed=SEED, progress=False)
+    return robustness_readings.run_readings("goal_oriented", n_seeds=40, seed=SEED, progress=False)
 
 
 def test_each_reading_is_the_run_with_that_one_setting_changed(goal_readings):
@@ -411,8 +412,8 @@ def test_each_reading_is_the_run_with_that_one_setting_changed(goal_readings):
     held = [r["interest_later"] for r in robustness.goal_oriented_claims(other)]
     share, low, high = goal_readings.share("interest_later", ("short_history", "zero"))
     assert share == np.mean(held)
-    assert (low, high) == robustness.share_interval(int(np.sum(held)), 40)
-    assert len(goal_readings.readings) == len(robustness.readings("goal_oriented"))
+    assert (low, high) == stats.share_interval(int(np.sum(held)), 40)
+    assert len(goal_readings.readings) == len(robustness_readings.readings("goal_oriented"))
 
 
 def _fake_readings(changed_share):
@@ -420,12 +421,12 @@ def _fake_readings(changed_share):
     holds everything in 40 seeds; reading "zero" holds `interest_later` in
     `changed_share` of them, every other reading as the book's."""
     study = robustness.STUDIES["goal_oriented"]
-    found = robustness.readings(study)
+    found = robustness_readings.readings(study)
     every = {c.name: np.ones(40, dtype=bool) for c in study.claims}
     held = {None: every, **{r.key: dict(every) for r in found}}
     held[("short_history", "zero")] = {**every, "interest_later":
                                        np.arange(40) < round(40 * changed_share)}
-    return robustness.ReadingsResult(study, {"n_seeds": 40, "seed": 0}, found, {}, held)
+    return robustness_readings.ReadingsResult(study, {"n_seeds": 40, "seed": 0}, found, {}, held)
 
 
 def test_a_reading_that_changes_a_verdict_is_named_and_the_others_are_not():
@@ -445,9 +446,11 @@ def test_a_reading_that_changes_a_verdict_is_named_and_the_others_are_not():
 
 
 @pytest.mark.parametrize("call, name, shown, kind", [
-    (lambda r: robustness.run_readings("bandit"), "study", "'bandit'", "value"),
-    (lambda r: robustness.run_readings("rod_toppling", n_seeds=0), "n_seeds", "0", "value"),
-    (lambda r: robustness.run_readings("rod_toppling", progress=1), "progress", "1", "type"),
+    (lambda r: robustness_readings.run_readings("bandit"), "study", "'bandit'", "value"),
+    (lambda r: robustness_readings.run_readings("rod_toppling", n_seeds=0), "n_seeds", "0",
+     "value"),
+    (lambda r: robustness_readings.run_readings("rod_toppling", progress=1), "progress", "1",
+     "type"),
     (lambda r: r.share("red_first", ("tie", "latest")), "reading", "('tie', 'latest')",
      "value"),
     (lambda r: r.share("best"), "claim", "'best'", "value"),
@@ -481,9 +484,9 @@ def maps():
 
 
 def test_the_chapters_claims_about_its_maps_hold_on_our_seeds(maps):
-    found = robustness.chapter_claims(maps["goal_oriented"], maps["actor_critic"],
+    found = chapters.robustness.chapter_claims(maps["goal_oriented"], maps["actor_critic"],
                                       maps["rod_toppling"])
-    assert set(found) == set(robustness.CHAPTER_CLAIMS) and all(found.values()), found
+    assert set(found) == set(chapters.robustness.CHAPTER_CLAIMS) and all(found.values()), found
 
 
 def _with_claim_set(result, claim, value, **where):
@@ -504,11 +507,11 @@ def _with_claim_set(result, claim, value, **where):
 def test_a_map_that_contradicts_the_chapter_fails_its_claims(maps):
     goal, critic, rods = maps["goal_oriented"], maps["actor_critic"], maps["rod_toppling"]
     broken = _with_claim_set(goal, "red_first", True, action_weight=1.0)  # red first at 1
-    found = robustness.chapter_claims(broken, critic, rods)
+    found = chapters.robustness.chapter_claims(broken, critic, rods)
     assert not found["weight_threshold"] and found["presses_not_needed"]
     broken = _with_claim_set(rods, "blue_found", False, initial_q=1.0)
-    assert not robustness.chapter_claims(goal, critic, broken)["rods_blue_needs_drive"]
-    refused(lambda: robustness.chapter_claims(critic, goal, rods), "goal", "actor_critic",
+    assert not chapters.robustness.chapter_claims(goal, critic, broken)["rods_blue_needs_drive"]
+    refused(lambda: chapters.robustness.chapter_claims(critic, goal, rods), "goal", "actor_critic",
             "value")
 
 
@@ -526,7 +529,7 @@ def test_holds_from_and_shares_along(maps):
 
 
 def test_the_studies_table_lists_every_setting_and_claim():
-    table = robustness.studies_table()
+    table = chapters.robustness.studies_table()
     assert table.count("\n") == 1 + len(robustness.STUDIES)
     for study in robustness.STUDIES.values():
         for item in study.settings + study.claims:
@@ -536,16 +539,16 @@ def test_the_studies_table_lists_every_setting_and_claim():
 def test_the_readings_summary_names_what_changes_a_verdict():
     changed, same = _fake_readings(0.2), _fake_readings(1.0)
     total = 2 * len(changed.readings)
-    text = robustness.readings_summary([changed, same])
+    text = chapters.robustness.readings_summary([changed, same])
     assert text.startswith(f"1 of the {total} other readings changes a claim's verdict")
     assert "read as zero" in text and text.endswith(f"the other {total - 1} change none")
-    assert robustness.readings_summary([same]).startswith("none of the")
-    refused(lambda: robustness.readings_summary([]), "results", "[]", "type")
+    assert chapters.robustness.readings_summary([same]).startswith("none of the")
+    refused(lambda: chapters.robustness.readings_summary([]), "results", "[]", "type")
 
 
 def test_the_chapters_numbers_come_from_its_maps(maps):
     goal, critic, rods = maps["goal_oriented"], maps["actor_critic"], maps["rod_toppling"]
-    numbers, clauses = robustness.chapter_numbers(goal, critic, rods)
+    numbers, clauses = chapters.robustness.chapter_numbers(goal, critic, rods)
     assert numbers["goal_lowest_weight"] == goal.holds_from("red_first", "action_weight")
     assert numbers["goal_highest_failing_weight"] < numbers["goal_lowest_weight"]
     assert numbers["goal_red_first"] == goal.summary()["red_first"]
@@ -556,19 +559,19 @@ def test_the_chapters_numbers_come_from_its_maps(maps):
     lowest = float(rods.points().query("initial_q > 0").blue_found.min())
     assert clauses["rods_blue_positive_q_in"] == (
         "in every seed" if lowest == 1 else f"in at least {100 * lowest:.1f}% of the seeds")
-    refused(lambda: robustness.chapter_numbers(goal, goal, rods), "critic", "goal_oriented",
-            "value")
+    refused(lambda: chapters.robustness.chapter_numbers(goal, goal, rods), "critic",
+            "goal_oriented", "value")
 
 
 def test_the_readings_numbers_come_from_the_runs():
-    found = {name: robustness.run_readings(name, n_seeds=10, seed=SEED, progress=False)
+    found = {name: robustness_readings.run_readings(name, n_seeds=10, seed=SEED, progress=False)
              for name in robustness.STUDIES}
-    numbers, clauses = robustness.readings_numbers(found)
+    numbers, clauses = chapters.robustness.readings_numbers(found)
     book = found["rod_toppling"].run()
     assert numbers["edge_share"] == book.edge_share() > 0
     assert numbers["time_limit_share"] == book.time_limit_share()
     assert numbers["no_limit_longest"] >= numbers["book_longest"]
     assert numbers["edge_ended_share"] > 0
     assert clauses["readings_actor_critic"] == found["actor_critic"].describe()
-    refused(lambda: robustness.readings_numbers({"goal_oriented": found["goal_oriented"]}),
-            "found", "goal_oriented", "type")
+    refused(lambda: chapters.robustness.readings_numbers(
+        {"goal_oriented": found["goal_oriented"]}), "found", "goal_oriented", "type")

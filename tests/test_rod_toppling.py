@@ -6,7 +6,7 @@ import matplotlib.figure
 import numpy as np
 import pytest
 
-from icm import figures
+from icm import chapters, figures
 from icm.envs import rods
 from icm.experiments import rod_toppling
 from icm.experiments.rod_toppling import RODS, run_rod_toppling
@@ -327,12 +327,12 @@ def test_the_value_of_untried_moves_decides_the_story():
 
 def test_the_chapters_claims_hold_on_the_tests_seeds(default_run):
     claims = default_run.claims()
-    assert set(claims) == set(rod_toppling.CLAIMS)
+    assert set(claims) == set(chapters.rod_toppling.CLAIMS)
     assert all(claims.values()), claims
     runs = [run_rod_toppling(n_seeds=60, n_episodes=300, initial_q=q0, seed=TEST_ROOT,
                              progress=False) for q0 in (0.0, 1.0)]
-    claims = rod_toppling.initial_q_claims(default_run, *runs)
-    assert set(claims) == set(rod_toppling.INITIAL_Q_CLAIMS)
+    claims = chapters.rod_toppling.initial_q_claims(default_run, *runs)
+    assert set(claims) == set(chapters.rod_toppling.INITIAL_Q_CLAIMS)
     assert all(claims.values()), claims
 
 
@@ -353,15 +353,16 @@ def test_the_chapters_claims_fail_on_runs_that_contradict_them(default_run):
     low = dataclasses.replace(default_run, settings={**default_run.settings, "initial_q": 0.0})
     high = dataclasses.replace(default_run, settings={**default_run.settings, "initial_q": 1.0})
     with pytest.raises(ValueError, match="initial_q must rise"):
-        rod_toppling.initial_q_claims(default_run, high, low)
+        chapters.rod_toppling.initial_q_claims(default_run, high, low)
     with pytest.raises(TypeError, match="untried_worth_nothing"):
-        rod_toppling.initial_q_claims(default_run, "run", high)
-    assert not any(rod_toppling.initial_q_claims(default_run, low, high).values())
+        chapters.rod_toppling.initial_q_claims(default_run, "run", high)
+    assert not any(chapters.rod_toppling.initial_q_claims(default_run, low, high).values())
     # Red never learned on every pair, but blue met as early: the robot did not stay.
     never = default_run.predicted_well.copy()
     never[:, red] = -1
     unlearned = dataclasses.replace(low, predicted_well=never)
-    assert not rod_toppling.initial_q_claims(default_run, unlearned, high)["low_stays_with_red"]
+    assert not chapters.rod_toppling.initial_q_claims(
+        default_run, unlearned, high)["low_stays_with_red"]
 
 
 def test_summary_holds_the_numbers_the_book_quotes(default_run):

@@ -137,8 +137,9 @@ class ActorCriticResult:
         return bool(np.all(last_below <= first_press))
 
     def claims(self):
-        """{claim name: whether it holds in this run}, for each of `CLAIMS` (checked
-        on the book's run when it is built, and by the tests on their own seeds)."""
+        """{claim name: whether it holds in this run}, for each of
+        `icm.chapters.actor_critic.CLAIMS` (checked on the book's run when it is built, and
+        by the tests on their own seeds)."""
         s = self.summary()
         return {"red_sooner": s["red_zero_mean"] < s["green_zero_mean"],
                 "red_first_mostly": s["red_first"] > 0.5,
@@ -192,15 +193,6 @@ class ActorCriticResult:
         out["max_abs_value"] = float(self.max_abs_value[:, -1].max())
         out["median_abs_value"] = float(np.median(self.max_abs_value[:, -1]))
         return out
-
-
-CLAIMS = {
-    "red_sooner": "the red error reaches zero for good sooner than the green one on average",
-    "red_first_mostly": "the red error reaches zero first in most seeds",
-    "green_below_only_before_red_press": "the green error is below the red one only before "
-                                         "the red button was first pressed",
-}
-"""The claims about Figure 6 that the book states in words (`ActorCriticResult.claims`)."""
 
 
 def _check_run_arguments(n_seeds, n_trials, rewarded_box, presses_per_trial, red_button,

@@ -7,7 +7,9 @@ noisy world (the chapter "Which curiosity?").
 `run_reward_comparison` runs the Q-learner on the rods once per intrinsic reward
 (`icm.learners.q_learning.REWARDS`), with and without the wobbly rod. Both return the
 runs and the numbers the chapter quotes, each a mean over seeds with its 95%
-percentile-bootstrap band.
+percentile-bootstrap band. What each reward pays for a coin is
+`icm.experiments.coin_rewards`; the chapter's claims in words and their checks are
+`icm.chapters.curiosity`.
 """
 
 import dataclasses
@@ -33,47 +35,6 @@ band of that share above it; *not trapped* when the whole band is below it."""
 EQUAL_SHARE_TOLERANCE = 0.01
 """How far from chance a button's share of presses may be for the chapter to say that a
 learner presses every button equally."""
-SIGNAL_CLAIMS = {
-    "red_first_everywhere": "red is mastered before green in most seeds under every signal "
-                            "and place of interest, pressing at random included",
-    "random_not_slower": "pressing at random masters red and green no later than learning "
-                         "progress (its means within learning progress's bands or below)",
-    "novelty_region_fastest": "novelty per region has the lowest mean mastery trial of "
-                              "green (the lowest mean only: no comparison is claimed "
-                              "clear)",
-    "novelty_task_balanced": "novelty per task opens red, green and nothing equally often",
-    "task_not_trapped": "with interest per task, no signal is trapped by the noisy button",
-    "region_error_trapped": "with interest per region, prediction error is trapped",
-    "region_progress_drawn_not_trapped": "with interest per region, learning progress is "
-                                         "not trapped, though it presses the noisy button "
-                                         "more than chance",
-    "region_novelty_equal": "novelty per region presses every button equally",
-    "noise_costs_every_learner": "with the noisy button, every learner masters green later",
-}
-"""The claims of the chapter "Which curiosity?" about the buttons
-(`SignalComparison.claims`)."""
-REWARD_CLAIMS = {
-    "error_trapped": "prediction error is trapped by the wobbly rod, and predicts red well "
-                     "in fewer seeds than without it",
-    "progress_learns_anyway": "learning progress predicts red and blue well in at least "
-                              "90% of the seeds with the wobbly rod",
-    "progress_not_immune": "learning progress ends most of its late episodes at the "
-                           "wobbly rod",
-    "novelty_random_not_trapped_but_slow": "novelty and the random walk are not trapped, "
-                                           "and neither predicts red well in most seeds",
-}
-"""The claims of the chapter "Which curiosity?" about the rods
-(`RewardComparison.claims`)."""
-BOLD_CLAIMS = {
-    "Novelty pays the coin exactly what it pays the sure outcome": ("novelty_blind", "exact"),
-    "Novelty per region presses every button about equally": ("region_novelty_equal", "all"),
-    "The noise costs every learner a little.": ("noise_costs_every_learner", "all"),
-}
-"""The bold claims of the chapter "Which curiosity?" that use a word of strength
-("every", "exactly", ...; book/_ext/claim_words.py), each with the claim that checks
-it (`COIN_CLAIMS`, `SIGNAL_CLAIMS`) and the kind of that check: "exact" (an array
-equality), "all" (every button's share within the tolerance of chance; every
-learner's mean later)."""
 LEARNED_SHARE = 0.9
 """The share of seeds in which a rod must be predicted well for the chapter to say that
 a learner learns it (`REWARD_CLAIMS`)."""
@@ -107,7 +68,7 @@ def _runs_memory(needs):
     return sum(kept for _, kept in needs) + 2 * max(peak - kept for peak, kept in needs)
 
 
-def _check_choices(name, values, allowed):
+def check_choices(name, values, allowed):
     """`values` as a tuple of distinct members of `allowed`, else raises."""
     if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
         raise _validate.ArgumentTypeError(f"{name} must be a sequence of {allowed}, got "
@@ -437,9 +398,9 @@ def run_signal_comparison(n_seeds=100, n_trials=100, signals=interest.SIGNALS,
     """
     n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
     n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
-    signals = _check_choices("signals", signals, interest.SIGNALS)
-    designs = _check_choices("designs", designs, goal_oriented.INTEREST_PER)
-    noisy = _check_choices("noisy", noisy, (False, True))
+    signals = check_choices("signals", signals, interest.SIGNALS)
+    designs = check_choices("designs", designs, goal_oriented.INTEREST_PER)
+    noisy = check_choices("noisy", noisy, (False, True))
     seed = _validate.root_seed("seed", seed)
     _validate.boolean("progress", progress)
     grid = list(itertools.product(signals, designs, noisy))
@@ -601,8 +562,8 @@ def run_reward_comparison(n_seeds=100, n_episodes=300, rewards=q_learning.REWARD
     """
     n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
     n_episodes = _validate.integer_at_least("n_episodes", n_episodes, 1)
-    rewards = _check_choices("rewards", rewards, q_learning.REWARDS)
-    wobbly = _check_choices("wobbly", wobbly, (False, True))
+    rewards = check_choices("rewards", rewards, q_learning.REWARDS)
+    wobbly = check_choices("wobbly", wobbly, (False, True))
     seed = _validate.root_seed("seed", seed)
     _validate.boolean("progress", progress)
     grid = list(itertools.product(rewards, wobbly))
@@ -622,146 +583,3 @@ def run_reward_comparison(n_seeds=100, n_episodes=300, rewards=q_learning.REWARD
     return RewardComparison(settings, results)
 
 
-OUTCOME_SECONDS_PER_TRY = 1e-5
-"""About what one seed's try of one outcome costs `outcome_rewards` (measured: 10
-microseconds on the book's 2-core machine)."""
-MAX_OUTCOME_DRAWS = 10_000_000
-"""The most seeds times tries `outcome_rewards` takes: a few minutes of computing;
-the chapter's call makes 6,000."""
-
-
-def outcome_rewards(rewards=("prediction_error", "learning_progress", "novelty"),
-                    n_tries=60, n_seeds=100, window=interest.DEFAULT_WINDOW,
-                    predictor_lr=predictors.DEFAULT_LINEAR_LR, seed=0, progress=True):
-    """What each intrinsic reward pays, try after try, for one (state, action) pair
-    whose outcome is a fair coin (1 or 0, probability 1/2 each: the wobbly rod) and for
-    one whose outcome is always 1 (a rod that always topples), as the rods' Q-learner
-    computes it (`icm.learners.q_learning.QLearner.learn` on a one-pair table with a
-    `LinearPredictor`: the pair's errors come from a `LinearPredictor` per seed, and
-    each reward is its signal of those errors, all seeds at once in
-    `icm.learners.interest.InterestTable`, which gives the same numbers).
-
-    It takes about 10 microseconds per seed and try of each outcome (a progress bar,
-    with the time left, shows when it lasts over a second), and its memory grows as the
-    seeds times the tries (`outcome_rewards_memory`): a call that this machine could not
-    hold is refused before it starts, and so is one of more than `MAX_OUTCOME_DRAWS`
-    seeds times tries (its message says how long it would take).
-
-    Args:
-      rewards: the rewards, names of `REWARDS`.
-      n_tries: tries of the pair (>= 1).
-      n_seeds: seeds of the coin (>= 1).
-      window: errors in the learning-progress slope (>= 2).
-      predictor_lr: the predictor's learning rate, in (0, 1].
-      seed: the root seed of the coins.
-      progress: show a progress bar over the seeds when the call lasts over a second.
-
-    Returns:
-      {(reward, "coin" | "sure"): rewards [seed, try]}.
-
-    Raises:
-      ValueError: for a bad argument, or a call too large for this machine's memory or
-        `MAX_OUTCOME_DRAWS`.
-    """
-    rewards = _check_choices("rewards", rewards, q_learning.REWARDS)
-    n_tries = _validate.integer_at_least("n_tries", n_tries, 1)
-    n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
-    window = _validate.integer_at_least("window", window, 2)
-    predictor_lr = _validate.learning_rate("predictor_lr", predictor_lr)
-    seed = _validate.root_seed("seed", seed)
-    _validate.boolean("progress", progress)
-    check_memory("outcome_rewards", {"rewards": len(rewards), "n_seeds": n_seeds,
-                                     "n_tries": n_tries},
-                 outcome_rewards_memory(len(rewards), n_seeds, n_tries, window))
-    if n_seeds * n_tries > MAX_OUTCOME_DRAWS:
-        hours = 2 * n_seeds * n_tries * OUTCOME_SECONDS_PER_TRY / 3600
-        raise ValueError(f"n_seeds x n_tries must be at most {MAX_OUTCOME_DRAWS:,} (about "
-                         f"{2 * MAX_OUTCOME_DRAWS * OUTCOME_SECONDS_PER_TRY / 60:.0f} minutes "
-                         f"of computing), got n_seeds={n_seeds} x n_tries={n_tries} = "
-                         f"{n_seeds * n_tries:,} (about {hours:.1f} hours)")
-    coins = np.random.default_rng(seed).random((n_seeds, n_tries)) < 0.5
-    sure = np.ones_like(coins)
-    rows, pair = np.arange(n_seeds), np.zeros(n_seeds, dtype=np.int64)
-    out = {}
-    bar = progress_bar(None, 2 * n_seeds, "rewards of a coin and a sure outcome", progress)
-    for kind, outcomes in (("coin", coins), ("sure", sure)):
-        errors = np.zeros((n_seeds, n_tries))  # the pair's surprise at each try
-        for k in range(n_seeds):
-            if bar is not None:
-                bar.update(1)
-            predictor = predictors.LinearPredictor(1, 1, predictor_lr)
-            for t, outcome in enumerate(outcomes[k].tolist()):
-                errors[k, t] = predictor.update(0, 0, [float(outcome)])
-        for reward in rewards:
-            signal = interest.InterestTable(
-                n_seeds, 1, reward, 1 if reward == "prediction_error" else window, 0.0)
-            paid = np.zeros((n_seeds, n_tries))
-            for t in range(n_tries):
-                signal.record(None, pair, errors[:, t])
-                # (+ 0.0: the batched progress can be -0.0 where QLearner's max(0, .)
-                # gives 0.0; it changes no other number.)
-                paid[:, t] = signal.values(rows)[:, 0] + 0.0
-            out[(reward, kind)] = paid
-    if bar is not None:
-        bar.close()
-    return {(reward, kind): out[(reward, kind)] for reward in rewards
-            for kind in ("coin", "sure")}
-
-
-COIN_CLAIMS = {
-    "error_pays_the_coin": "prediction error keeps paying for a coin and all but stops "
-                           "paying for a sure outcome (less than a hundredth of the coin's)",
-    "progress_pays_little": "learning progress pays a coin more than zero, and less than "
-                            "prediction error pays it",
-    "novelty_blind": "novelty pays a coin exactly what it pays a sure outcome",
-}
-"""The claims of the chapter "Which curiosity?" about what each reward pays for a coin
-(`coin_claims`)."""
-
-
-def late_tries(paid):
-    """The slice of the later half of the tries of `outcome_rewards`' result (the
-    tries the chapter averages over)."""
-    n_tries = next(iter(paid.values())).shape[1]
-    return slice(n_tries // 2, None)
-
-
-def coin_claims(paid):
-    """{claim name: whether it holds}, for each of `COIN_CLAIMS`, from what
-    `outcome_rewards` returned (with the rewards prediction_error, learning_progress
-    and novelty), over the later half of the tries (`late_tries`)."""
-    if not isinstance(paid, dict) or not {(r, k) for r in ("prediction_error",
-                                                          "learning_progress", "novelty")
-                                          for k in ("coin", "sure")} <= set(paid):
-        raise _validate.ArgumentTypeError(
-            f"paid must be what outcome_rewards returns for prediction_error, "
-            f"learning_progress and novelty, got {_validate.show(paid)}")
-    late = late_tries(paid)
-    mean = {key: float(values[:, late].mean()) for key, values in paid.items()}
-    return {
-        "error_pays_the_coin": mean[("prediction_error", "sure")]
-        < mean[("prediction_error", "coin")] / 100,
-        "progress_pays_little": 0 < mean[("learning_progress", "coin")]
-        < mean[("prediction_error", "coin")],
-        "novelty_blind": bool(np.array_equal(paid[("novelty", "coin")],
-                                             paid[("novelty", "sure")])),
-    }
-
-
-def outcome_rewards_memory(n_rewards, n_seeds, n_tries, window=interest.DEFAULT_WINDOW):
-    """An upper bound on the memory `outcome_rewards` adds to the process, in bytes,
-    counted from its arrays' shapes (see `icm.experiments._memory`)."""
-    # Per seed and try: the coins' uniform numbers (8 bytes, until the coins are drawn),
-    # the coins and the sure outcomes (a byte each), and every reward paid.
-    per_try = 8 + 2 + 8 * 2 * n_rewards
-    # Per seed: two learners (the next is made before the last is freed), each with its
-    # generator, its numbers and its pair's errors, count and progress; a try's
-    # temporaries.
-    learner = _streams.memory_bound(1, 0) + 8 * (window + 2 + 4)
-    per_seed = 2 * learner + OUTCOME_ROW_BYTES
-    slopes = 2 * 8 * (window + 1) ** 2 * window  # the two learners' slope tables
-    return FIXED_BYTES + n_seeds * n_tries * per_try + n_seeds * per_seed + slopes
-
-
-OUTCOME_ROW_BYTES = 500
-"""An upper bound on the temporaries of a try, per seed."""

@@ -28,19 +28,12 @@ TASK_KEYS = {"red": (_REST, (1, 0)), "green": (_REST, (0, 1)), "nothing": (_REST
 """The agent's task keys (boxes at rest -> boxes after the press) by name."""
 _TASK_EFFECTS = (buttons.RED_BOX, buttons.GREEN_BOX)  # red, green, as TASKS
 FADE_FRACTION = 0.1
+"""The share of its peak below which a task's mean interest has faded (`fade_trial`)."""
 CHAPTER_SEEDS = 200
 """Runs of the chapter "Goal-oriented interest" (its Figure 5; `python -m icm figure5`)."""
 CHAPTER_TRIALS = 60
 """Trials per run in that chapter: its Figure 5 and panel, its exercises' runs, its
 robustness maps and `python -m icm figure5`."""
-"""The share of its peak below which a task's mean interest has faded (`fade_trial`)."""
-CLAIMS = {
-    "red_first_mostly": "red is mastered first in most seeds",
-    "red_sooner": "red is mastered sooner than green on average",
-    "red_fades_first": "the mean interest in red fades before the interest in green",
-    "green_stays_longer": "the interest in green is spent later than the interest in red",
-}
-"""The claims of the paper about Figure 5 that the book states (`claims`)."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -103,9 +96,10 @@ class GoalOrientedResult:
         return int(np.argmax(self.mean_interest()[:, TASKS.index(task)])) + 1
 
     def claims(self):
-        """{claim name: whether it holds in this run}, for each of `CLAIMS`: what the
-        chapter states in words, checked on the book's run when it is built (and by
-        the tests on their own seeds)."""
+        """{claim name: whether it holds in this run}, for each of
+        `icm.chapters.goal_oriented_interest.CLAIMS`: what the chapter states in words,
+        checked on the book's run when it is built (and by the tests on their own
+        seeds)."""
         s = self.summary()
         return {
             "red_first_mostly": s["red_first"] > 0.5,

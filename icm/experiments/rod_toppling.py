@@ -291,8 +291,9 @@ class RodTopplingResult:
         return out
 
     def claims(self):
-        """{claim name: whether it holds in this run}, for each of `CLAIMS` (checked
-        on the book's run when it is built, and by the tests on their own seeds)."""
+        """{claim name: whether it holds in this run}, for each of
+        `icm.chapters.rod_toppling.CLAIMS` (checked on the book's run when it is built, and
+        by the tests on their own seeds)."""
         s = self.summary()
         return {
             "red_toppled_first": s["red_toppled_first"] > 0.5
@@ -304,64 +305,6 @@ class RodTopplingResult:
             "then_blue": s["blue_share_second_half"] > s["blue_share_first_10"],
             "red_in_the_way": s["red_share_second_half"] > s["blue_share_second_half"],
         }
-
-
-CLAIMS = {
-    "red_toppled_first": "the first topple is red's in most seeds, and the median run "
-                         "topples red first",
-    "red_learned_first": "red is predicted well (on the pairs toppled) before blue in "
-                         "most seeds, and sooner at the median",
-    "red_learned_first_all": "red is predicted well (on every pair) before blue in most "
-                             "seeds, and sooner at the median",
-    "then_blue": "blue ends a larger share of the episodes in the second half of "
-                 "training than in the first ten",
-    "red_in_the_way": "in the second half of training red is toppled more often than blue",
-}
-"""The claims about Figure 7's story over the seeds that the book states in words
-(`RodTopplingResult.claims`)."""
-
-
-def initial_q_claims(default, untried_worth_nothing, untried_worth_a_surprise):
-    """{claim name: whether it holds}, for each of `INITIAL_Q_CLAIMS`: what the value
-    of an untried move does to the story, from runs on the same seeds at the default
-    `initial_q`, at a lower one and at a higher one.
-
-    Args:
-      default, untried_worth_nothing, untried_worth_a_surprise: each a
-        `RodTopplingResult`, the second with a lower `initial_q` than the first, the
-        third a higher.
-
-    Raises:
-      TypeError: if a run is not a `RodTopplingResult`.
-      ValueError: if the runs' initial Q values are not in that order.
-    """
-    runs = {"default": default, "untried_worth_nothing": untried_worth_nothing,
-            "untried_worth_a_surprise": untried_worth_a_surprise}
-    for name, run in runs.items():
-        _validate.instance(name, run, RodTopplingResult,
-                           "a RodTopplingResult (from icm.experiments.run_rod_toppling)")
-    values = [run.settings["initial_q"] for run in runs.values()]
-    if not values[1] < values[0] < values[2]:
-        raise ValueError(f"the runs' initial_q must rise from untried_worth_nothing to "
-                         f"default to untried_worth_a_surprise, got {values[1]!r}, "
-                         f"{values[0]!r} and {values[2]!r}")
-    d, low, high = (run.summary() for run in runs.values())
-    return {
-        "low_stays_with_red": low["red_well_share"] < d["red_well_share"]
-        and low["first_blue_median"] > d["first_blue_median"],
-        "high_meets_blue_early": high["first_blue_median"] < d["first_blue_median"],
-        "high_less_red_first": high["red_first_toppled"] < d["red_first_toppled"],
-    }
-
-
-INITIAL_Q_CLAIMS = {
-    "low_stays_with_red": "with untried moves worth less, red is predicted well on all its "
-                          "pairs in fewer seeds and blue is first toppled later",
-    "high_meets_blue_early": "with untried moves worth more, blue is first toppled sooner",
-    "high_less_red_first": "with untried moves worth more, red comes first in fewer seeds",
-}
-"""The claims about the value of an untried move that the book states in words
-(`initial_q_claims`)."""
 
 
 def _median_of_found(episodes):

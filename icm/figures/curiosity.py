@@ -182,7 +182,7 @@ def wobbly_rod_figure(comparison):
 def coin_flip_figure(curves):
     """What each signal pays, try after try, for a pair whose outcome is a fair coin
     (solid) and for one whose outcome never changes (dashed): the curves of
-    `icm.experiments.curiosity.outcome_rewards` (mean over seeds, 95% band).
+    `icm.experiments.coin_rewards.outcome_rewards` (mean over seeds, 95% band).
 
     Args:
       curves: {(signal, "coin" | "sure"): rewards [seed, try]}.

@@ -1,5 +1,6 @@
-"""Whether the fast tabular twins give the physics' outcomes: the claims of the chapter
-"The simulated iCub", checked on its own runs when the book is built."""
+"""The chapter "The simulated iCub" (book/simulated_icub.ipynb): whether the fast
+tabular twins give the physics' outcomes, its claims in words (`CLAIMS`) checked on its
+own runs when the book is built (`claims`)."""
 
 import numpy as np
 

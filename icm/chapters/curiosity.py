@@ -1,0 +1,97 @@
+"""The chapter "Which curiosity?" (book/curiosity.ipynb): its claims in words about
+the buttons (`SIGNAL_CLAIMS`, checked by `icm.experiments.curiosity.SignalComparison.
+claims`), the rods (`REWARD_CLAIMS`, by `RewardComparison.claims`) and a coin
+(`COIN_CLAIMS`, by `coin_claims` on what `icm.experiments.coin_rewards.outcome_rewards`
+pays), and its bold claims with a word of strength (`BOLD_CLAIMS`).
+"""
+
+import numpy as np
+
+from icm import _validate
+
+
+SIGNAL_CLAIMS = {
+    "red_first_everywhere": "red is mastered before green in most seeds under every signal "
+                            "and place of interest, pressing at random included",
+    "random_not_slower": "pressing at random masters red and green no later than learning "
+                         "progress (its means within learning progress's bands or below)",
+    "novelty_region_fastest": "novelty per region has the lowest mean mastery trial of "
+                              "green (the lowest mean only: no comparison is claimed "
+                              "clear)",
+    "novelty_task_balanced": "novelty per task opens red, green and nothing equally often",
+    "task_not_trapped": "with interest per task, no signal is trapped by the noisy button",
+    "region_error_trapped": "with interest per region, prediction error is trapped",
+    "region_progress_drawn_not_trapped": "with interest per region, learning progress is "
+                                         "not trapped, though it presses the noisy button "
+                                         "more than chance",
+    "region_novelty_equal": "novelty per region presses every button equally",
+    "noise_costs_every_learner": "with the noisy button, every learner masters green later",
+}
+"""The claims of the chapter "Which curiosity?" about the buttons
+(`SignalComparison.claims`)."""
+
+
+REWARD_CLAIMS = {
+    "error_trapped": "prediction error is trapped by the wobbly rod, and predicts red well "
+                     "in fewer seeds than without it",
+    "progress_learns_anyway": "learning progress predicts red and blue well in at least "
+                              "90% of the seeds with the wobbly rod",
+    "progress_not_immune": "learning progress ends most of its late episodes at the "
+                           "wobbly rod",
+    "novelty_random_not_trapped_but_slow": "novelty and the random walk are not trapped, "
+                                           "and neither predicts red well in most seeds",
+}
+"""The claims of the chapter "Which curiosity?" about the rods
+(`RewardComparison.claims`)."""
+
+
+BOLD_CLAIMS = {
+    "Novelty pays the coin exactly what it pays the sure outcome": ("novelty_blind", "exact"),
+    "Novelty per region presses every button about equally": ("region_novelty_equal", "all"),
+    "The noise costs every learner a little.": ("noise_costs_every_learner", "all"),
+}
+"""The bold claims of the chapter "Which curiosity?" that use a word of strength
+("every", "exactly", ...; book/_ext/claim_words.py), each with the claim that checks
+it (`COIN_CLAIMS`, `SIGNAL_CLAIMS`) and the kind of that check: "exact" (an array
+equality), "all" (every button's share within the tolerance of chance; every
+learner's mean later)."""
+
+
+COIN_CLAIMS = {
+    "error_pays_the_coin": "prediction error keeps paying for a coin and all but stops "
+                           "paying for a sure outcome (less than a hundredth of the coin's)",
+    "progress_pays_little": "learning progress pays a coin more than zero, and less than "
+                            "prediction error pays it",
+    "novelty_blind": "novelty pays a coin exactly what it pays a sure outcome",
+}
+"""The claims of the chapter "Which curiosity?" about what each reward pays for a coin
+(`coin_claims`)."""
+
+
+def late_tries(paid):
+    """The slice of the later half of the tries of `outcome_rewards`' result (the
+    tries the chapter averages over)."""
+    n_tries = next(iter(paid.values())).shape[1]
+    return slice(n_tries // 2, None)
+
+
+def coin_claims(paid):
+    """{claim name: whether it holds}, for each of `COIN_CLAIMS`, from what
+    `outcome_rewards` returned (with the rewards prediction_error, learning_progress
+    and novelty), over the later half of the tries (`late_tries`)."""
+    if not isinstance(paid, dict) or not {(r, k) for r in ("prediction_error",
+                                                          "learning_progress", "novelty")
+                                          for k in ("coin", "sure")} <= set(paid):
+        raise _validate.ArgumentTypeError(
+            f"paid must be what outcome_rewards returns for prediction_error, "
+            f"learning_progress and novelty, got {_validate.show(paid)}")
+    late = late_tries(paid)
+    mean = {key: float(values[:, late].mean()) for key, values in paid.items()}
+    return {
+        "error_pays_the_coin": mean[("prediction_error", "sure")]
+        < mean[("prediction_error", "coin")] / 100,
+        "progress_pays_little": 0 < mean[("learning_progress", "coin")]
+        < mean[("prediction_error", "coin")],
+        "novelty_blind": bool(np.array_equal(paid[("novelty", "coin")],
+                                             paid[("novelty", "sure")])),
+    }

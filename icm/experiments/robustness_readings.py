@@ -1,0 +1,207 @@
+"""The choices the paper does not make and the robustness maps do not sweep, measured
+one at a time (`run_readings`): for each, every other reading its `Setting` declares
+(`icm._settings.Setting.other_readings`: an unpublished choice's other choices, or the
+other values it lists), run on the same seeds as the book's reading, with the same
+claims as the maps (`icm.experiments.robustness.STUDIES`), kept in a `ReadingsResult`.
+"""
+
+import dataclasses
+
+import numpy as np
+
+from icm import _validate
+from icm.experiments._progress import progress_bar
+from icm.experiments.robustness import (NOT_MEASURED, STUDY_WORLDS, WORLD_SETTINGS, Study,
+                                        check_study, show_value)
+from icm.stats import share_interval, verdict
+
+
+@dataclasses.dataclass(frozen=True)
+class Reading:
+    """Another reading of a choice the paper does not make.
+
+    Attributes:
+      name: the run function's argument.
+      label: what it is, in words (the setting's label).
+      default: the book's reading.
+      value: the other reading.
+      source: why the book reads it so (the setting's source).
+    """
+
+    name: str
+    label: str
+    default: object
+    value: object
+    source: str
+
+    @property
+    def key(self):
+        """(name, value): the reading's key in a `ReadingsResult`."""
+        return (self.name, self.value)
+
+
+def unpublished_settings(study):
+    """{name: Setting} of the settings of a study's learner and world that the paper
+    does not publish, in declaration order (the learner's, then the world's)."""
+    study = check_study(study)
+    specs = {**study.run_fn.settings_class.specs(),
+             **{n: WORLD_SETTINGS[n] for n in STUDY_WORLDS[study.name]}}
+    return {name: spec for name, spec in specs.items() if not spec.published}
+
+
+def readings(study):
+    """The other readings `run_readings` measures for a study: for each unpublished
+    setting that its maps do not sweep (and that is not in `NOT_MEASURED`), each value
+    of its `Setting.other_readings()`, as `Reading` objects."""
+    study = check_study(study)
+    out = []
+    for name, spec in unpublished_settings(study).items():
+        if (study.name, name) in NOT_MEASURED:
+            continue
+        for value in spec.other_readings():
+            out.append(Reading(name, spec.label, spec.default, value, spec.source))
+    return tuple(out)
+
+
+@dataclasses.dataclass(frozen=True)
+class ReadingsResult:
+    """What `run_readings` measured for one study: the book's run and one run per
+    other reading, all on the same seeds.
+
+    Attributes:
+      study: the `Study`.
+      settings: the arguments of the runs (n_seeds, seed).
+      readings: the `Reading` objects measured, in order.
+      runs: {None: the book's run, (name, value): the run with that reading}, the run
+        results (e.g. `RodTopplingResult`).
+      held: {None or (name, value): {claim: bool array [seed]}}, whether each claim
+        held in each seed.
+    """
+
+    study: Study
+    settings: dict
+    readings: tuple
+    runs: dict
+    held: dict
+
+    @property
+    def n_seeds(self):
+        """Seeds per run."""
+        return self.settings["n_seeds"]
+
+    def _key(self, reading):
+        if reading is None:
+            return None
+        key = reading.key if isinstance(reading, Reading) else reading
+        if not isinstance(key, tuple) or key not in self.held:
+            raise ValueError(f"reading must be None (the book's) or one of "
+                             f"{[r.key for r in self.readings]}, got {reading!r}")
+        return key
+
+    def run(self, reading=None):
+        """The run of `reading` (a `Reading` or its (name, value) key; None: the
+        book's)."""
+        return self.runs[self._key(reading)]
+
+    def share(self, claim, reading=None):
+        """(share, low, high): the share of seeds in which `claim` held with
+        `reading` (None: the book's), and its 95% Wilson interval."""
+        claim = self.study.claim(claim).name
+        held = self.held[self._key(reading)][claim]
+        low, high = share_interval(int(held.sum()), len(held))
+        return float(held.mean()), low, high
+
+    def verdict(self, claim, reading=None):
+        """"holds", "unclear" or "fails": what `reading` says about `claim`."""
+        _, low, high = self.share(claim, reading)
+        return verdict(low, high, self.study.claim(claim).threshold)
+
+    def changed(self, reading):
+        """The claims (names) whose verdict `reading` changes from the book's."""
+        return [c.name for c in self.study.claims
+                if self.verdict(c.name, reading) != self.verdict(c.name)]
+
+    def changes(self):
+        """The readings that change the verdict of at least one claim."""
+        return [r for r in self.readings if self.changed(r)]
+
+    def table(self):
+        """A Markdown table: the book's reading, then one row per other reading, with
+        the share of seeds in which each claim held and its verdict (✓ holds, ✗
+        fails, ? unclear; in bold where it differs from the book's)."""
+        marks = {"holds": "✓", "fails": "✗", "unclear": "?"}
+        claims = self.study.claims
+        lines = ["| choice | reading | " + " | ".join(
+                     f"{c.text} (≥ {c.threshold:.0%})" for c in claims) + " |",
+                 "|---|---|" + "---|" * len(claims)]
+
+        def cells(reading):
+            out = []
+            for c in claims:
+                share, verdict_ = self.share(c.name, reading)[0], self.verdict(c.name, reading)
+                cell = f"{share:.1%} {marks[verdict_]}"
+                if reading is not None and verdict_ != self.verdict(c.name):
+                    cell = f"**{cell}**"
+                out.append(cell)
+            return out
+
+        lines.append("| the book's | all as in the book | " + " | ".join(cells(None)) + " |")
+        for r in self.readings:
+            lines.append(f"| {r.label} (book: {show_value(r.default)}) | {show_value(r.value)} | "
+                         + " | ".join(cells(r)) + " |")
+        return "\n".join(lines)
+
+    def describe(self):
+        """In words, which of the other readings change a claim's verdict, and how: a
+        clause for the chapter, computed from the data."""
+        changed = self.changes()
+        n = len(self.readings)
+        if not changed:
+            return (f"None of the {n} other readings changes the verdict of a claim: "
+                    f"every claim holds, fails or stays unclear as with the book's")
+        parts = []
+        for r in changed:
+            what = ", ".join(f"\"{self.study.claim(c).text}\" {self.verdict(c, r)} "
+                             f"({self.share(c, r)[0]:.1%} of the seeds; with the book's "
+                             f"{show_value(r.default)}, it {self.verdict(c)}, "
+                             f"{self.share(c)[0]:.1%})" for c in self.changed(r))
+            parts.append(f"with {r.label} read as {show_value(r.value)}, {what}")
+        rest = n - len(changed)
+        changes = "changes" if len(changed) == 1 else "change"
+        return (f"Of the {n} other readings, {len(changed)} {changes} a claim's verdict: "
+                + "; ".join(parts) + f". The other {rest} change none")
+
+
+def run_readings(study, n_seeds=200, seed=0, progress=True):
+    """Runs a study's learner with the book's readings and with each other reading
+    (`readings`), one at a time, all on the same seeds, and measures its claims.
+
+    Args:
+      study: "goal_oriented", "actor_critic" or "rod_toppling" (see `STUDIES`), or a
+        `Study`.
+      n_seeds: seeds per run (>= 1; the book uses 200).
+      seed: the root seed (an integer >= 0, a Generator or None).
+      progress: show a progress bar over the runs.
+
+    Returns:
+      A `ReadingsResult`.
+
+    Raises:
+      ValueError: for an unknown study or a bad n_seeds or seed.
+    """
+    study = check_study(study)
+    n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
+    seed = _validate.root_seed("seed", seed)
+    _validate.boolean("progress", progress)
+    found = readings(study)
+    runs, held = {}, {}
+    for reading in progress_bar([None] + list(found), len(found) + 1,
+                                f"other readings: {study.name}", progress, unit="run"):
+        point = {} if reading is None else {reading.name: reading.value}
+        key = None if reading is None else reading.key
+        runs[key] = study.run_fn(n_seeds=n_seeds, seed=seed, progress=False, **study.fixed,
+                                 **point)
+        rows = study.per_seed(runs[key])
+        held[key] = {c.name: np.array([row[c.name] for row in rows], dtype=bool)
+                     for c in study.claims}
+    return ReadingsResult(study, {"n_seeds": n_seeds, "seed": seed}, found, runs, held)
