@@ -389,7 +389,7 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
         assert verdicts["grow_others_pressed_early_verdict"].startswith("clearly better")
         assert verdicts["grow_all_pressed_verdict"].startswith("no clear difference")
         assert verdicts["grow_test_error"] == pytest.approx(-0.01)
-        assert verdicts["grow_test_error_verdict"] == "clearly better"
+        assert verdicts["grow_test_error_verdict"].startswith("clearly better")
         assert "shown5_others_formed" not in verdicts  # no button left unshown
     worse = chapters.forming_actions.verdicts(_fake_study(study, [50] * 5, [300] * 5))
     assert worse["shown1_others_pressed_early_verdict"] == (

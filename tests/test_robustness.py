@@ -147,7 +147,7 @@ def test_pair_grids_cover_every_pair_map_once(name):
     study = robustness.STUDIES[name]
     names = [s.name for s in study.settings]
     swept = []
-    for pair, grid in robustness._pair_grids(study):
+    for pair, grid in robustness.pair_grids(study):
         for va in grid[pair[0]]:
             for vb in grid[pair[1]]:
                 point = {**study.defaults(), pair[0]: va, pair[1]: vb}

@@ -178,7 +178,7 @@ def test_every_registered_study_runs_tiny(tmp_path):
     from icm.experiments import robustness
 
     study = robustness.STUDIES["rod_toppling"]
-    (a, b), grid = robustness._pair_grids(study)[0]
+    (a, b), grid = robustness.pair_grids(study)[0]
     point = {a: grid[a][-1], b: grid[b][-1]}
     others = {n: v for n, v in study.defaults().items() if n not in (a, b)}
     frame = sweep(study.run_fn, {a: [point[a]], b: [point[b]]}, n_seeds=2, seed=0,

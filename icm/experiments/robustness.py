@@ -503,7 +503,7 @@ def run_robustness(study, n_seeds=200, seed=0, n_jobs=1, progress=True):
     seed = _validate.root_seed("seed", seed)
     _validate.boolean("progress", progress)
     frames = {}
-    for pair, grid in _pair_grids(study):
+    for pair, grid in pair_grids(study):
         others = {n: v for n, v in study.defaults().items() if n not in pair}
         frames[pair] = sweep(study.run_fn, grid, n_seeds=n_seeds, seed=seed, n_jobs=n_jobs,
                              progress=progress, per_seed=study.per_seed,
@@ -511,7 +511,7 @@ def run_robustness(study, n_seeds=200, seed=0, n_jobs=1, progress=True):
     return RobustnessResult(study, {"n_seeds": n_seeds, "seed": seed}, frames)
 
 
-def _pair_grids(study):
+def pair_grids(study):
     """The grid to sweep for each pair of settings, without the points an earlier
     pair's grid already holds: where a setting's default row of the map was measured
     before (the other setting alone changed), its default is left out."""

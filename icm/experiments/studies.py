@@ -32,12 +32,13 @@ import json
 import os
 import pathlib
 import platform
+import sys
 import tempfile
 import time
 
 from icm import _validate
 from icm.experiments import goal_babbling, goal_babbling_study, remedies_study
-from icm.experiments.sweep import _append, read_journal, run_units, start_journal
+from icm.experiments.sweep import append_unit, read_journal, run_units, start_journal
 
 
 @dataclasses.dataclass(frozen=True)
@@ -73,9 +74,10 @@ def versions():
     import mujoco
     import numpy
 
-    import icm
-
-    return {"python": platform.python_version(), "icm": icm.__version__,
+    # icm itself is loaded whenever one of its modules is (its version read from there,
+    # not imported: the package imports every layer, this module is below some).
+    icm_version = sys.modules["icm"].__version__
+    return {"python": platform.python_version(), "icm": icm_version,
             "numpy": numpy.__version__, "mujoco": mujoco.__version__}
 
 
@@ -209,7 +211,7 @@ def _robustness_units(settings):
 
     units = []
     for name, study in robustness.STUDIES.items():
-        for (a, b), grid in robustness._pair_grids(study):
+        for (a, b), grid in robustness.pair_grids(study):
             units.extend([name, a, va, b, vb] for va in grid[a] for vb in grid[b])
     return units
 
@@ -218,7 +220,7 @@ def _robustness_unit(settings, unit):
     """One map point and its block of seeds: the rows `robustness.run_robustness`'s
     sweep keeps for it (the point, `seed_index`, a boolean per claim)."""
     from icm.experiments import robustness
-    from icm.experiments.sweep import _run_point
+    from icm.experiments.sweep import run_point
 
     name, a, va, b, vb = unit
     study = robustness.STUDIES[name]
@@ -227,7 +229,7 @@ def _robustness_unit(settings, unit):
     if settings.get("length") is not None:
         key = "n_trials" if "n_trials" in fixed else "n_episodes"
         fixed[key] = settings["length"]
-    return plain(_run_point(study.run_fn, settings["seeds"], ROBUSTNESS_SEED, fixed,
+    return plain(run_point(study.run_fn, settings["seeds"], ROBUSTNESS_SEED, fixed,
                             {a: va, b: vb}, per_seed=study.per_seed))
 
 
@@ -552,10 +554,10 @@ def import_seeds(name, out, source, seeds=None, backend="joblib", n_jobs=-1, cli
     start_journal(journal, header)
     with open(journal, "a", encoding="utf-8") as file:
         if "reach" in old:
-            _append(file, ["reach"], old["reach"], 0.0)
+            append_unit(file, ["reach"], old["reach"], 0.0)
         for label in old["runs"]:
             for root, entry in old["runs"][label].items():
-                _append(file, [label, int(root), 0, kept], entry, 0.0)
+                append_unit(file, [label, int(root), 0, kept], entry, 0.0)
     extra = {"imported": {
         "from": source.name, "sha256": hashlib.sha256(text.encode()).hexdigest(),
         "seeds_per_root": kept,

@@ -21,7 +21,7 @@ from icm.experiments._progress import progress_bar
 BACKENDS = ("joblib", "dask")
 
 
-def _run_point(run_fn, n_seeds, seed, fixed, point, per_seed=None):
+def run_point(run_fn, n_seeds, seed, fixed, point, per_seed=None):
     """Runs one grid point; returns its rows (module level, so workers can unpickle it)."""
     result = run_fn(n_seeds=n_seeds, seed=seed, progress=False, **fixed, **point)
     if per_seed is None and not callable(getattr(result, "seed_summaries", None)):
@@ -165,7 +165,7 @@ def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=N
         raise ValueError(f"client is used only with backend 'dask', got backend {backend!r}")
     grid = _check_grid(run_fn, grid, fixed)
     points = grid_points(grid)
-    job = functools.partial(_run_point, run_fn, n_seeds, seed, fixed, per_seed=per_seed)
+    job = functools.partial(run_point, run_fn, n_seeds, seed, fixed, per_seed=per_seed)
     if backend == "joblib":
         import joblib
 
@@ -259,7 +259,7 @@ def start_journal(path, header):
             file.write(json.dumps({"header": header}, separators=(",", ":")) + "\n")
 
 
-def _append(file, unit, result, cpu):
+def append_unit(file, unit, result, cpu):
     """Appends one finished unit to the open journal and flushes it to the disk."""
     file.write(json.dumps({"unit": unit, "result": result, "cpu": cpu},
                           separators=(",", ":")) + "\n")
@@ -343,7 +343,7 @@ def run_units(fn, units, backend="joblib", n_jobs=-1, client=None, scheduler=Non
             result = json.loads(json.dumps(result))
             done[_key(unit)] = (result, cpu)
             if file is not None:
-                _append(file, unit, result, cpu)
+                append_unit(file, unit, result, cpu)
     finally:
         if file is not None:
             file.close()
