@@ -72,6 +72,7 @@ SLOW = ("tests/test_remedies.py::test_the_study_file_is_what_the_library_compute
         "tests/test_remedies.py::test_the_chapters_claims_hold_on_the_tests_own_seeds",
         "tests/test_remedies.py::test_the_replication_is_what_the_library_computes",
         "tests/test_curiosity.py::test_every_clear_paired_verdict_of_the_chapter_is_replicated",
+        "tests/test_robustness.py::test_the_replication_is_what_the_library_computes",
         "tests/test_goal_babbling.py::test_the_study_file_is_what_the_library_computes",
         "tests/test_goal_babbling.py::test_the_chapters_claims_hold_on_the_tests_own_seeds",
         "tests/test_goal_babbling_runs.py::test_the_chapters_runs_are_what_the_library_computes",

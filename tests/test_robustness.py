@@ -2,6 +2,7 @@
 the sweep of pairs, the map figure, and the README's list of dependencies checked on
 the tests' own seeds."""
 
+import json
 import re
 
 import matplotlib.patches
@@ -575,3 +576,43 @@ def test_the_readings_numbers_come_from_the_runs():
     assert clauses["readings_actor_critic"] == found["actor_critic"].describe()
     refused(lambda: chapters.robustness.readings_numbers(
         {"goal_oriented": found["goal_oriented"]}), "found", "goal_oriented", "type")
+
+
+# --- the chapter's claims replicated on a fresh root (issue 28) ----------------------------
+
+def test_the_replication_is_what_the_library_computes():
+    # assets/replications.json's "robustness" entry is the chapter's three maps run again
+    # on the fresh root, every claim rechecked there (python -m icm.chapters.robustness).
+    from icm.experiments import replication
+    stored = replication.load_replications()["robustness"]
+    assert stored["root"] == replication.REPLICATION_ROOTS["robustness"]
+    assert stored["root"] not in (0, SEED) and stored["n_seeds"] == \
+        chapters.robustness.REPLICATION_SEEDS
+    assert chapters.robustness.run_replication() == stored
+    assert set(stored["claims"]) == set(chapters.robustness.CHAPTER_CLAIMS)
+
+
+def test_a_claim_that_did_not_replicate_is_said_so_beside_it():
+    from icm.experiments import replication
+    stored = replication.load_replications()["robustness"]
+    sentences = chapters.robustness.replication_sentences(stored)
+    failed = [name for name, held in stored["claims"].items() if not held]
+    for name in failed:
+        assert chapters.robustness.CHAPTER_CLAIMS[name] in sentences["summary"]
+    assert ("Not replicated" in sentences["critic_everywhere"]) == (
+        "critic_red_everywhere" in failed)
+    # A bold claim of the chapter that did not replicate has the sentence beside it.
+    cells = [c["source"] for c in json.loads(
+        (ROOT / "book" / "robustness.ipynb").read_text())["cells"]]
+    for bold, (claim, _) in chapters.robustness.BOLD_CLAIMS.items():
+        if claim in failed:
+            text = next("".join(c) for c in cells
+                        if bold[:40] in " ".join("".join(c).split()))
+            assert "replication_" in text, bold
+    # Made up: every claim held, or the actor-critic's did not.
+    held = {**stored, "claims": dict.fromkeys(stored["claims"], True)}
+    assert "all of them" in chapters.robustness.replication_sentences(held)["summary"]
+    assert "held again" in chapters.robustness.replication_sentences(held)["critic_everywhere"]
+    lost = {**held, "claims": {**held["claims"], "critic_red_everywhere": False}}
+    assert "Not replicated" in chapters.robustness.replication_sentences(lost)[
+        "critic_everywhere"]

@@ -14,7 +14,7 @@ from icm import _validate
 from icm.envs._assets import ASSETS, asset_path
 from icm.stats import FAMILY_RATE, paired_p_value
 
-REPLICATION_ROOTS = {"forming_actions": 9001, "curiosity": 9002}
+REPLICATION_ROOTS = {"forming_actions": 9001, "curiosity": 9002, "robustness": 9003}
 """The root seed of each chapter's replications: none of the studies' (100 to 400),
 the chapters' (0) or the other tests' roots (below 100) is 9001 or above."""
 REPLICATION_FILE = "replications.json"
