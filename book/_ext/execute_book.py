@@ -99,9 +99,24 @@ from jupyter_client.manager import AsyncKernelManager
 from nbclient import NotebookClient
 from nbclient.exceptions import CellExecutionError, DeadKernelError
 
-from icm._book import STATIC_ENV, toc_pages
-
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+
+def _shared_with_the_library():
+    """icm/_book.py (`STATIC_ENV`, `toc_pages`), loaded from its file rather than
+    imported: this executor also runs where icm is not installed yet (a fresh launch
+    installs it from the notebook's first cell), and that module needs nothing of icm."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("icm_book_shared",
+                                                  ROOT / "icm" / "_book.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+_shared = _shared_with_the_library()
+STATIC_ENV, toc_pages = _shared.STATIC_ENV, _shared.toc_pages
 POLL_SECONDS = 1.0
 """The longest single wait on a kernel channel: a lost wakeup costs at most this."""
 CHECK_SECONDS = 1.0
