@@ -2,7 +2,7 @@
 
 `as_gymnasium(env)` wraps any of the four discrete environments (buttons and rods,
 tabular and physics) as a `gymnasium.Env`: the action space is `Discrete`, the
-observation space a `Dict` of integer `Box`es built from the dm_env specs, a time limit
+observation space a `Dict` of integer `Box` spaces built from the dm_env specs, a time limit
 becomes `truncated` and a topple `terminated`, as Gymnasium distinguishes them.
 """
 

@@ -245,7 +245,7 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
         above); an argument among `LEARNER_ARGUMENTS` given a value other than its
         default replaces that setting. The ranges and the sources of `strategy`,
         `exploration_noise`, `epsilon`, `window`, `inverse_model`, `measure`,
-        `regions` and `maturation` are their `Setting`s.
+        `regions` and `maturation` are those of their `Setting` objects.
       first_run: the index of the first run (>= 0): the seeds are runs first_run to
         first_run + n_seeds - 1 of the root seed, so that a large study can be run in
         pieces (run 7 alone is run 7 of any larger batch; kept in

@@ -95,7 +95,7 @@ def toppling_pairs():
 
 def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), progress=False,
                   off_grid=rods.OFF_GRID.default, observe=None):
-    """Plays `n_episodes` episodes of each per-agent learner of `agents` (`QLearner`s,
+    """Plays `n_episodes` episodes of each per-agent learner of `agents` (`QLearner` objects,
     one per row of `env`, a batched rod table such as the physics one), and summarises
     them (`summarize`).
 
