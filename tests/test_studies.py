@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from icm import cli
+from icm import chapters, cli
 import importlib
 
 from icm.experiments import remedies_study, studies
@@ -164,7 +164,7 @@ def test_every_registered_study_runs_tiny(tmp_path):
     # one batched run of the same seeds (seed i of a root is the same run alone).
     remedies = json.loads((tmp_path / "remedies.json").read_text())
     assert remedies["n_seeds"] == 1 and remedies["budgets"] == [12]
-    remedies_study.summary(remedies)
+    chapters.forming_actions.summary(remedies)
     batched = remedies_study.run_condition("growing up", 300, n_seeds=1, n_rollouts=12)
     assert remedies["runs"]["growing up"]["300"] == json.loads(json.dumps(batched))
     babbling = json.loads((tmp_path / "goal-babbling.json").read_text())
