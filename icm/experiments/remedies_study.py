@@ -91,11 +91,9 @@ def coverage_counts(result, stop=None):
     return counts.astype(np.int64)
 
 
-def budgets_of(n_rollouts):
-    """The budgets at which a run of `n_rollouts` rollouts tests its presses: those of
-    `BUDGETS` below it, and `n_rollouts` (`BUDGETS` at the default budget)."""
-    n_rollouts = _validate.integer_at_least("n_rollouts", n_rollouts, 1)
-    return tuple(b for b in BUDGETS if b < n_rollouts) + (n_rollouts,)
+# The budgets at which a run tests its presses: the goal-babbling study's own function,
+# since this study's BUDGETS are that study's.
+budgets_of = goal_babbling_study.budgets_of
 
 
 def run_condition(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threads=None,

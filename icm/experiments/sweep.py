@@ -21,6 +21,21 @@ from icm.experiments._progress import progress_bar
 BACKENDS = ("joblib", "dask")
 
 
+def _running_client(client):
+    """`client`, or the dask.distributed client already running in this process when it
+    is None; a ValueError when there is none (sweep and run_units on backend "dask")."""
+    from dask import distributed
+
+    if client is None:
+        try:
+            client = distributed.get_client()
+        except ValueError:
+            raise ValueError("backend 'dask' needs a cluster: pass its client (or, to "
+                             "run_units, its scheduler's address); none is running") from None
+    _validate.instance("client", client, distributed.Client)
+    return client
+
+
 def run_point(run_fn, n_seeds, seed, fixed, point, per_seed=None):
     """Runs one grid point; returns its rows (module level, so workers can unpickle it)."""
     result = run_fn(n_seeds=n_seeds, seed=seed, progress=False, **fixed, **point)
@@ -175,15 +190,7 @@ def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=N
                                                    unit="point")
                 for row in point_rows]
     else:
-        from dask import distributed
-
-        if client is None:
-            try:
-                client = distributed.get_client()
-            except ValueError:
-                raise ValueError("backend 'dask' needs a dask.distributed.Client: create one "
-                                 "and pass it as client (none is running)") from None
-        _validate.instance("client", client, distributed.Client)
+        client = _running_client(client)
         futures = client.map(job, points, pure=False)
         rows = [row for future in progress_bar(futures, len(points), "sweep", progress,
                                                 unit="point")
@@ -368,13 +375,7 @@ def _compute(fn, units, backend, n_jobs, client, scheduler, retries):
         own = None
         if client is None and scheduler is not None:
             client = own = distributed.Client(scheduler)
-        if client is None:
-            try:
-                client = distributed.get_client()
-            except ValueError:
-                raise ValueError("backend 'dask' needs a cluster: pass its client or its "
-                                 "scheduler's address (none is running)") from None
-        _validate.instance("client", client, distributed.Client)
+        client = _running_client(client)
         try:
             futures = client.map(job, units, pure=False, retries=retries)
             for future in distributed.as_completed(futures):
