@@ -330,21 +330,41 @@ others pressed early -0.83, standardised 0.57, on the 40 held-out seeds) are sma
 27 seeds costs about 6 CPU-minutes per verdict, more than the test suite can afford."""
 
 
-def replicate(names, study=None, root=None, n_seeds=REPLICATION_SEEDS):
+def fresh_runs(labels, root=None, n_seeds=REPLICATION_SEEDS):
+    """The conditions `labels` run with `run_condition` on the first `n_seeds` seeds of a
+    fresh root (default the chapter's `replication.REPLICATION_ROOTS`), as a study of
+    that one root: what `replicate` compares (a test computes it once for every
+    verdict it replicates)."""
+    root = replication.REPLICATION_ROOTS["forming_actions"] if root is None else root
+    for label in labels:
+        _validate.one_of("labels[i]", label, tuple(CONDITIONS))
+    return {"n_seeds": n_seeds, "roots": [root],
+            "runs": {label: {str(root): run_condition(label, root, n_seeds)}
+                     for label in labels}}
+
+
+def replicate(names, study=None, root=None, n_seeds=REPLICATION_SEEDS, fresh=None):
     """Reruns the comparisons `names` (keys of `comparisons`) on the first `n_seeds`
     seeds of a fresh root (default the chapter's `replication.REPLICATION_ROOTS`), each
     condition and learning progress alone with `run_condition`, and tests each in the
     direction the study found (`study`, default `load_study()`, over `VERDICT_ROOTS`):
-    {name: `replication.replicated` dict}."""
+    {name: `replication.replicated` dict}. `fresh`: those runs when computed before
+    (`fresh_runs` of at least learning progress and the names' conditions, on `root`
+    with `n_seeds`); None computes them."""
     study = load_study() if study is None else check_study(study)
     root = replication.REPLICATION_ROOTS["forming_actions"] if root is None else root
     found = comparisons(study)
     for name in names:
         _validate.one_of("names[i]", name, tuple(found))
     labels = ["learning progress"] + sorted({found[n]["label"] for n in names})
-    fresh = {**study, "n_seeds": n_seeds,
-             "runs": {label: {str(root): run_condition(label, root, n_seeds)}
-                      for label in labels}}
+    if fresh is None:
+        fresh = fresh_runs(labels, root, n_seeds)
+    missing = [label for label in labels if str(root) not in fresh["runs"].get(label, {})]
+    if missing or fresh["n_seeds"] != n_seeds:
+        raise ValueError(f"fresh must hold {n_seeds} seeds of root {root} for "
+                         f"{', '.join(labels)}; it has {fresh['n_seeds']} seeds and lacks "
+                         f"{', '.join(missing) or 'nothing'}")
+    fresh = {**study, "n_seeds": n_seeds, "runs": fresh["runs"]}
     out = {}
     for name in names:
         label, measure = found[name]["label"], found[name]["measure"]
