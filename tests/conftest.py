@@ -20,6 +20,10 @@ RECORDS = ROOT / "_build"
 """Where the last test run leaves its records (`make bench` reads them)."""
 DURATIONS_RECORD = RECORDS / "icm-test-durations.json"
 """The last run's durations per test, with the reference workload timed at its end."""
+BASELINE_RECORD = ROOT / "tests" / "data" / "module-seconds.json"
+"""Seconds per test module in a full run, committed: the order of the modules in a
+checkout that has no DURATIONS_RECORD yet (without it, a module of minutes may start
+last and run alone at the end)."""
 EXECUTION_RECORD = "icm-execution-record.json"
 """The book build's record of execution times (book/_ext/execute_book.py), copied into
 RECORDS by the session that built the book."""
@@ -70,8 +74,8 @@ def cpu_burners(count=None):
 
 SLOW = ("tests/test_remedies.py::test_the_study_file_is_what_the_library_computes",
         "tests/test_remedies.py::test_the_chapters_claims_hold_on_the_tests_own_seeds",
-        "tests/test_remedies.py::test_the_replication_is_what_the_library_computes",
-        "tests/test_remedies.py::test_a_replication_computes_its_runs_when_not_given_them",
+        "tests/test_remedies_replication.py::test_the_replication_is_what_the_library_computes",
+        "tests/test_remedies_replication.py::test_a_replication_computes_its_runs_when_not_given_them",
         "tests/test_curiosity.py::test_every_clear_paired_verdict_of_the_chapter_is_replicated",
         "tests/test_robustness.py::test_the_replication_is_what_the_library_computes",
         "tests/test_goal_babbling.py::test_the_study_file_is_what_the_library_computes",
@@ -133,8 +137,8 @@ class _LongestFirst:
     together: whole modules (a worker takes a module at a time: `--dist loadscope`),
     the longest first by the last run's record of durations; the modules that read
     the built book last, each with its other tests first, so that the book builds in
-    the background while everything else runs. Without a record, the modules keep
-    their order (the book's still last)."""
+    the background while everything else runs. Without a record of its own (a fresh
+    clone), by `BASELINE_RECORD` (the book's still last)."""
 
     @pytest.hookimpl(trylast=True)
     def pytest_collection_modifyitems(self, config, items):
@@ -148,6 +152,11 @@ class _LongestFirst:
         modules = {}
         for item in items:
             modules.setdefault(item.nodeid.split("::")[0], []).append(item)
+        if not recorded:  # a fresh clone, CI: the committed record of a full run
+            try:
+                recorded = json.loads(BASELINE_RECORD.read_text())["modules"]
+            except (OSError, ValueError, KeyError):
+                pass
         order = sorted(modules, key=lambda m: (any(map(_needs_book, modules[m])),
                                                 -recorded.get(m, 0.0)))
         items[:] = [item for module in order

@@ -462,10 +462,10 @@ def test_a_live_panel_never_makes_the_notebook_client_write_on_the_shell_channel
                                                     send(msg))[1]
 
     # The Output case can itself lose the reply's wakeup: the wait then ends only at the
-    # timeout, where the reply is found (301 s of a test run here with 300): a minute
+    # timeout, where the reply is found (301 s of a test run here with 300): 20 s
     # there. icm's panel imports icm and runs 4 seeds: a loaded machine may take
     # minutes (a wall-clock limit only, against a hang of the test).
-    client = NotebookClient(nb, timeout=60 if sends else 600, kernel_name="python3",
+    client = NotebookClient(nb, timeout=20 if sends else 600, kernel_name="python3",
                             on_notebook_start=spy_on_the_shell,
                             resources={"metadata": {"path": str(tmp_path)}})
     client.execute()
