@@ -1,8 +1,9 @@
-"""The interactive panels: the grid runs, the precomputed grids, the live and the static
-panels, and the numbers the book quotes about the sweep."""
+"""The interactive panels: the grid runs, the precomputed grids and their stored files,
+the live and the static panels, and the numbers the book quotes about the sweep."""
 
 import dataclasses
 import json
+import math
 
 import ipywidgets
 import numpy as np
@@ -10,8 +11,10 @@ import pytest
 
 import icm
 from icm import figures, widgets
-from icm.experiments import panel_data
+from icm.experiments import panel_data, panel_grids
 from icm.figures import static_panels
+
+from test_bad_input import refused
 
 
 def same_result(one, other):
@@ -189,6 +192,167 @@ def test_panel_calls_refuse_bad_names_settings_and_fixed_arguments():
         static_panels.curves_panel("figure5")
     with pytest.raises(ValueError, match="figure5 grid"):
         static_panels.sweep_panel(panel_data.PanelGrid("figure6", (), ()))
+
+
+# --- the stored grids: the book's static panels read them, and they are what the
+# --- library computes ------------------------------------------------------------------
+
+def assert_same_curves(stored, computed, where):
+    """Two settings' curves are the same: labels, series in order, and every number and
+    its dtype, exactly."""
+    assert list(stored) == list(computed), where
+    assert stored["x"].dtype == computed["x"].dtype, where
+    assert np.array_equal(stored["x"], computed["x"]), where
+    assert {k: v for k, v in stored.items() if k not in ("x", "groups")} == \
+        {k: v for k, v in computed.items() if k not in ("x", "groups")}, where
+    assert len(stored["groups"]) == len(computed["groups"]), where
+    for mine, theirs in zip(stored["groups"], computed["groups"]):
+        assert {k: v for k, v in mine.items() if k != "series"} == \
+            {k: v for k, v in theirs.items() if k != "series"}, where
+        assert list(mine["series"]) == list(theirs["series"]), where
+        for key, band in mine["series"].items():
+            assert isinstance(band, tuple) and len(band) == len(theirs["series"][key]) == 3
+            for a, b in zip(band, theirs["series"][key]):
+                assert a.dtype == b.dtype and np.array_equal(a, b), (where, key)
+
+
+def assert_same_cell(stored, computed, where):
+    """Two sweep cells are the same, exactly (NaN where both have NaN)."""
+    assert list(stored) == list(computed), where
+    for key, value in stored.items():
+        other = computed[key]
+        assert type(value) is type(other), (where, key)
+        assert value == other or (math.isnan(value) and math.isnan(other)), (where, key)
+
+
+PIN_SEED = 20261202
+"""Seed of the settings the pin test reruns, besides each grid's first and last."""
+
+
+def pinned_settings(count):
+    """Positions of the settings the pin test reruns in a grid of `count`: the first,
+    the last, and three others drawn from `PIN_SEED`."""
+    others = np.random.default_rng(PIN_SEED).choice(np.arange(1, count - 1), 3, replace=False)
+    return [0, *sorted(int(i) for i in others), count - 1]
+
+
+@pytest.mark.parametrize("name", sorted(panel_data.PANELS))
+def test_the_stored_grid_is_the_panels_and_precompute_reads_it(name, monkeypatch):
+    about = panel_data.stored_about(name)
+    assert about["panel"] == name
+    assert about["spec"] == panel_data.spec_record(name), \
+        f"the panel changed since its grid was written: rerun python -m " \
+        f"icm.experiments.panel_grids {name}"
+    assert set(about["versions"]) == {"python", "numpy", "numba", "machine"}
+    assert panel_data.grid_path(name).stat().st_size < 2_000_000
+
+    def computing(*args, **kwargs):
+        raise AssertionError("precompute computed the grid instead of reading its file")
+
+    monkeypatch.setattr(panel_data, "compute_grid", computing)
+    panel_data._precompute.cache_clear()
+    try:
+        grid = panel_data.precompute(name, progress=False)
+    finally:
+        panel_data._precompute.cache_clear()
+    spec = panel_data.PANELS[name]
+    assert grid.settings == tuple(spec.settings())  # exactly, in order
+    for stored, own in zip(grid.settings, spec.settings()):
+        assert [type(v) for v in stored.values()] == [type(v) for v in own.values()]
+    assert len(grid.curves) == len(grid.settings)
+    assert (grid.cells is not None) == (name == "figure5")
+
+
+@pytest.mark.parametrize("name", sorted(panel_data.PANELS))
+def test_the_stored_grid_is_what_the_library_computes(name):
+    # A few settings of the grid, rerun the way compute_grid runs them: the file's
+    # numbers, exactly (after a change to the library, python -m
+    # icm.experiments.panel_grids writes the files again).
+    rewrite = f"if the change is meant, rerun python -m icm.experiments.panel_grids {name}"
+    grid = panel_data.load_grid(name)
+    assert grid is not None, f"{panel_data.grid_path(name)} is missing or of another spec; " \
+        f"{rewrite}"
+    spec = grid.spec
+    picked = pinned_settings(len(grid.settings))
+    assert len(set(picked)) == 5
+    results = panel_data.panel_runs(name, [grid.settings[i] for i in picked])
+    for i, result in zip(picked, results):
+        where = (name, grid.settings[i], rewrite)
+        assert_same_curves(grid.curves[i], spec.curves(result, every=spec.every), where)
+        if name == "figure5":
+            assert_same_cell(grid.cells[i], panel_data.sweep_cell(result), where)
+
+
+@pytest.mark.parametrize("name, change", [
+    ("figure5", {"fixed": {**panel_data.PANELS["figure5"].fixed, "n_seeds": 10}}),
+    ("figure6", {"fixed": {**panel_data.PANELS["figure6"].fixed, "n_seeds": 10}}),
+    ("figure7", {"fixed": {**panel_data.PANELS["figure7"].fixed, "n_seeds": 10}}),
+    ("figure7", {"every": 2}),
+    ("figure6", {"grids": {"variant": ("standard",)}}),
+    ("figure5", {"fixed": {**panel_data.PANELS["figure5"].fixed, "presses_per_trial": 5}})])
+def test_a_stored_grid_of_another_spec_is_computed_not_read(name, change, monkeypatch):
+    monkeypatch.setitem(panel_data.PANELS, name,
+                        dataclasses.replace(panel_data.PANELS[name], **change))
+    computed = []
+
+    def compute(panel, progress):
+        computed.append(panel)
+        return "computed"
+
+    monkeypatch.setattr(panel_data, "compute_grid", compute)
+    assert panel_data.stored_about(name)["spec"] != panel_data.spec_record(name)
+    assert panel_data.load_grid(name) is None
+    panel_data._precompute.cache_clear()
+    try:
+        assert panel_data.precompute(name, progress=False) == "computed"
+    finally:
+        panel_data._precompute.cache_clear()
+    assert computed == [name]
+
+
+def test_a_grid_saved_is_read_back_the_same_and_only_for_its_spec(small_grid, tmp_path,
+                                                                  monkeypatch):
+    name, grid = small_grid
+    path = tmp_path / "grid.npz"
+    panel_data.save_grid(grid, path)
+    back = panel_data.load_grid(name, path)
+    assert back.settings == grid.settings
+    for i, (stored, computed) in enumerate(zip(back.curves, grid.curves)):
+        assert_same_curves(stored, computed, grid.settings[i])
+    if grid.cells is not None:
+        for i, (stored, computed) in enumerate(zip(back.cells, grid.cells)):
+            assert_same_cell(stored, computed, grid.settings[i])
+    assert panel_data.stored_about(name, path)["versions"] == panel_data.versions()
+    assert panel_data.load_grid(name, tmp_path / "none.npz") is None
+    small = panel_data.PANELS[name]
+    monkeypatch.setitem(panel_data.PANELS, name, dataclasses.replace(small, every=small.every + 1))
+    assert panel_data.load_grid(name, path) is None  # the spec changed since
+    monkeypatch.setitem(panel_data.PANELS, name, small)
+    assert panel_data.load_grid(name, path) is not None
+    with pytest.raises(ValueError, match="settings"):
+        panel_data.save_grid(panel_data.PanelGrid(name, grid.settings[:1], grid.curves[:1],
+                                                  None if grid.cells is None
+                                                  else grid.cells[:1]), path)
+
+
+def test_the_command_writes_each_named_grid(small_grid, tmp_path, capsys):
+    name, grid = small_grid
+    written = panel_grids.write([name], folder=tmp_path, progress=False)
+    assert written == [tmp_path / f"panel_{name}.npz"]
+    back = panel_data.load_grid(name, written[0])
+    for i, (stored, computed) in enumerate(zip(back.curves, grid.curves)):
+        assert_same_curves(stored, computed, grid.settings[i])
+
+
+def test_the_command_refuses_unknown_panels_before_computing(monkeypatch):
+    monkeypatch.setattr(panel_data, "compute_grid", None)  # never reached
+    refused(lambda: panel_grids.write(["figure5", "figure8"]), "names", "'figure8'", "value")
+    refused(lambda: panel_grids.main(["figure8"]), "names", "'figure8'", "value")
+    with pytest.raises(ValueError, match="'figure5', 'figure6', 'figure7'"):
+        panel_grids.main(["figure8"])
+    refused(lambda: panel_grids.write("figure5"), "names", "'figure5'", "type")
+    refused(lambda: panel_grids.write(["figure5"], progress="yes"), "progress", "yes", "type")
+    refused(lambda: panel_data.grid_path("figure8"), "name", "'figure8'", "value")
 
 
 # --- the widgets: live in Jupyter, static while the book is built --------------------

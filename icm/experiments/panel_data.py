@@ -11,18 +11,30 @@ A panel is one of the paper's figures redrawn for a chosen setting of its slider
   (epsilon, alpha, gamma, predictor learning rate).
 
 `panel_curves_for` is the one call behind a panel: the live ipywidgets panel
-(`icm.widgets`) makes it for whatever setting the sliders show, and `precompute`
+(`icm.widgets`) makes it for whatever setting the sliders show, and `compute_grid`
 makes it for every setting of the panel's grid, so the book's static panels show the
 same numbers as the live ones wherever the grid has the setting.
+
+The book's grids take about 50 s of CPU together, which every build of the book would
+otherwise spend again, so each is kept in assets/ (assets/panel_figure5.npz, ...),
+with what it was computed from (`spec_record`) and the versions that computed it:
+`precompute` reads a panel's file when what it records is the panel's spec, and
+computes the grid otherwise. `python -m icm.experiments.panel_grids` writes the files
+again (after a change to a learner, an experiment or a panel, commit them); a test
+reruns some settings of each grid and expects the file's numbers, exactly.
 """
 
 import dataclasses
 import functools
+import inspect
 import itertools
+import json
+import platform
 
 import numpy as np
 
 from icm import _validate
+from icm.envs._assets import ASSETS
 from icm.experiments import actor_critic as _actor_critic
 from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments import rod_toppling as _rod_toppling
@@ -319,25 +331,11 @@ def _same(a, b):
     return _validate.is_real(b) and abs(a - b) < 1e-9
 
 
-@functools.lru_cache(maxsize=4)
-def _precompute(name, progress):
-    panel = PANELS[name]
-    settings = panel.settings()
-    curves, cells = [], []
-    for result in panel_runs(name, settings, progress=progress):
-        curves.append(panel.curves(result, every=panel.every))
-        if name == "figure5":
-            cells.append(sweep_cell(result))
-    return PanelGrid(name=name, settings=tuple(settings), curves=tuple(curves),
-                     cells=tuple(cells) if cells else None)
-
-
-def precompute(name, progress=True):
+def compute_grid(name, progress=True):
     """Runs panel `name` at every setting of its grid (100 seeds each), as the live panel
-    would: the numbers of the book's static panels.
-
-    The result is kept for the rest of the session (a chapter that shows Figure 5's
-    panel and the sweep computes the grid once).
+    would: `panel_runs` and the panel's `curves` (thinned to its `every`), and for
+    "figure5" each setting's `sweep_cell`. This is what the stored grids hold
+    (`precompute` reads them); it takes from 5 s (figure5) to 25 s (figure7).
 
     Args:
       name: a panel of `PANELS`.
@@ -349,8 +347,169 @@ def precompute(name, progress=True):
     Raises:
       ValueError: for an unknown panel name.
     """
+    panel = spec(name)
+    progress = _validate.boolean("progress", progress)
+    settings = panel.settings()
+    curves, cells = [], []
+    for result in panel_runs(name, settings, progress=progress):
+        curves.append(panel.curves(result, every=panel.every))
+        if name == "figure5":
+            cells.append(sweep_cell(result))
+    return PanelGrid(name=name, settings=tuple(settings), curves=tuple(curves),
+                     cells=tuple(cells) if cells else None)
+
+
+@functools.lru_cache(maxsize=4)
+def _precompute(name, progress):
+    stored = load_grid(name)
+    return compute_grid(name, progress) if stored is None else stored
+
+
+def precompute(name, progress=True):
+    """The numbers of the book's static panel `name`: its curves (and, for "figure5",
+    the sweep's cells) at every setting of its grid, 100 seeds each, as the live panel
+    computes them.
+
+    They come from the panel's file in assets/ (`grid_path`), which
+    `python -m icm.experiments.panel_grids` wrote with `compute_grid`, when the file
+    records the panel's spec as it is now (`spec_record`: the same settings, fixed
+    arguments, `every`, and defaults of the run's other arguments); a test reruns
+    some of its settings and expects its numbers, exactly. Otherwise (no file, or a
+    panel changed since, e.g. a smaller grid for a test) they are computed again with
+    `compute_grid`, 5 to 25 s.
+
+    The result is kept for the rest of the session (a chapter that shows Figure 5's
+    panel and the sweep reads the grid once).
+
+    Args:
+      name: a panel of `PANELS`.
+      progress: show a progress bar over the settings, if they are computed.
+
+    Returns:
+      A `PanelGrid`.
+
+    Raises:
+      ValueError: for an unknown panel name.
+    """
     spec(name)
     return _precompute(name, _validate.boolean("progress", progress))
+
+
+# --- the stored grids -------------------------------------------------------------
+
+GRID_FILE = "panel_{name}.npz"
+"""The file in assets/ that holds a panel's grid (`name`: a key of `PANELS`)."""
+
+
+def grid_path(name, folder=None):
+    """The path of panel `name`'s grid file (`GRID_FILE`) in `folder` (default:
+    assets/); it may not exist."""
+    name = _validate.one_of("name", name, tuple(PANELS))
+    return (ASSETS if folder is None else folder) / GRID_FILE.format(name=name)
+
+
+def _as_json(value):
+    """`value` as JSON gives it back (tuples become lists), for comparisons."""
+    return json.loads(json.dumps(value))
+
+
+def spec_record(name):
+    """What panel `name`'s grid is computed from, as JSON values: the run and curves
+    functions (their dotted names), the grid's settings in order, the fixed arguments,
+    `every`, and the defaults of the run's other arguments (learner settings
+    included). A stored grid is read only if the record it was written with equals
+    this one."""
+    panel = spec(name)
+    others = {key: parameter.default
+              for key, parameter in inspect.signature(panel.run).parameters.items()
+              if key not in ("progress", "settings") and key not in panel.fixed}
+    return _as_json({"run": f"{panel.run.__module__}.{panel.run.__name__}",
+                     "curves": f"{panel.curves.__module__}.{panel.curves.__name__}",
+                     "settings": panel.settings(), "fixed": panel.fixed,
+                     "every": panel.every, "defaults": others})
+
+
+def versions():
+    """The versions that compute the grids: Python, NumPy and Numba, and the machine's
+    kind."""
+    import numba
+    return {"python": platform.python_version(), "numpy": np.__version__,
+            "numba": numba.__version__, "machine": platform.machine()}
+
+
+def _template(curves):
+    """A setting's curves without their arrays (the part every setting of a grid
+    shares): "x" None and each group's "series" the list of its names."""
+    return {**curves, "x": None,
+            "groups": [{**group, "series": list(group["series"])} for group in curves["groups"]]}
+
+
+def save_grid(grid, path):
+    """Writes `grid` (a `PanelGrid` of its panel's spec as it is now) to the .npz file
+    `path`, every number as computed (the bands float64), with `spec_record` and
+    `versions()`.
+
+    Raises:
+      ValueError: if the grid's settings are not its panel's, or its settings' curves
+        differ in their labels or series.
+    """
+    _validate.instance("grid", grid, PanelGrid, "a PanelGrid (from compute_grid)")
+    record = spec_record(grid.name)
+    if _as_json(list(grid.settings)) != record["settings"]:
+        raise ValueError(f"grid must hold the settings of the {grid.name} panel as it is "
+                         f"now (PANELS[{grid.name!r}].settings()), in order")
+    template = _as_json(_template(grid.curves[0]))
+    if any(_as_json(_template(c)) != template for c in grid.curves):
+        raise ValueError("grid: every setting's curves must have the same labels and series")
+    arrays = {"x": np.stack([np.asarray(c["x"]) for c in grid.curves])}
+    for g, group in enumerate(template["groups"]):
+        for series in group["series"]:
+            arrays[f"series/{g}/{series}"] = np.stack(
+                [np.stack(c["groups"][g]["series"][series]) for c in grid.curves])
+    cell_keys = [] if grid.cells is None else list(grid.cells[0])
+    for key in cell_keys:
+        arrays[f"cells/{key}"] = np.array([cell[key] for cell in grid.cells])
+    about = {"panel": grid.name, "spec": record, "template": template,
+             "cells": None if grid.cells is None else cell_keys, "versions": versions()}
+    arrays["about"] = np.array(json.dumps(about))
+    np.savez_compressed(path, **arrays)
+
+
+def stored_about(name, path=None):
+    """What panel `name`'s grid file (default `grid_path(name)`) records: {"panel",
+    "spec" (its `spec_record`), "template" (the curves' labels), "cells" (the sweep
+    cells' keys, or None), "versions"}; None if there is no file."""
+    path = grid_path(name) if path is None else path
+    try:
+        with np.load(path, allow_pickle=False) as stored:
+            return json.loads(str(stored["about"]))
+    except FileNotFoundError:
+        return None
+
+
+def load_grid(name, path=None):
+    """Panel `name`'s grid as its file (default `grid_path(name)`) holds it, a
+    `PanelGrid` equal to `compute_grid(name)`'s, or None if there is no file or it
+    records another spec than the panel's now (`spec_record`)."""
+    path = grid_path(name) if path is None else path
+    about = stored_about(name, path)
+    if about is None or about["panel"] != name or about["spec"] != spec_record(name):
+        return None
+    template = about["template"]
+    with np.load(path, allow_pickle=False) as stored:
+        arrays = {key: stored[key] for key in stored.files if key != "about"}
+    curves = []
+    for i in range(len(about["spec"]["settings"])):
+        groups = [{**group, "series": {series: tuple(arrays[f"series/{g}/{series}"][i])
+                                       for series in group["series"]}}
+                  for g, group in enumerate(template["groups"])]
+        curves.append({**template, "x": arrays["x"][i], "groups": groups})
+    cells = None
+    if about["cells"] is not None:
+        columns = [arrays[f"cells/{key}"].tolist() for key in about["cells"]]
+        cells = tuple(dict(zip(about["cells"], row)) for row in zip(*columns))
+    return PanelGrid(name=name, settings=tuple(about["spec"]["settings"]),
+                     curves=tuple(curves), cells=cells)
 
 
 def thin(curves, every):
