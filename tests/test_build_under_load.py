@@ -12,11 +12,12 @@ import time
 
 from conftest import EXECUTE_BOOK, EXECUTION_RECORD, RECORDS, ROOT, cpu_burners
 
-SLOWEST_CHAPTER = "book/rod_toppling.ipynb"
+SLOWEST_CHAPTER = "book/simulated_icub.ipynb"
 """The chapter whose execution takes the most CPU time, when no build has left a record
-of times here yet (a fresh clone, CI): 28 of the book's 123 CPU-seconds in a build of
-2026-12-02 under heavy load (the reference workload 0.04 s), since "Forming actions"
-reads its goal-babbling runs from a file (19 CPU-seconds, from 133; issue 30)."""
+of times here yet (a fresh clone, CI): 24.7 of the book's 103 CPU-seconds in a build of
+2026-12-02 on an idle machine (the reference workload 0.020 s), since the panels' grids
+are read from assets/ (rod_toppling.ipynb, the slowest before, 13.8 CPU-seconds now;
+issue 30)."""
 
 
 def slowest_chapter():
