@@ -84,15 +84,19 @@ SLOW = ("tests/test_remedies.py::test_the_study_file_is_what_the_library_compute
         "tests/test_physics.py::test_thousands_of_random_actions_stay_stable",
         "tests/test_memory.py::test_memory_bound_holds_and_is_within_one_and_a_half_times_the_peak",
         "tests/test_build_under_load.py::",
+        "tests/test_build.py::",
+        "tests/test_build_cache.py::",
         "tests/test_studies.py::test_every_registered_study_runs_tiny",
         "tests/test_studies.py::test_remedies_seeds_run_one_at_a_time_are_those_of_a_batched_run")
 """Tests (node ids, or their start) that take minutes: the reruns of the stored studies
 and the chapters' claims on many seeds, the physics' thousands of random actions, the
 memory bounds (a large run each, in a process of its own), the slowest chapter under
-load. `make test` runs them; `make test-quick` leaves them out (marker `slow`). In the
-run of 2026-12-02 (a machine under heavy load) they took 1,400 of the 2,900 s that
-the unit tests took summed; the remedies' claims alone 218 of the other unit tests'
-490 CPU-seconds."""
+load, and the book executor's own tests (tests/test_build*.py: kernels on small
+notebooks, many under CPU burners; 170 s of a make test-quick of 210 s on 2 cores,
+2026-12-02). `make test` runs them; `make test-quick` leaves them out (marker `slow`).
+In the run of 2026-12-02 (a machine under heavy load) the others took 1,400 of the
+2,900 s that the unit tests took summed; the remedies' claims alone 218 of the other
+unit tests' 490 CPU-seconds."""
 SLOW_FIXTURES = ("assignments", "graded", "malicious")
 """Fixtures that take minutes, so that every test using them is `slow` too: the course's
 assignments written by otter for every chapter, and the submissions graded from them
