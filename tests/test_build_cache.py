@@ -44,9 +44,12 @@ def test_ctrl_c_stops_at_once_and_the_next_run_keeps_what_was_executed(tmp_path)
     quick = notebook(tmp_path / "quick.ipynb", "print('quick')")
     long = notebook(tmp_path / "long.ipynb", BUSY.format(300))
     out = tmp_path / "out"
+    # Started with SIGINT ignored, as a background job of a shell without job control
+    # starts it (a CI script's `make test &`): Ctrl-C must stop it all the same.
     process = subprocess.Popen(
         [sys.executable, str(EXECUTE_BOOK), "--path-output", str(out), str(long), str(quick)],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT)
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN))
     deadline = time.monotonic() + 600
     lines = []
     while time.monotonic() < deadline:  # wait until the quick one is cached

@@ -86,6 +86,7 @@ import os
 import pathlib
 import shutil
 import sqlite3
+import signal
 import sys
 import tempfile
 import threading
@@ -510,6 +511,11 @@ def main(argv=None):
     args = parser.parse_args(argv)
     if args.jobs < 1 or args.stall <= 0 or args.cpu_limit <= 0:
         parser.error("--jobs must be >= 1, --stall and --cpu-limit > 0")
+    # Ctrl-C stops the build at once, even when it was started with SIGINT ignored (a
+    # background job of a shell without job control inherits that, and Python then
+    # leaves it ignored): a run started so would otherwise finish every notebook.
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.default_int_handler)
 
     cache_path = args.path_output.resolve() / "_build" / ".jupyter_cache"
     cache = ExecutionCache(cache_path, library_fingerprint(), args.force)
