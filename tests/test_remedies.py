@@ -1,7 +1,8 @@
 """The paper's two remedies on goal babbling (icm.learners.maturation, the teacher's
 demonstrations of icm.learners.goal_babbling, icm.experiments.remedies_study): the
 maturational clock, the demonstrations, the options off, bad input, determinism, the
-study file, and the chapter's claims on the tests' own seeds."""
+study file and the chapter's verdicts (its claims on fresh seeds, and the replication:
+tests/test_remedies_replication.py)."""
 
 import dataclasses
 
@@ -431,58 +432,6 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
             "value")
 
 
-# --- the claims -------------------------------------------------------------------------------
-
-CLAIMS_ROOT = 17
-"""The tests' root seed for the chapter's claims (the study's roots are others)."""
-CLAIMS_SEEDS = 8
-"""Its seeds per condition."""
-STRICT = ("shown1_test_error", "shown2_test_error", "shown5_test_error")
-"""The clear differences of the study (Holm-corrected, on the held-out seeds) large
-enough to show, in the same direction and never tied, on the tests' fewer seeds; the
-chapter's other clear differences must not be reversed there."""
-
-
-@pytest.fixture(scope="module")
-def own_study():
-    """The study's conditions but the two random strategies, run the study's way
-    (`run_condition`) on the tests' own root seed, as a study of one root."""
-    study = remedies_study.load_study()
-    runs = {label: {str(CLAIMS_ROOT): remedies_study.run_condition(label, CLAIMS_ROOT,
-                                                                   n_seeds=CLAIMS_SEEDS)}
-            for label in remedies_study.CONDITIONS
-            if label not in ("random motor babbling", "random goal babbling")}
-    return {**study, "n_seeds": CLAIMS_SEEDS, "runs": runs}
-
-
-def test_the_chapters_claims_hold_on_the_tests_own_seeds(study, own_study):
-    # The chapter says, from the study's verdicts, which remedy clearly did better or
-    # worse than learning progress alone in what; on the tests' seeds, none of those
-    # differences is reversed, and the large ones (STRICT) hold strictly.
-    chapter = chapters.forming_actions.verdicts(study)
-    own = {name: float((c["arm"] - c["baseline"]).mean()) for name, c in
-           remedies_study.comparisons(own_study, roots=[CLAIMS_ROOT]).items()}
-    clear = [name[:-len("_verdict")] for name, words in chapter.items()
-             if name.endswith("_verdict") and words.startswith("clearly")]
-    assert set(STRICT) <= set(clear)  # the study still finds them (else rephrase)
-    for name in clear:
-        sign = np.sign(chapter[name])
-        assert sign * own[name] >= 0, (name, chapter[name], own[name])
-        if name in STRICT:
-            assert sign * own[name] > 0, (name, chapter[name], own[name])
-    # Every clock at the full range by the budget; all five shown, all five formed.
-    rows = chapters.forming_actions.summary(own_study)
-    assert rows["growing up"]["maturity_full"] == 1.0
-    assert rows["shown all five"]["all_pressed_share"] == 1.0
-    # Every button shown pressed by the robot itself sooner (median) than without a
-    # teacher, as the chapter says from the study.
-    assert chapters.forming_actions.shown_sooner_sentence(study).startswith("sooner")
-    assert chapters.forming_actions.shown_sooner_sentence(own_study).startswith("sooner")
-    for case in chapters.forming_actions.shown_first_presses(own_study):
-        assert case["median"] is not None and (case["baseline"] is None
-                                               or case["median"] < case["baseline"]), case
-
-
 # --- one rule for "clear", and its replication ----------------------------------------------
 
 def test_the_chapters_verdicts_are_holm_corrected(study):
@@ -509,7 +458,7 @@ def test_every_clear_verdict_has_its_replication(study):
     # python -m icm.experiments.replication): none is missing there.
     stored = replication.load_replications()["forming_actions"]
     assert stored["root"] == replication.REPLICATION_ROOTS["forming_actions"]
-    assert stored["root"] not in remedies_study.ROOTS and stored["root"] != CLAIMS_ROOT
+    assert stored["root"] not in remedies_study.ROOTS
     clear = {n for n, v in remedies_study.chapter_verdicts(study).items() if v["clear"]}
     assert clear <= set(stored["verdicts"]), clear - set(stored["verdicts"])
 

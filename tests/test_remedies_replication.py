@@ -1,11 +1,17 @@
-"""The replication of the chapter "Forming actions" on a fresh root
-(assets/replications.json, `remedies_study.replicate`): the library computes the stored
-outcome of every verdict the chapter calls clear. Its own module, apart from
-tests/test_remedies.py, so that the two take a core each (pytest-xdist runs a module on
-one worker): both rerun many goal-babbling runs."""
+"""The chapter "Forming actions" on fresh seeds: its claims hold there, and the library
+computes the stored replication of every verdict the chapter calls clear
+(assets/replications.json, `remedies_study.replicate`).
 
+Both read one set of runs: the five conditions the claims compare (learning progress
+alone, growing up, and the three teachers), `remedies_study.REPLICATION_SEEDS` seeds
+of the replication's fresh root, which the study that decided the claims never ran
+(40 runs, about 200 CPU-seconds). Its own module, apart from tests/test_remedies.py, so
+that pytest-xdist runs the two on both cores."""
+
+import numpy as np
 import pytest
 
+from icm import chapters
 from icm.experiments import remedies_study, replication
 
 
@@ -14,15 +20,60 @@ def study():
     return remedies_study.load_study()
 
 
+CLAIMED = ("learning progress", "growing up") + remedies_study.TEACHING
+"""The conditions the chapter's claims compare (all but the two random strategies)."""
+
+
 @pytest.fixture(scope="module")
 def fresh(study):
-    """The fresh root's runs of every condition a stored replication compares, learning
-    progress alone included, computed once for all of them (`remedies_study.fresh_runs`,
-    as `replicate` computes them)."""
+    """The fresh root's runs of the conditions the claims compare, which hold those of
+    every stored replication (`remedies_study.fresh_runs`, as `replicate` computes
+    them), computed once for every test of the module."""
     found = remedies_study.comparisons(study)
     stored = replication.load_replications()["forming_actions"]["verdicts"]
-    labels = ["learning progress"] + sorted({found[name]["label"] for name in stored})
-    return remedies_study.fresh_runs(labels)
+    assert {found[name]["label"] for name in stored} <= set(CLAIMED)
+    return remedies_study.fresh_runs(list(CLAIMED))
+
+
+# --- the claims ------------------------------------------------------------------------
+
+STRICT = ("shown1_test_error", "shown2_test_error", "shown5_test_error")
+"""The clear differences of the study (Holm-corrected, on the held-out seeds) large
+enough to show, in the same direction and never tied, on the fresh seeds; the
+chapter's other clear differences must not be reversed there."""
+
+
+def test_the_chapters_claims_hold_on_fresh_seeds(study, fresh):
+    # The chapter says, from the study's verdicts, which remedy clearly did better or
+    # worse than learning progress alone in what; on fresh seeds, none of those
+    # differences is reversed, and the large ones (STRICT) hold strictly.
+    assert not set(fresh["roots"]) & set(remedies_study.ROOTS)  # seeds the study never ran
+    own_study = {**study, "n_seeds": fresh["n_seeds"], "runs": fresh["runs"]}
+    chapter = chapters.forming_actions.verdicts(study)
+    own = {name: float((c["arm"] - c["baseline"]).mean()) for name, c in
+           remedies_study.comparisons(own_study, roots=fresh["roots"]).items()}
+    clear = [name[:-len("_verdict")] for name, words in chapter.items()
+             if name.endswith("_verdict") and words.startswith("clearly")]
+    assert set(STRICT) <= set(clear)  # the study still finds them (else rephrase)
+    for name in clear:
+        sign = np.sign(chapter[name])
+        assert sign * own[name] >= 0, (name, chapter[name], own[name])
+        if name in STRICT:
+            assert sign * own[name] > 0, (name, chapter[name], own[name])
+    # Every clock at the full range by the budget; all five shown, all five formed.
+    rows = chapters.forming_actions.summary(own_study)
+    assert rows["growing up"]["maturity_full"] == 1.0
+    assert rows["shown all five"]["all_pressed_share"] == 1.0
+    # Every button shown pressed by the robot itself sooner (median) than without a
+    # teacher, as the chapter says from the study.
+    assert chapters.forming_actions.shown_sooner_sentence(study).startswith("sooner")
+    assert chapters.forming_actions.shown_sooner_sentence(own_study).startswith("sooner")
+    for case in chapters.forming_actions.shown_first_presses(own_study):
+        assert case["median"] is not None and (case["baseline"] is None
+                                               or case["median"] < case["baseline"]), case
+
+
+# --- the replication -------------------------------------------------------------------
 
 
 @pytest.mark.parametrize("name", sorted(
