@@ -73,9 +73,7 @@ def cpu_burners(count=None):
 # --- markers and order -----------------------------------------------------------------
 
 SLOW = ("tests/test_remedies.py::test_the_study_file_is_what_the_library_computes",
-        "tests/test_remedies_replication.py::test_the_chapters_claims_hold_on_fresh_seeds",
-        "tests/test_remedies_replication.py::test_the_replication_is_what_the_library_computes",
-        "tests/test_remedies_replication.py::test_a_replication_computes_its_runs_when_not_given_them",
+        "tests/test_remedies_replication.py::test_the_kept_fresh_runs_are_what_the_library_computes",
         "tests/test_curiosity.py::test_every_clear_paired_verdict_of_the_chapter_is_replicated",
         "tests/test_robustness.py::test_the_replication_is_what_the_library_computes",
         "tests/test_goal_babbling.py::test_the_study_file_is_what_the_library_computes",

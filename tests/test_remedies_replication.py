@@ -2,17 +2,25 @@
 computes the stored replication of every verdict the chapter calls clear
 (assets/replications.json, `remedies_study.replicate`).
 
-Both read one set of runs: the five conditions the claims compare (learning progress
-alone, growing up, and the three teachers), `remedies_study.REPLICATION_SEEDS` seeds
-of the replication's fresh root, which the study that decided the claims never ran
-(40 runs, about 200 CPU-seconds). Its own module, apart from tests/test_remedies.py, so
-that pytest-xdist runs the two on both cores."""
+Both read one set of runs: the five conditions the claims compare
+(`remedies_study.CLAIMED`: learning progress alone, growing up, and the three
+teachers) on `remedies_study.REPLICATION_SEEDS` seeds of the replication's fresh root,
+which the study that decided the claims never ran. They are kept in
+assets/remedies_fresh_runs.json (40 runs, about 220 CPU-seconds to compute); the first
+test reruns the last two seeds of each condition, as one batch, and expects the same
+numbers, so that the kept runs are what the library computes today (10 runs, about
+55 CPU-seconds). Its own module, apart from tests/test_remedies.py, so that
+pytest-xdist runs the two on both cores."""
+
+import json
 
 import numpy as np
 import pytest
 
 from icm import chapters
+from icm.envs._assets import asset_path
 from icm.experiments import remedies_study, replication
+from icm.experiments.studies import join_entries
 
 
 @pytest.fixture(scope="module")
@@ -20,19 +28,32 @@ def study():
     return remedies_study.load_study()
 
 
-CLAIMED = ("learning progress", "growing up") + remedies_study.TEACHING
-"""The conditions the chapter's claims compare (all but the two random strategies)."""
-
-
 @pytest.fixture(scope="module")
 def fresh(study):
     """The fresh root's runs of the conditions the claims compare, which hold those of
-    every stored replication (`remedies_study.fresh_runs`, as `replicate` computes
-    them), computed once for every test of the module."""
+    every stored replication, as `remedies_study.fresh_runs` computes them: read from
+    the file that keeps them (`remedies_study.load_fresh_runs`)."""
     found = remedies_study.comparisons(study)
     stored = replication.load_replications()["forming_actions"]["verdicts"]
-    assert {found[name]["label"] for name in stored} <= set(CLAIMED)
-    return remedies_study.fresh_runs(list(CLAIMED))
+    assert {found[name]["label"] for name in stored} <= set(remedies_study.CLAIMED)
+    return remedies_study.load_fresh_runs()
+
+
+RERUN = 2
+"""The kept seeds of each condition that the tests rerun: the last ones, as one batch
+(so that an offset into a root's seeds and a batch of seeds are both checked)."""
+
+
+@pytest.mark.parametrize("label", remedies_study.CLAIMED)
+def test_the_kept_fresh_runs_are_what_the_library_computes(label):
+    kept = json.loads(asset_path(remedies_study.FRESH_FILE).read_text())
+    root, n_seeds = kept["root"], kept["n_seeds"]
+    assert root == replication.REPLICATION_ROOTS["forming_actions"]
+    assert not {str(root)} & set(map(str, remedies_study.ROOTS))  # the study never ran it
+    assert n_seeds == remedies_study.REPLICATION_SEEDS == len(kept["runs"][label])
+    assert set(kept["runs"]) == set(remedies_study.CLAIMED)
+    rerun = remedies_study.run_condition(label, root, RERUN, first_run=n_seeds - RERUN)
+    assert rerun == join_entries(kept["runs"][label][-RERUN:])
 
 
 # --- the claims ------------------------------------------------------------------------

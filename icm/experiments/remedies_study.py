@@ -330,6 +330,51 @@ others pressed early -0.83, standardised 0.57, on the 40 held-out seeds) are sma
 27 seeds costs about 6 CPU-minutes per verdict, more than the test suite can afford."""
 
 
+CLAIMED = ("learning progress", "growing up") + TEACHING
+"""The conditions the chapter's claims compare (all but the two random strategies),
+whose runs on the fresh root `FRESH_FILE` keeps."""
+FRESH_FILE = "remedies_fresh_runs.json"
+"""The file in assets/ that keeps the runs of `CLAIMED` on the first
+`REPLICATION_SEEDS` seeds of the chapter's fresh root (`run_fresh_seeds`, one entry per
+seed): the replications (`run_replications`) and the test of the chapter's claims on
+fresh seeds read them. `python -m icm.experiments.replication forming_actions` writes
+it, then assets/replications.json from it; the tests rerun the last two seeds of each
+condition and expect the same numbers."""
+
+
+def run_fresh_seeds(root=None, n_seeds=REPLICATION_SEEDS, n_jobs=-1):
+    """Runs every condition of `CLAIMED` on the first `n_seeds` seeds of a fresh root
+    (default the chapter's `replication.REPLICATION_ROOTS`), one seed at a time (on
+    `n_jobs` processes, joblib; the numbers do not depend on it): what `FRESH_FILE`
+    keeps, {"root", "n_seeds", "runs": {label: [`run_condition` entry of each seed]}}.
+    About 40 CPU-seconds per seed of every condition."""
+    from joblib import Parallel, delayed
+
+    root = replication.REPLICATION_ROOTS["forming_actions"] if root is None else root
+    root = _validate.seed("root", root)
+    n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
+    units = [(label, i) for label in CLAIMED for i in range(n_seeds)]
+    entries = Parallel(n_jobs=n_jobs)(
+        delayed(run_condition)(label, root, 1, first_run=i, threads=1)
+        for label, i in units)
+    runs = {label: [] for label in CLAIMED}
+    for (label, _), entry in zip(units, entries):
+        runs[label].append(entry)
+    return {"root": root, "n_seeds": n_seeds, "runs": runs}
+
+
+def load_fresh_runs():
+    """The runs `FRESH_FILE` keeps, as `fresh_runs` returns them (a study of the one
+    fresh root, each condition's seeds joined into one entry): what `replicate` and
+    the test of the chapter's claims on fresh seeds read."""
+    from icm.experiments.studies import join_entries
+
+    kept = json.loads(asset_path(FRESH_FILE).read_text())
+    return {"n_seeds": kept["n_seeds"], "roots": [kept["root"]],
+            "runs": {label: {str(kept["root"]): join_entries(entries)}
+                     for label, entries in kept["runs"].items()}}
+
+
 def fresh_runs(labels, root=None, n_seeds=REPLICATION_SEEDS):
     """The conditions `labels` run with `run_condition` on the first `n_seeds` seeds of a
     fresh root (default the chapter's `replication.REPLICATION_ROOTS`), as a study of
@@ -376,14 +421,16 @@ def replicate(names, study=None, root=None, n_seeds=REPLICATION_SEEDS, fresh=Non
     return out
 
 
-def run_replications(study=None, babbling=None):
+def run_replications(study=None, babbling=None, fresh=None):
     """The replications of every verdict `chapter_verdicts` calls clear among the
     remedies' comparisons (`replicate`), as assets/replications.json keeps them:
-    {"root", "n_seeds", "verdicts": {name: ...}}."""
+    {"root", "n_seeds", "verdicts": {name: ...}}, from the fresh runs `fresh` (default
+    those `FRESH_FILE` keeps, `load_fresh_runs`)."""
     corrected = chapter_verdicts(study, babbling)
     clear = [name for name in comparisons(study) if corrected[name]["clear"]]
+    fresh = load_fresh_runs() if fresh is None else fresh
     return {"root": replication.REPLICATION_ROOTS["forming_actions"],
-            "n_seeds": REPLICATION_SEEDS, "verdicts": replicate(clear, study)}
+            "n_seeds": REPLICATION_SEEDS, "verdicts": replicate(clear, study, fresh=fresh)}
 
 
 TEST_ERROR_FILE = "remedies_test_error.json"

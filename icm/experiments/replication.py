@@ -44,17 +44,27 @@ def load_replications():
 def main():
     """Runs every chapter's replications (or those of the chapters named as arguments,
     e.g. `python -m icm.experiments.replication curiosity`) and writes
-    assets/replications.json, keeping the other chapters' entries."""
+    assets/replications.json, keeping the other chapters' entries. For "Forming
+    actions", first runs its fresh seeds and writes them
+    (`remedies_study.FRESH_FILE`), from which its replications are computed."""
     import sys
 
     from icm.experiments import curiosity, remedies_study
 
-    runs = {"forming_actions": remedies_study.run_replications,
-            "curiosity": curiosity.run_replications}
+    def forming_actions():
+        fresh = remedies_study.run_fresh_seeds()
+        path = ASSETS / remedies_study.FRESH_FILE
+        path.write_text(json.dumps(fresh, separators=(",", ":")) + "\n")
+        print(f"wrote {path}")
+        return remedies_study.run_replications()
+
+    runs = {"forming_actions": forming_actions, "curiosity": curiosity.run_replications}
     chosen = sys.argv[1:] or list(runs)
+    for chapter in chosen:
+        _validate.one_of("chapter", chapter, tuple(runs))
     out = load_replications()
     for chapter in chosen:
-        out[chapter] = runs[_validate.one_of("chapter", chapter, tuple(runs))]()
+        out[chapter] = runs[chapter]()
     path = ASSETS / REPLICATION_FILE
     path.write_text(json.dumps(out, indent=1) + "\n")
     print(f"wrote {path}")
