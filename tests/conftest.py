@@ -84,6 +84,7 @@ SLOW = ("tests/test_remedies.py::test_the_study_file_is_what_the_library_compute
         "tests/test_build_under_load.py::",
         "tests/test_build.py::",
         "tests/test_build_cache.py::",
+        "tests/test_shared_navigation.py::",
         "tests/test_studies.py::test_every_registered_study_runs_tiny",
         "tests/test_studies.py::test_remedies_seeds_run_one_at_a_time_are_those_of_a_batched_run")
 """Tests (node ids, or their start) that take minutes: the reruns of the stored studies
