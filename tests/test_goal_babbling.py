@@ -638,15 +638,15 @@ def test_the_study_file_holds_every_variant_on_its_root_seeds(study):
 
 
 def test_the_study_file_is_what_the_library_computes(study):
-    # The first seeds of a root seed are the same in any run: rerun two of each of two
-    # variants and expect the file's numbers (python -m icm.experiments.goal_babbling_study
-    # writes it again after a change).
+    # Seed i of a root seed is the same in any run: rerun the second seed of two
+    # variants alone and expect the file's numbers (python -m
+    # icm.experiments.goal_babbling_study writes it again after a change).
     for label, root in [("learning progress", 100), ("where the finger stopped only", 200)]:
-        entry = goal_babbling_study.run_variant(label, root, n_seeds=2)
+        entry = goal_babbling_study.run_variant(label, root, n_seeds=1, first_run=1)
         cached = study["runs"][label][str(root)]
         assert set(entry) == set(cached)
         for key, values in entry.items():
-            assert values == cached[key][:2], (label, key)
+            assert values == cached[key][1:2], (label, key)
 
 
 def test_the_studys_verdicts_are_phrased_from_its_numbers(study):
