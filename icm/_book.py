@@ -1,5 +1,6 @@
 """What the library and the book's build share: the environment variable that asks for
-the static panels, and the book's table of contents (`_toc.yml`), read in one place."""
+the static panels, the book's table of contents (`_toc.yml`), read in one place, and
+the line that spares a notebook's processes a slow import (`SKIP_SLOW_IMPORT`)."""
 
 import os
 import pathlib
@@ -7,6 +8,17 @@ import pathlib
 STATIC_ENV = "ICM_STATIC_PANELS"
 """Set to "1" (the book's build sets it in every kernel), the panels are the static
 Vega-Lite ones and the live views are written for the page, not run."""
+
+SKIP_SLOW_IMPORT = '__import__("sys").modules.setdefault("rfc3987_syntax", None)'
+"""A line that the processes executing notebooks run first (the book's executor and
+its kernels, the grader and its kernels): it marks `rfc3987_syntax` as missing, so
+that jsonschema (which nbformat, and so myst-nb, nbclient and otter, imports) does
+without it. Installed, it builds some 35 Lark parsers as it is imported, 1.5 s of CPU
+in every process that imports nbformat, for jsonschema's "iri" format checks, which
+no schema of nbformat, nbclient, myst-nb or otter asks for (jsonschema checks formats
+only when given a format checker, which they never pass). jsonschema has no switch
+for it (https://github.com/python-jsonschema/jsonschema/issues/1428), hence this
+line. It defines no name: a notebook sees the namespace it would see anywhere else."""
 
 
 def static_panels():

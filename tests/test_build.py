@@ -279,8 +279,13 @@ def test_progress_goes_to_the_builders_terminal_not_into_the_cells_outputs(tmp_p
     assert [(o["output_type"], o.get("text")) for o in outputs] == [("stream", "shown\n")]
 
 
-def test_kernels_talk_over_local_sockets_without_the_tcp_warning(tmp_path):
-    path = notebook(tmp_path / "quiet.ipynb", "print('hello')")
+def test_kernels_talk_over_local_sockets_and_start_without_the_slow_import(tmp_path):
+    # The kernel ran icm._book.SKIP_SLOW_IMPORT as it started, which left no name in
+    # the notebook's namespace.
+    path = notebook(tmp_path / "quiet.ipynb", "import sys\nprint('hello')\n"
+                    "assert sys.modules['rfc3987_syntax'] is None\n"
+                    "assert [n for n in dir() if not n.startswith('_')] == "
+                    "['In', 'Out', 'exit', 'get_ipython', 'open', 'quit', 'sys'], dir()")
     status, _, stderr, _ = run(tmp_path / "out", path)
     assert status == 0, stderr
     assert "without encryption" not in stderr and "Traceback" not in stderr

@@ -93,20 +93,14 @@ import threading
 import time
 from queue import Empty
 
-import nbformat
-import psutil
-from jupyter_client.channels import AsyncZMQSocketChannel
-from jupyter_client.manager import AsyncKernelManager
-from nbclient import NotebookClient
-from nbclient.exceptions import CellExecutionError, DeadKernelError
-
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def _shared_with_the_library():
-    """icm/_book.py (`STATIC_ENV`, `toc_pages`), loaded from its file rather than
-    imported: this executor also runs where icm is not installed yet (a fresh launch
-    installs it from the notebook's first cell), and that module needs nothing of icm."""
+    """icm/_book.py (`STATIC_ENV`, `toc_pages`, `SKIP_SLOW_IMPORT`), loaded from its
+    file rather than imported: this executor also runs where icm is not installed yet
+    (a fresh launch installs it from the notebook's first cell), and that module needs
+    nothing of icm."""
     import importlib.util
 
     spec = importlib.util.spec_from_file_location("icm_book_shared",
@@ -118,6 +112,15 @@ def _shared_with_the_library():
 
 _shared = _shared_with_the_library()
 STATIC_ENV, toc_pages = _shared.STATIC_ENV, _shared.toc_pages
+exec(_shared.SKIP_SLOW_IMPORT)  # before nbformat imports jsonschema
+
+import nbformat  # noqa: E402
+import psutil  # noqa: E402
+from jupyter_client.channels import AsyncZMQSocketChannel  # noqa: E402
+from jupyter_client.manager import AsyncKernelManager  # noqa: E402
+from nbclient import NotebookClient  # noqa: E402
+from nbclient.exceptions import CellExecutionError, DeadKernelError  # noqa: E402
+
 POLL_SECONDS = 1.0
 """The longest single wait on a kernel channel: a lost wakeup costs at most this."""
 CHECK_SECONDS = 1.0
@@ -137,8 +140,11 @@ KERNEL_ENVIRONMENT = {STATIC_ENV: "1", "ICM_BOOK_BUILD": "1",
 IOPUB_WAIT_SECONDS = 10 ** 9
 """How long to wait for a cell's outputs after its reply: in effect for ever (see "No
 output lost"); the stall rule ends a wait for a kernel that is gone."""
-KERNEL_ARGUMENTS = ["--IPKernelApp.capture_fd_output=False"]
-"""The kernels' standard error stays this process's (see "Progress on the terminal")."""
+KERNEL_ARGUMENTS = ["--IPKernelApp.capture_fd_output=False",
+                    f"--IPKernelApp.exec_lines={_shared.SKIP_SLOW_IMPORT}"]
+"""The kernels' standard error stays this process's (see "Progress on the terminal"),
+and each runs `icm._book.SKIP_SLOW_IMPORT` as it starts (IPython's exec_lines: not a
+cell, not in the executed notebook)."""
 SKIP_TAG = "skip-execution"
 """Cells with this tag are not executed (nbclient's and so Jupyter Book's convention)."""
 FINGERPRINT_FILE = "icm-library-fingerprint"
