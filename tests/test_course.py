@@ -704,7 +704,10 @@ def test_a_deck_holds_the_chapters_objectives_figures_and_takeaways(tmp_path):
         slides.build_slides(tmp_path / "nothing", tmp_path / "x")
 
 
-def _open_deck(browser, deck):
+def _open_offline(browser, deck):
+    """A deck loading in a context of its own that refuses the network: (the context,
+    the page, its console and page errors, the requests it tried to make off the
+    machine), as soon as the navigation starts."""
     context = browser.new_context(offline=True, viewport={"width": 1280, "height": 720})
     requests, errors = [], []
 
@@ -720,14 +723,29 @@ def _open_deck(browser, deck):
     page = context.new_page()
     page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
     page.on("pageerror", lambda e: errors.append(str(e)))
-    page.goto(deck.as_uri(), wait_until="load")
-    page.wait_for_function("window.Reveal && Reveal.isReady()", timeout=30000)
-    total = page.evaluate("Reveal.getTotalSlides()")
-    page.evaluate(f"Reveal.slide({total - 1})")
-    page.wait_for_timeout(300)
-    images = page.eval_on_selector_all("img", "els => els.map(e => e.naturalWidth)")
-    context.close()
-    return total, images, errors, requests
+    page.goto(deck.as_uri(), wait_until="commit")
+    return context, page, errors, requests
+
+
+def _open_decks(browser, decks):
+    """Opens every deck, each once loaded and ready, and moves it to its last slide:
+    [(its number of slides, the natural widths of its images 300 ms after that move, its
+    errors, its requests off the machine)], in the decks' order. The decks load side by
+    side (one browser, a page each), not one after the other."""
+    opened = [_open_offline(browser, deck) for deck in decks]
+    totals = []
+    for _, page, _, _ in opened:
+        page.wait_for_load_state("load")
+        page.wait_for_function("window.Reveal && Reveal.isReady()", timeout=30000)
+        totals.append(page.evaluate("Reveal.getTotalSlides()"))
+        page.evaluate(f"Reveal.slide({totals[-1] - 1})")
+    opened[-1][1].wait_for_timeout(300)  # every deck moved at least 300 ms ago
+    results = []
+    for total, (context, page, errors, requests) in zip(totals, opened):
+        images = page.eval_on_selector_all("img", "els => els.map(e => e.naturalWidth)")
+        context.close()
+        results.append((total, images, errors, requests))
+    return results
 
 
 @pytest.mark.book
@@ -741,9 +759,9 @@ def test_make_slides_gives_one_deck_per_chapter_that_opens_offline(built_book, t
         browser = playwright.chromium.launch(executable_path=CHROMIUM,
                                              args=["--no-sandbox", "--disable-gpu"])
         try:
-            for deck in decks:
+            for deck, (total, images, errors, requests) in zip(
+                    decks, _open_decks(browser, decks)):
                 content = slides.chapter_slides(built_book / "book" / deck.name)
-                total, images, errors, requests = _open_deck(browser, deck)
                 assert errors == [] and requests == [], (deck.name, errors, requests)
                 expected = 1 + len(content["figures"]) + bool(content["objectives"]) + \
                     bool(content["takeaways"]) + bool(content["exercises"])

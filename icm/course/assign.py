@@ -41,6 +41,7 @@ import yaml
 
 from icm import _validate
 from icm._book import toc_pages
+from icm.course.grade import MANIFEST  # the file, beside the autograder, `manifest` writes
 from icm.exercises.registry import EXERCISES
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -50,8 +51,6 @@ EXERCISE = re.compile(r"\{exercise(?:-start)?\} (Implement|Predict, then check|E
 """An exercise's directive in a chapter: its kind, its title and its label."""
 KINDS = {"Implement": "implement", "Predict, then check": "predict", "Extend": "extend"}
 SOLUTION_TAG = "solution"
-MANIFEST = "assignment.json"
-"""The file, beside the autograder, that `manifest` writes."""
 ROLE = re.compile(r"\{([a-z]+)(?::[a-z]+)?\}`([^`]*)`")
 """A MyST role (`{ref}`text <target>``, `{doc}`name``, ...)."""
 

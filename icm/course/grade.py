@@ -41,8 +41,11 @@ import time
 import zipfile
 
 from icm import _validate
-from icm.course.assign import MANIFEST
 
+MANIFEST = "assignment.json"
+"""The file, beside the autograder, that `icm.course.assign.manifest` writes (here, not
+in `assign`, so that grading does not import `assign`: nbformat and every exercise's
+check, 3 s of a `python -m icm.course grade` that needs none of them)."""
 TIME_LIMIT = 600.0
 """Seconds one submission may take, kernel start and every test included."""
 CELL_TIMEOUT = 120.0

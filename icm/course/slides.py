@@ -194,7 +194,7 @@ def build_slides(html_dir, out, root=None):
     shutil.copytree(vendor / "reveal", out / "reveal")
     shutil.copytree(vendor / "mathjax", out / "mathjax")
     names = [name for name, _ in (chapters() if root is None else chapters(root))]
-    decks = []
+    decks, titles = [], []
     for number, name in enumerate(names, 1):
         page = html_dir / "book" / f"{name}.html"
         if not page.exists():
@@ -210,8 +210,9 @@ def build_slides(html_dir, out, root=None):
         deck = out / f"{name}.html"
         deck.write_text(deck_html(content, number), encoding="utf-8")
         decks.append(deck)
-    items = "".join(f'<li><a href="{deck.name}">{i}. {html.escape(chapter_slides(html_dir / "book" / deck.name)["title"])}</a></li>'
-                    for i, deck in enumerate(decks, 1))
+        titles.append(content["title"])  # for the index: each page is read once
+    items = "".join(f'<li><a href="{deck.name}">{i}. {html.escape(title)}</a></li>'
+                    for i, (deck, title) in enumerate(zip(decks, titles), 1))
     (out / "index.html").write_text(
         f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>Slides</title>'
         f'</head><body><h1>Intrinsic motivation on the iCub: the slides</h1><ol>{items}'
