@@ -23,16 +23,7 @@ Both this process and the kernel go without jsonschema's IRI format checks
 import json
 import sys
 
-SKIP_SLOW_IMPORT = '__import__("sys").modules.setdefault("rfc3987_syntax", None)'
-"""Run first in the worker and in its kernel: marks `rfc3987_syntax` as missing, so
-that jsonschema (which nbformat, and so otter, imports) does without it. Installed,
-it builds some 35 Lark parsers as it is imported, 1.5 s of CPU in every process that
-imports nbformat, for the "iri" format checks, which no schema of nbformat, nbclient
-or otter asks for (jsonschema checks formats only when given a format checker, which
-they never pass). jsonschema offers no switch for it
-(https://github.com/python-jsonschema/jsonschema/issues/1428), hence this line. It
-defines no name in the kernel: a student's notebook sees the namespace it would see
-anywhere else."""
+from icm._book import SKIP_SLOW_IMPORT  # icm/_book.py says why
 
 
 def _limited_executor(cell_timeout):
