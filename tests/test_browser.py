@@ -1,10 +1,11 @@
 """The built book in a real browser, offline: headless Chromium (Debian's `chromium`
 package) driven by Playwright, with every network request refused.
 
-One Chromium serves the module (`chromium`), through Playwright's async API so that
-several pages are worked at once; each page of the book is opened once at laptop width
-and once at phone width (`book_visits`), and every check that reads a page at laptop
-width reads it from that one visit.
+One Chromium serves the module's tests (`chromium`), through Playwright's async API so
+that several pages are worked at once; each page of the book is opened once at laptop
+width and once at phone width (`book_visits`), and every check that reads a page at
+laptop width reads it from that one visit. (The page-load benchmark, run beside the
+visits, drives a Chromium of its own, as `make bench` runs it.)
 
 Skipped, with the reason shown, where Chromium or Playwright is missing; `.ci/run`
 installs Chromium before `make test`.
@@ -203,8 +204,9 @@ async def _visit_at_phone_width(browser, built_book, name):
 async def _visit_book(browser, built_book):
     with_controls = set(_pages_with_controls(built_book))
     visits = [(name, device) for device in WIDTHS for name in toc_files()]
-    # The longest visits first (axe-core's time grows with a page's elements: the API
-    # page takes half a minute), so that none is left to run alone at the end.
+    # The visits at laptop width first (they do the most), the largest pages first
+    # (axe-core's time grows with a page's elements: on the API page it takes half a
+    # minute), so that no long visit is left to run alone at the end.
     visits.sort(key=lambda visit: (visit[1] != "laptop",
                                    -(built_book / f"{visit[0]}.html").stat().st_size))
     at_once = asyncio.Semaphore(PAGES_AT_ONCE)
