@@ -338,7 +338,7 @@ FRESH_FILE = "remedies_fresh_runs.json"
 `REPLICATION_SEEDS` seeds of the chapter's fresh root (`run_fresh_seeds`, one entry per
 seed): the replications (`run_replications`) and the test of the chapter's claims on
 fresh seeds read them. `python -m icm.experiments.replication forming_actions` writes
-it, then assets/replications.json from it; the tests rerun the last two seeds of each
+it, then assets/replications.json from it; the tests rerun the last seed of each
 condition and expect the same numbers."""
 
 
