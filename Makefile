@@ -13,15 +13,12 @@ STAMP := $(VENV)/.installed
 check-system:
 	@$(PYTHON) icm/_system.py
 
-# The requirements are installed with --no-compile: Python compiles a module to bytecode
-# the first time it is imported, so only the modules in use are compiled, not every one
-# of the 200 packages (from a warm pip cache: 57 s with them all compiled, 24 s without).
 $(STAMP): requirements.txt pyproject.toml
 	@echo "[1/3] creating $(VENV) with $(PYTHON)"
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	@$(BIN)/python -m pip install --quiet --upgrade pip
 	@echo "[2/3] installing the pinned requirements (a few minutes the first time)"
-	@$(BIN)/python -m pip install --no-compile -r requirements.txt | awk \
+	@$(BIN)/python -m pip install -r requirements.txt | awk \
 		'/^Collecting/ {n++; printf "\r      %d packages found (%s)                    ", n, $$2; fflush()} \
 		 /^Installing collected/ {printf "\n      installing them ...\n"; fflush()} \
 		 /^Successfully installed/ {print "      done"}'
