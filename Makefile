@@ -13,15 +13,21 @@ STAMP := $(VENV)/.installed
 check-system:
 	@$(PYTHON) icm/_system.py
 
+# pip compiles the packages' bytecode on one core; compileall -j 0 does the same on
+# every core (from a warm pip cache: 57 s for the install, 47 s this way). Every module
+# must be compiled ahead: processes that write no bytecode (loky's workers run python
+# -B) would otherwise compile what they import each time they start.
 $(STAMP): requirements.txt pyproject.toml
 	@echo "[1/3] creating $(VENV) with $(PYTHON)"
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	@$(BIN)/python -m pip install --quiet --upgrade pip
 	@echo "[2/3] installing the pinned requirements (a few minutes the first time)"
-	@$(BIN)/python -m pip install -r requirements.txt | awk \
+	@$(BIN)/python -m pip install --no-compile -r requirements.txt | awk \
 		'/^Collecting/ {n++; printf "\r      %d packages found (%s)                    ", n, $$2; fflush()} \
 		 /^Installing collected/ {printf "\n      installing them ...\n"; fflush()} \
 		 /^Successfully installed/ {print "      done"}'
+	@echo "      compiling their bytecode on every core"
+	@$(BIN)/python -m compileall -q -j 0 "$$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_path("purelib"))')"
 	@echo "[3/3] installing icm itself (editable)"
 	@$(BIN)/python -m pip install --quiet --no-deps -e .
 	@touch $(STAMP)
