@@ -3,6 +3,8 @@ input, determinism, outcomes that come from the physics, the closing of the loop
 the figures, and the learning-progress claim on the tests' own seeds."""
 
 import dataclasses
+import json
+import pathlib
 
 import mujoco
 import numpy as np
@@ -480,27 +482,62 @@ def test_figures_draw(small):
 
 # --- the claim -----------------------------------------------------------------------------
 
+CLAIM_ROOT, CLAIM_SEEDS = 11, 3
+"""The claims' own root seed (the study's are others) and its seeds."""
+CLAIM_LEARNERS = {"learning progress": {"strategy": "learning_progress"},
+                  "where the finger stopped only": {"strategy": "learning_progress",
+                                                    "outcome_space": "point"},
+                  "random motor": {"strategy": "random_motor"}}
+CLAIM_RUNS = pathlib.Path(__file__).parent / "data" / "goal_babbling_claims.json"
+"""`claim_runs()`, kept: `python tests/test_goal_babbling.py` writes it again after a
+change that moves the runs (the test below then fails until it is written)."""
+
+
+def claim_runs(n_seeds=CLAIM_SEEDS, first_run=0):
+    """What the chapter's claim is checked on: the three learners of `CLAIM_LEARNERS` on
+    seeds first_run to first_run + n_seeds - 1 of `CLAIM_ROOT`, at
+    DEFAULT_N_ROLLOUTS, and the goal-oriented learner on learning progress's formed
+    presses: {learner: {"pressed": [seed][button], "test_error": [seed]}, "formed":
+    {"red_first": [seed], "as_scripted": [seed]}}."""
+    out = {}
+    for name, arguments in CLAIM_LEARNERS.items():
+        result = goal_babbling.run_goal_babbling(**arguments, n_seeds=n_seeds, seed=CLAIM_ROOT,
+                                                 progress=False, first_run=first_run)
+        assert result.n_rollouts == goal_babbling.DEFAULT_N_ROLLOUTS
+        out[name] = {"pressed": result.buttons_pressed.astype(int).tolist(),
+                     "test_error": result.final_test_error().tolist()}
+        if name == "learning progress":
+            assert result.settings["outcome_space"] == "point_and_depths"
+            loop = goal_babbling.run_formed_actions(result, seed=CLAIM_ROOT, progress=False,
+                                                    first_run=first_run)
+            out["formed"] = {"red_first": loop.red_first().astype(int).tolist(),
+                             "as_scripted": loop.as_scripted_per_seed.tolist()}
+    return out
+
+
+def test_the_claims_kept_runs_are_what_the_library_computes():
+    # Seed i of a root seed is the same in any run: the last seed, rerun alone.
+    kept = json.loads(CLAIM_RUNS.read_text())
+    assert claim_runs(n_seeds=1, first_run=CLAIM_SEEDS - 1) == {
+        name: {key: values[-1:] for key, values in entry.items()}
+        for name, entry in kept.items()}
+
+
 def test_the_chapters_claims_hold_on_the_tests_own_seeds():
-    # At DEFAULT_N_ROLLOUTS, on root seed 11 (the study's root seeds are others):
-    # learning progress with the caps' depths in the outcome forms more presses than
-    # the same learner with where the finger stopped only, and than random motor
-    # babbling, with a lower test error than the latter; and with its formed presses
-    # the goal-oriented learner masters red first in every seed, and at least 95% of
-    # its presses have the scripted press's effect.
-    progress = goal_babbling.run_goal_babbling("learning_progress", n_seeds=3, seed=11,
-                                               progress=False)
-    point = goal_babbling.run_goal_babbling("learning_progress", n_seeds=3, seed=11,
-                                            progress=False, outcome_space="point")
-    motor = goal_babbling.run_goal_babbling("random_motor", n_seeds=3, seed=11,
-                                            progress=False)
-    assert progress.n_rollouts == motor.n_rollouts == goal_babbling.DEFAULT_N_ROLLOUTS
-    assert progress.settings["outcome_space"] == "point_and_depths"
-    assert progress.buttons_pressed.sum() > point.buttons_pressed.sum()
-    assert progress.buttons_pressed.sum() > motor.buttons_pressed.sum()
-    assert progress.final_test_error().max() < motor.final_test_error().min()
-    loop = goal_babbling.run_formed_actions(progress, seed=11, progress=False)
-    assert loop.red_first().all()
-    assert loop.as_scripted >= 0.95
+    # At DEFAULT_N_ROLLOUTS, on root seed 11 (CLAIM_RUNS): learning progress with the
+    # caps' depths in the outcome forms more presses than the same learner with where
+    # the finger stopped only, and than random motor babbling, with a lower test error
+    # than the latter; and with its formed presses the goal-oriented learner masters
+    # red first in every seed, and at least 95% of its presses have the scripted
+    # press's effect (every seed makes as many presses).
+    runs = json.loads(CLAIM_RUNS.read_text())
+    pressed = {name: int(np.sum(runs[name]["pressed"])) for name in CLAIM_LEARNERS}
+    assert len(runs["learning progress"]["test_error"]) == CLAIM_SEEDS
+    assert pressed["learning progress"] > pressed["where the finger stopped only"]
+    assert pressed["learning progress"] > pressed["random motor"]
+    assert max(runs["learning progress"]["test_error"]) < min(runs["random motor"]["test_error"])
+    assert len(runs["formed"]["red_first"]) == CLAIM_SEEDS and all(runs["formed"]["red_first"])
+    assert np.mean(runs["formed"]["as_scripted"]) >= 0.95
 
 
 def test_no_outcome_lies_inside_the_console(lab):
@@ -708,3 +745,6 @@ def test_the_presses_formed_figure_draws_and_refuses_bad_input(study):
             "labels", "LWLR", "value")
 
 
+if __name__ == "__main__":
+    CLAIM_RUNS.write_text(json.dumps(claim_runs()) + "\n")
+    print(f"wrote {CLAIM_RUNS}")
