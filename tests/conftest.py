@@ -93,9 +93,10 @@ memory bounds (a large run each, in a process of its own), the slowest chapter u
 load, and the book executor's own tests (tests/test_build*.py: kernels on small
 notebooks, many under CPU burners; 170 s of a make test-quick of 210 s on 2 cores,
 2026-12-02). `make test` runs them; `make test-quick` leaves them out (marker `slow`).
-In a make test of a fresh clone, 2026-12-02 23:12, they took 752 of the 1,560 s that
-all the tests took summed over both workers (586 of 1,094 CPU-seconds); the Forming
-actions' claims and replications (one set of fresh runs) alone 287 s."""
+In a make test of a fresh clone, 2026-12-03 05:38, they took 351 of the 979 s that all
+the tests took summed over both workers (264 of 650 CPU-seconds). The claims checked on
+many seeds read kept runs, and only their last seeds are rerun
+(tests/test_remedies_replication.py, tests/test_goal_babbling.py)."""
 SLOW_FIXTURES = ("assignments", "graded", "malicious")
 """Fixtures that take minutes, so that every test using them is `slow` too: the course's
 assignments written by otter for every chapter, and the submissions graded from them
