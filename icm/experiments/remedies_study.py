@@ -347,7 +347,7 @@ def run_fresh_seeds(root=None, n_seeds=REPLICATION_SEEDS, n_jobs=-1):
     (default the chapter's `replication.REPLICATION_ROOTS`), one seed at a time (on
     `n_jobs` processes, joblib; the numbers do not depend on it): what `FRESH_FILE`
     keeps, {"root", "n_seeds", "runs": {label: [`run_condition` entry of each seed]}}.
-    About 40 CPU-seconds per seed of every condition."""
+    About 5.5 CPU-seconds per seed of each condition (the chapter's 40: 220)."""
     from joblib import Parallel, delayed
 
     root = replication.REPLICATION_ROOTS["forming_actions"] if root is None else root
