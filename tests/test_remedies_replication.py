@@ -132,3 +132,7 @@ def test_a_replication_computes_its_runs_when_not_given_them_and_refuses_too_few
     monkeypatch.undo()
     with pytest.raises(ValueError, match="labels"):
         remedies_study.fresh_runs(["no such condition"])
+    for bad, name in (({"n_jobs": 0}, "n_jobs"), ({"n_seeds": 0}, "n_seeds"),
+                      ({"root": -1}, "root")):
+        with pytest.raises(ValueError, match=name):
+            remedies_study.run_fresh_seeds(**bad)
