@@ -490,8 +490,11 @@ def test_each_student_gets_a_feedback_file_that_says_why(graded):
 
 MALICIOUS = {
     # name: (the task_interest answer, a cell after the setup, a replaced setup cell)
-    "loops": ("def task_interest(history, others, window=5, new_task_factor=0.5):\n"
-              "    while True:\n        pass\n", None, None),
+    # A loop that never ends, sleeping: the limit of a test is on wall-clock time
+    # (grading._time_limit), so it stops this loop as it stops a spinning one, without
+    # spending the limit's 20 s of CPU that the other tests of a run need.
+    "loops": ("import time\n\n\ndef task_interest(history, others, window=5, "
+              "new_task_factor=0.5):\n    while True:\n        time.sleep(0.05)\n", None, None),
     "exits": ("import sys\n\n\ndef task_interest(history, others, window=5, "
               "new_task_factor=0.5):\n    sys.exit(1)\n", None, None),
     "dies": (None, "import os\nos._exit(3)\n", None),
