@@ -81,7 +81,6 @@ SLOW = ("tests/test_remedies.py::test_the_study_file_is_what_the_library_compute
         "tests/test_goal_babbling_runs.py::test_the_chapters_runs_are_what_the_library_computes",
         "tests/test_physics.py::test_thousands_of_random_actions_stay_stable",
         "tests/test_memory.py::test_memory_bound_holds_and_is_within_one_and_a_half_times_the_peak",
-        "tests/test_build_under_load.py::",
         "tests/test_build.py::",
         "tests/test_build_cache.py::",
         "tests/test_shared_navigation.py::",
@@ -286,7 +285,7 @@ def built_book(_book_built_in_the_background, request):
 
     Built at the machine's own speed, in the background while the unit tests run:
     that the build holds on a machine made slow on purpose is tested on the slowest
-    chapter (tests/test_build_under_load.py). The build's record of execution times
+    chapter (tests/test_build.py). The build's record of execution times
     is copied to `_build/` for `make bench`.
 
     While working on the browser checks, ICM_BUILT_BOOK=<folder of the HTML> reuses a
