@@ -668,3 +668,25 @@ def test_the_twins_claims_hold_on_other_seeds_and_fail_when_they_should():
         "buttons_agree", "learner_same", "forearm_topples_red"]
     refused(lambda: chapter.claims([], rod_check, topple_map, physics_run, tabular_run),
             "button_check", "[]", "type")
+
+
+def test_each_physics_has_a_model_of_its_own_and_a_changed_scene_is_compiled_again(tmp_path):
+    # The scene is compiled once per process and each physics gets a copy of the model:
+    # lighting the caps of one console changes no other console's.
+    first, second = buttons.load_physics(), buttons.load_physics()
+    assert first.model.ptr is not second.model.ptr
+    first.set_lights([1, 2, 0, 0, 0])
+    second.set_lights([0, 0, 0, 0, 0])
+    assert first.named.model.geom_matid["button0_cap"] != \
+        second.named.model.geom_matid["button0_cap"]
+    third = buttons.load_physics()  # the compiled model itself was left unlit
+    compiled = mujoco.MjModel.from_xml_path(str(icub.asset_path("buttons.xml")))
+    assert third.named.model.geom_matid["button0_cap"] == compiled.geom("button0_cap").matid
+    # A scene file that changes is compiled afresh.
+    scene = tmp_path / "scene.xml"
+    scene.write_text('<mujoco><worldbody><geom name="g" type="sphere" size="0.1"/>'
+                     '</worldbody></mujoco>')
+    assert icub._compiled_scene(str(scene)).ngeom == 1
+    scene.write_text('<mujoco><worldbody><geom name="g" type="sphere" size="0.1"/>'
+                     '<geom name="h" type="sphere" size="0.2"/></worldbody></mujoco>')
+    assert icub._compiled_scene(str(scene)).ngeom == 2
