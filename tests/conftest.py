@@ -13,6 +13,10 @@ import time
 
 import pytest
 
+from icm._book import SKIP_SLOW_IMPORT
+
+exec(SKIP_SLOW_IMPORT)  # the test processes import nbformat too (icm/_book.py says why)
+
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 BUILD_BOOK = ROOT / "book" / "_ext" / "build_book.py"
 EXECUTE_BOOK = ROOT / "book" / "_ext" / "execute_book.py"
