@@ -219,10 +219,10 @@ def test_binder_post_build_installs_icm():
 
 RUN_NOTEBOOK = """\
 import importlib.util, pathlib, sys
-import nbformat
 spec = importlib.util.spec_from_file_location("execute_book", sys.argv[1])
 execute_book = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(execute_book)
+spec.loader.exec_module(execute_book)  # first: it spares nbformat's slow import
+import nbformat
 path, out = pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
 nb = nbformat.read(path, as_version=4)
 for cell in nb.cells:  # a reader's Jupyter ignores the tag that the book build obeys
