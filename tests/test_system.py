@@ -46,10 +46,10 @@ def test_a_physics_that_cannot_start_for_lack_of_egl_says_what_to_install(monkey
     from icm.envs import icub
     from icm.envs.buttons import physics
 
-    def fails(path):  # what dm_control raises without libEGL
+    def fails(model):  # what dm_control raises without libEGL, as it builds a physics
         raise AttributeError("'NoneType' object has no attribute 'eglQueryString'")
 
-    monkeypatch.setattr(physics.ButtonsPhysics, "from_xml_path", fails)
+    monkeypatch.setattr(physics.ButtonsPhysics, "from_model", fails)
     monkeypatch.setattr(icub._system, "missing_rendering", lambda: "libEGL is missing: "
                         + _system.INSTALL_COMMAND)
     monkeypatch.setenv("MUJOCO_GL", "egl")
