@@ -96,8 +96,9 @@ memory bounds (a large run each, in a process of its own), the slowest chapter u
 load, and the book executor's own tests (tests/test_build*.py: kernels on small
 notebooks, many under CPU burners; 170 s of a make test-quick of 210 s on 2 cores,
 2026-12-02). `make test` runs them; `make test-quick` leaves them out (marker `slow`).
-In a make test of a fresh clone, 2026-12-03 05:38, they took 351 of the 979 s that all
-the tests took summed over both workers (264 of 650 CPU-seconds). The claims checked on
+In a make test of a fresh clone, 2026-12-03 08:09 (a slow hour: the reference workload
+took 0.030 s, against 0.018 on a quiet machine), they took 420 of the 1,052 s that all
+the tests took summed over both workers (273 of 634 CPU-seconds). The claims checked on
 many seeds read kept runs, and only their last seeds are rerun
 (tests/test_remedies_replication.py, tests/test_goal_babbling.py)."""
 SLOW_FIXTURES = ("assignments", "graded", "malicious")
