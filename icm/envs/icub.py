@@ -237,8 +237,9 @@ def _compiled_scene(path):
     """The model compiled from the MJCF file `path`, compiled once per process (until the
     file changes). Callers get a copy each (`MjModel.copy`, MuJoCo's mj_copyModel: the
     same numbers as compiling again), since a physics may change its model (the
-    buttons' lights change the caps' materials). Compiling the XML took about half of
-    each new physics (0.008 of 0.017 s), and the goal-babbling runs build hundreds."""
+    buttons' lights change the caps' materials). A new physics of the buttons took 12.7
+    ms, 8 of them compiling the XML, and 4.7 ms from the compiled model (measured
+    2026-12-03); the goal-babbling runs build hundreds."""
     stat = os.stat(path)
     key = (stat.st_mtime_ns, stat.st_size)
     cached = _COMPILED.get(path)
