@@ -97,6 +97,17 @@ def integer_in_range(name, value, low, high):
     return integer(name, value, low, high)
 
 
+def n_jobs(value):
+    """Returns `value` as an int if it is a count of joblib's jobs: an integer >= 1, or
+    -1 for one job per core."""
+    allowed = "an integer >= 1, or -1 for one job per core"
+    if not is_integer(value):
+        raise _type_error("n_jobs", allowed, value)
+    if int(scalar(value)) < 1 and int(scalar(value)) != -1:
+        raise _value_error("n_jobs", allowed, value)
+    return int(scalar(value))
+
+
 def real(name, value, low=-math.inf, high=math.inf, low_open=False, high_open=False,
          allowed=None):
     """Returns `value` as a float if it is a finite real number within the bounds.

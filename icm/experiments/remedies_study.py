@@ -353,9 +353,7 @@ def run_fresh_seeds(root=None, n_seeds=REPLICATION_SEEDS, n_jobs=-1):
     root = replication.REPLICATION_ROOTS["forming_actions"] if root is None else root
     root = _validate.seed("root", root)
     n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
-    n_jobs = _validate.integer("n_jobs", n_jobs, low=-1)
-    if n_jobs == 0:
-        raise ValueError("n_jobs must be an integer >= 1, or -1 for every core, got 0")
+    n_jobs = _validate.n_jobs(n_jobs)
     units = [(label, i) for label in CLAIMED for i in range(n_seeds)]
     entries = Parallel(n_jobs=n_jobs)(
         delayed(run_condition)(label, root, 1, first_run=i, threads=1)

@@ -86,15 +86,6 @@ def _accepts_one_positional(function):
     return True
 
 
-def _check_n_jobs(n_jobs):
-    if not _validate.is_integer(n_jobs) or (int(n_jobs) < 1 and int(n_jobs) != -1):
-        allowed = "an integer >= 1, or -1 for one job per core"
-        if not _validate.is_integer(n_jobs):
-            raise _validate.ArgumentTypeError(f"n_jobs must be {allowed}, got {n_jobs!r}")
-        raise ValueError(f"n_jobs must be {allowed}, got {n_jobs!r}")
-    return int(n_jobs)
-
-
 def _check_grid(run_fn, grid, fixed):
     """The grid with every list of values read once into a list (an iterator given as
     values is consumed here, and its values kept)."""
@@ -175,7 +166,7 @@ def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=N
             f"per_seed must be a function you write (at module level) that takes a run's "
             f"result and returns a list of one dict per seed, such as icm.experiments."
             f"robustness.goal_oriented_claims; got {_validate.show(per_seed)}")
-    _check_n_jobs(n_jobs)
+    _validate.n_jobs(n_jobs)
     if client is not None and backend != "dask":
         raise ValueError(f"client is used only with backend 'dask', got backend {backend!r}")
     grid = _check_grid(run_fn, grid, fixed)
@@ -326,7 +317,7 @@ def run_units(fn, units, backend="joblib", n_jobs=-1, client=None, scheduler=Non
         repeated = sorted({k for k in keys if keys.count(k) > 1})
         raise ValueError(f"units must be distinct, got {repeated[:3]} more than once")
     _validate.one_of("backend", backend, ("serial",) + BACKENDS)
-    n_jobs = _check_n_jobs(n_jobs)
+    n_jobs = _validate.n_jobs(n_jobs)
     _validate.boolean("progress", progress)
     _validate.integer_at_least("retries", retries, 0)
     if (client is not None or scheduler is not None) and backend != "dask":
