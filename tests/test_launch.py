@@ -254,10 +254,7 @@ UNMET_PINS = """\
 import importlib.metadata, json, sys
 from packaging.requirements import Requirement
 unmet = []
-for line in open(sys.argv[1]).read().splitlines():
-    line = line.split("#", 1)[0].strip()
-    if not line:
-        continue
+for line in sys.argv[1:]:
     requirement = Requirement(line)
     if requirement.marker is not None and not requirement.marker.evaluate():
         continue
@@ -269,9 +266,8 @@ for line in open(sys.argv[1]).read().splitlines():
         unmet.append([line, version])
 print(json.dumps(unmet))
 """
-"""The lines of a requirements file (given as the argument) whose package is missing, or
-installed at a version the line does not allow, as JSON [[line, installed version or
-null], ...]."""
+"""The requirement lines given as arguments whose package is missing, or installed at a
+version the line does not allow, as JSON [[line, installed version or null], ...]."""
 
 
 def _copy_checkout(destination):
@@ -357,7 +353,8 @@ def test_a_fresh_launch_installs_icm_with_the_first_cell_and_runs_a_notebook(
     # (what `pip install -r` would find satisfied, in 0.2 s instead of 8 s of pip's
     # resolver), and pip checks that every installed package has what it requires.
     _link_installed_packages(pathlib.Path(sys.prefix), venv)
-    unmet = _run([python, "-c", UNMET_PINS, ROOT / "requirements.txt"], env=env, cwd=ROOT)
+    unmet = _run([python, "-c", UNMET_PINS, *_requirement_lines(ROOT / "requirements.txt")],
+                 env=env, cwd=ROOT)
     assert unmet.strip() == "[]", f"pins not installed as pinned: {unmet}"
     _run([python, "-m", "pip", "check"], env=env, cwd=ROOT)
     times["venv from binder/requirements.txt"] = time.perf_counter() - clock
