@@ -45,28 +45,35 @@ def _toc_pages(html_dir):
     return {name.split("/")[-1]: pathlib.Path(html_dir) / f"{name}.html" for name in names}
 
 
-def measure(html_dir=ROOT / "_build" / "html", repeats=3):
-    """{page: best milliseconds to interactive} for every page of the book in
-    `html_dir`, with the blank reference page under "(blank page)"; None where
-    Chromium or Playwright is missing or the book is not built."""
+def measure(html_dir=ROOT / "_build" / "html", repeats=3, pages=None):
+    """{page: best milliseconds to interactive} for the pages of the book in
+    `html_dir` (`pages`: some of their names, such as "preface"; every page by
+    default), with the blank reference page under "(blank page)"; None where Chromium
+    or Playwright is missing or the book is not built."""
     if repeats < 1:
         raise ValueError(f"repeats must be at least 1, got {repeats!r}")
+    every = _toc_pages(html_dir)
+    if pages is None:
+        paths = every
+    elif pages and all(name in every for name in pages):
+        paths = {name: every[name] for name in pages}
+    else:
+        raise ValueError(f"pages must be names of the book's pages ({', '.join(every)}), "
+                         f"got {pages!r}")
     chromium = shutil.which("chromium") or shutil.which("chromium-browser")
     try:
         from playwright.sync_api import sync_playwright
     except ImportError:
         return None
-    pages = _toc_pages(html_dir)
-    if chromium is None or not all(path.exists() for path in pages.values()):
+    if chromium is None or not all(path.exists() for path in paths.values()):
         return None
     times = {}
     with tempfile.TemporaryDirectory() as folder, sync_playwright() as playwright:
         blank = pathlib.Path(folder) / "blank.html"
         blank.write_text("<!DOCTYPE html><html><head><title>blank</title></head>"
                          "<body><p>blank</p></body></html>")
-        pages = {"(blank page)": blank, **pages}
         browser = playwright.chromium.launch(executable_path=chromium, args=FLAGS)
-        for name, path in pages.items():
+        for name, path in {"(blank page)": blank, **paths}.items():
             best = float("inf")
             for _ in range(repeats):
                 context = browser.new_context(offline=True,
