@@ -150,8 +150,8 @@ def test_a_dask_worker_killed_mid_run_costs_only_its_unit_and_the_result_is_unch
 
 
 def test_every_registered_study_runs_tiny(tmp_path):
-    sizes = {"remedies": {"seeds": 4, "rollouts": 12, "reach_movements": 5},
-             "goal-babbling": {"seeds": 2, "rollouts": 12},
+    sizes = {"remedies": {"seeds": 4, "rollouts": 12, "trials": 3, "reach_movements": 5},
+             "goal-babbling": {"seeds": 2, "rollouts": 12, "trials": 3},
              "robustness": {"seeds": 2, "length": 3},
              "curiosity": {"seeds": 2, "trials": 3, "episodes": 3}}
     assert set(sizes) == set(studies.STUDIES)
@@ -164,10 +164,13 @@ def test_every_registered_study_runs_tiny(tmp_path):
     # one batched run of the same seeds (seed i of a root is the same run alone).
     remedies = json.loads((tmp_path / "remedies.json").read_text())
     assert remedies["n_seeds"] == 1 and remedies["budgets"] == [12]
+    assert remedies["n_rollouts"] == 12 and remedies["n_trials"] == 3
     chapters.forming_actions.summary(remedies)
-    batched = remedies_study.run_condition("growing up", 300, n_seeds=1, n_rollouts=12)
+    batched = remedies_study.run_condition("growing up", 300, n_seeds=1, n_rollouts=12,
+                                           n_trials=3)
     assert remedies["runs"]["growing up"]["300"] == json.loads(json.dumps(batched))
     babbling = json.loads((tmp_path / "goal-babbling.json").read_text())
+    assert babbling["n_rollouts"] == 12 and babbling["n_trials"] == 3
     assert list(babbling["runs"]["learning progress"]) == ["100", "200", "300", "400"]
     assert list(babbling["runs"]["LWLR inverse model"]) == ["100", "200"]
     data = json.loads((tmp_path / "robustness.json").read_text())
@@ -187,6 +190,29 @@ def test_every_registered_study_runs_tiny(tmp_path):
     rows = [r for r in data["maps"]["rod_toppling"][f"{a}|{b}"]
             if r[a] == point[a] and r[b] == point[b]]
     assert rows == json.loads(json.dumps(studies.plain(frame.to_dict("records"))))
+
+
+def test_the_trials_asked_for_are_the_trials_on_the_formed_presses(monkeypatch, tmp_path):
+    from icm.experiments import goal_babbling
+
+    asked, real = [], goal_babbling.run_formed_actions
+
+    def recording(result, n_trials=goal_babbling.DEFAULT_TRIALS, **others):
+        asked.append(n_trials)
+        return real(result, n_trials=n_trials, **others)
+
+    monkeypatch.setattr(goal_babbling, "run_formed_actions", recording)
+    for name, unit in [("remedies", ["growing up", 100, 0, 1]),
+                       ("goal-babbling", ["learning progress", 100, 0, 1])]:
+        settings = studies.check_settings(name, rollouts=12, trials=3)
+        studies.STUDIES[name].run_unit(settings, unit)
+    assert asked == [3, 3]
+    # A study's seeds are imported only into a run of the same trials.
+    source = tmp_path / "source.json"
+    source.write_text(json.dumps({"n_seeds": 1, "n_rollouts": 12, "n_trials": 30, "runs": {}}))
+    with pytest.raises(ValueError, match="has 30 trials on the formed presses, the run 3"):
+        studies.import_seeds("remedies", tmp_path / "out.json", source, seeds=8, rollouts=12,
+                             trials=3, progress=False)
 
 
 def test_seed_blocks_join_into_one_entry():
@@ -219,8 +245,10 @@ def test_bad_input_is_refused():
         run_units(abs, [1], scheduler="tcp://127.0.0.1:1")
     with pytest.raises(ValueError, match="seeds must be a multiple of the 4 root seeds"):
         studies.check_settings("remedies", seeds=6)
-    with pytest.raises(ValueError, match="'trials' is not an option of study 'remedies'"):
-        studies.check_settings("remedies", trials=3)
+    with pytest.raises(ValueError, match="'episodes' is not an option of study 'remedies'"):
+        studies.check_settings("remedies", episodes=3)
+    with pytest.raises(ValueError, match="trials must be an integer >= 1"):
+        studies.check_settings("goal-babbling", trials=0)
     with pytest.raises(ValueError, match="rollouts must be an integer >= 1"):
         studies.check_settings("remedies", rollouts=0)
     with pytest.raises(ValueError, match="name"):
@@ -251,7 +279,7 @@ def test_the_command_line_runs_a_study_and_refuses_what_it_cannot(tmp_path, caps
     assert out.read_bytes() == serial_bytes
     for argv, message in [
             (["study", "remedies", "--seeds", "5", "--out", str(out)], "multiple of the 4"),
-            (["study", "remedies", "--trials", "5", "--out", str(out)], "--trials is not"),
+            (["study", "remedies", "--episodes", "5", "--out", str(out)], "--episodes is not"),
             (["study", "curiosity", "--scheduler", "tcp://x:1", "--out", str(out)],
              "--scheduler needs --backend dask"),
             (["study", "curiosity", "--jobs", "0", "--out", str(out)], "--jobs must be")]:

@@ -67,7 +67,8 @@ def budgets_of(n_rollouts):
 
 
 def run_variant(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threads=None,
-                n_rollouts=goal_babbling.DEFAULT_N_ROLLOUTS):
+                n_rollouts=goal_babbling.DEFAULT_N_ROLLOUTS,
+                n_trials=goal_babbling.DEFAULT_TRIALS):
     """Runs one variant on seeds first_run to first_run + n_seeds - 1 of one root seed
     and returns its entry of the study: a dict of lists, one item per seed (the first k
     seeds of a root seed are the same in any larger run, so a shorter rerun checks
@@ -83,6 +84,9 @@ def run_variant(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threa
         do not depend on it).
       n_rollouts: rollouts per seed (the study's is the default; fewer make a quick
         trial run, its presses tested at `budgets_of(n_rollouts)`).
+      n_trials: trials of the goal-oriented learner on each seed's formed presses, for
+        `LOOP_VARIANTS` (`run_formed_actions`; the study's is the default, fewer make
+        a quick trial run).
 
     Returns:
       {"pressed": [seed][budget][button] (0 or 1, budgets `BUDGETS`), "failures":
@@ -104,8 +108,8 @@ def run_variant(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threa
              "failures": goal_babbling.press_failures(result).tolist(),
              "test_error": result.final_test_error().tolist()}
     if label in LOOP_VARIANTS:
-        loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress,
-                                                first_run=first_run)
+        loop = goal_babbling.run_formed_actions(result, n_trials=n_trials, seed=root,
+                                                progress=progress, first_run=first_run)
         entry["red_first"] = loop.red_first().astype(int).tolist()
         entry["as_scripted"] = loop.as_scripted_per_seed.tolist()
     return entry

@@ -97,7 +97,8 @@ budgets_of = goal_babbling_study.budgets_of
 
 
 def run_condition(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threads=None,
-                  n_rollouts=goal_babbling.DEFAULT_N_ROLLOUTS):
+                  n_rollouts=goal_babbling.DEFAULT_N_ROLLOUTS,
+                  n_trials=goal_babbling.DEFAULT_TRIALS):
     """Runs one condition on seeds first_run to first_run + n_seeds - 1 of one root seed
     and returns its entry of the study (the first k seeds of a root seed are the same
     in any larger run, so a shorter rerun checks them, and a study can be run one seed
@@ -113,6 +114,9 @@ def run_condition(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, thr
         do not depend on it).
       n_rollouts: rollouts per seed (the study's is the default; fewer make a quick
         trial run, its presses tested at `budgets_of(n_rollouts)`).
+      n_trials: trials of the goal-oriented learner on each seed's formed presses
+        (`run_formed_actions`; the study's is the default, fewer make a quick trial
+        run).
 
     Returns:
       A dict: "pressed" [seed][budget][button] (0 or 1, budgets `BUDGETS`),
@@ -131,8 +135,8 @@ def run_condition(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, thr
                                              threads=threads, n_rollouts=n_rollouts)
     budgets = budgets_of(n_rollouts)
     pressed = goal_babbling.presses_formed(result, budgets)  # [budget, seed, button]
-    loop = goal_babbling.run_formed_actions(result, seed=root, progress=progress,
-                                            first_run=first_run)
+    loop = goal_babbling.run_formed_actions(result, n_trials=n_trials, seed=root,
+                                            progress=progress, first_run=first_run)
     return {"pressed": np.moveaxis(pressed, 0, 1).astype(int).tolist(),
             "first_press": result.first_presses().tolist(),
             "test_error": result.final_test_error().tolist(),

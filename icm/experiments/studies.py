@@ -109,13 +109,14 @@ def _remedies_unit(settings, unit):
         return remedies_study.run_reach(settings["reach_movements"])
     label, root, first, n = unit
     return remedies_study.run_condition(label, root, n_seeds=n, first_run=first, threads=1,
-                            n_rollouts=settings["rollouts"])
+                                        n_rollouts=settings["rollouts"],
+                                        n_trials=settings["trials"])
 
 
 def _remedies_assemble(settings, units, results):
     study = {"budgets": list(remedies_study.budgets_of(settings["rollouts"])),
              "n_seeds": settings["seeds"] // len(remedies_study.ROOTS),
-             "n_rollouts": settings["rollouts"], "runs": {}}
+             "n_rollouts": settings["rollouts"], "n_trials": settings["trials"], "runs": {}}
     done = {json.dumps(u): r for u, r in zip(units, results)}
     study["reach"] = done[json.dumps(["reach"])]
     for label in remedies_study.CONDITIONS:
@@ -174,13 +175,14 @@ def _babbling_units(settings):
 def _babbling_unit(settings, unit):
     label, root, first, n = unit
     return goal_babbling_study.run_variant(label, root, n_seeds=n, first_run=first, threads=1,
-                          n_rollouts=settings["rollouts"])
+                                           n_rollouts=settings["rollouts"],
+                                           n_trials=settings["trials"])
 
 
 def _babbling_assemble(settings, units, results):
     study = {"budgets": list(goal_babbling_study.budgets_of(settings["rollouts"])),
              "n_seeds": settings["seeds"] // len(goal_babbling_study.TUNING_ROOTS),
-             "n_rollouts": settings["rollouts"], "runs": {}}
+             "n_rollouts": settings["rollouts"], "n_trials": settings["trials"], "runs": {}}
     for label, roots in _babbling_plan(settings).items():
         study["runs"][label] = {}
         for root in roots:
@@ -303,6 +305,10 @@ def _curiosity_assemble(settings, units, results):
 STUDIES = {}
 """The registered studies, by name."""
 
+FORMED_TRIALS = (goal_babbling.DEFAULT_TRIALS, 1,
+                 "trials of the goal-oriented learner on each seed's formed presses")
+"""The option "trials" of the studies of formed presses (remedies, goal-babbling)."""
+
 
 def register(study):
     """Adds `study` (a `Study`) to `STUDIES`."""
@@ -317,6 +323,7 @@ register(Study(
                 "(icm.experiments.remedies_study; assets/remedies_study.json)",
     seeds=(80, "per condition, spread evenly over the root seeds 100, 200, 300, 400"),
     options={"rollouts": (goal_babbling.DEFAULT_N_ROLLOUTS, 1, "rollouts per seed"),
+             "trials": FORMED_TRIALS,
              "reach_movements": (remedies_study.REACH_MOVEMENTS, 1,
                                  "random movements per range share in 'reach'")},
     units=_remedies_units, run_unit=_remedies_unit, assemble=_remedies_assemble,
@@ -328,7 +335,8 @@ register(Study(
                 "(icm.experiments.goal_babbling_study; assets/goal_babbling_study.json)",
     seeds=(20, "per variant and root pair: split over the tuning roots 100 and 200 "
                "(and the held-out roots 300 and 400 for the default and its baseline)"),
-    options={"rollouts": (goal_babbling.DEFAULT_N_ROLLOUTS, 1, "rollouts per seed")},
+    options={"rollouts": (goal_babbling.DEFAULT_N_ROLLOUTS, 1, "rollouts per seed"),
+             "trials": FORMED_TRIALS},
     units=_babbling_units, run_unit=_babbling_unit, assemble=_babbling_assemble,
     check=_babbling_check, indent=1))
 
@@ -516,6 +524,9 @@ def import_seeds(name, out, source, seeds=None, backend="joblib", n_jobs=-1, cli
     if old["n_rollouts"] != settings["rollouts"]:
         raise ValueError(f"source: {source} has {old['n_rollouts']} rollouts, the run "
                          f"{settings['rollouts']}")
+    if old["n_trials"] != settings["trials"]:
+        raise ValueError(f"source: {source} has {old['n_trials']} trials on the formed "
+                         f"presses, the run {settings['trials']}")
     full = study.units(settings)
     if kept * len({u[1] for u in full if len(u) == 4}) >= settings["seeds"]:
         raise ValueError(f"seeds must be more than the source's ({kept} per root), got "
