@@ -103,9 +103,10 @@ def n_jobs(value):
     allowed = "an integer >= 1, or -1 for one job per core"
     if not is_integer(value):
         raise _type_error("n_jobs", allowed, value)
-    if int(scalar(value)) < 1 and int(scalar(value)) != -1:
+    number = int(scalar(value))
+    if number < 1 and number != -1:
         raise _value_error("n_jobs", allowed, value)
-    return int(scalar(value))
+    return number
 
 
 def real(name, value, low=-math.inf, high=math.inf, low_open=False, high_open=False,
