@@ -16,7 +16,7 @@ import pytest
 from icm import chapters, cli
 import importlib
 
-from icm.experiments import remedies_study, studies
+from icm.experiments import goal_babbling_study, remedies_study, studies
 from icm.experiments.goal_oriented import run_goal_oriented
 from icm.experiments.sweep import read_journal, run_units, sweep
 
@@ -255,6 +255,11 @@ def test_bad_input_is_refused():
         studies.check_settings("remedy")
     with pytest.raises(ValueError, match="first_run"):
         remedies_study.run_condition("growing up", 100, n_seeds=1, first_run=-1)
+    # Refused before any babbling, also where no learner runs on the formed presses.
+    with pytest.raises(ValueError, match="n_trials must be an integer >= 1, got 0"):
+        remedies_study.run_condition("growing up", 100, n_seeds=1, n_trials=0)
+    with pytest.raises(ValueError, match="n_trials must be an integer >= 1, got 0"):
+        goal_babbling_study.run_variant("LWLR inverse model", 100, n_seeds=1, n_trials=0)
 
 
 def test_sweep_refuses_a_per_seed_or_run_fn_of_the_wrong_kind():

@@ -129,6 +129,7 @@ def run_condition(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, thr
     """
     label = _validate.one_of("label", label, tuple(CONDITIONS))
     root = _validate.seed("root", root)
+    n_trials = _validate.integer_at_least("n_trials", n_trials, 1)  # before the babbling
     arguments = {"strategy": "learning_progress", **CONDITIONS[label]}
     result = goal_babbling.run_goal_babbling(**arguments, n_seeds=n_seeds, seed=root,
                                              progress=progress, first_run=first_run,
