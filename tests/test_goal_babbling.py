@@ -628,6 +628,12 @@ def test_presses_formed_tests_the_best_movement_so_far(small):
     # After one rollout every button has the same, first, movement: a press of one
     # button at most.
     assert formed[0].sum(axis=1).max() <= 1
+    # A budget's presses are those tested afresh at that budget alone, whatever the
+    # budgets before it.
+    budgets = [1, 5, 10, 20, 30, 40]
+    together = goal_babbling.presses_formed(small, budgets)
+    for i, n in enumerate(budgets):
+        assert np.array_equal(together[i], goal_babbling.presses_formed(small, [n])[0]), n
     refused(lambda: goal_babbling.presses_formed(small, [0, 10]), "rollouts", "0", "value")
     refused(lambda: goal_babbling.presses_formed(small, [10, 5]), "rollouts", "5", "value")
     refused(lambda: goal_babbling.presses_formed(small, [41]), "rollouts", "41", "value")

@@ -427,10 +427,16 @@ def presses_formed(result, rollouts):
                                      first=settings.get("first_run", 0))]
     lab = MovementLab(1)
     out = np.zeros((len(rollouts), result.n_seeds, buttons.N_BUTTONS), dtype=bool)
+    tested = np.full((result.n_seeds, buttons.N_BUTTONS), -1)  # rollout tested last
     for i, n in enumerate(rollouts):
         nearest = distance[:, :n].argmin(axis=1)  # [seed, button]
         movements = np.take_along_axis(result.movements, nearest[:, :, None], axis=1)
-        out[i] = _press_each_button(lab, movements, seeds)
+        # A press test depends on the movement, the seed and the button only: a
+        # movement still the nearest at this budget keeps the result it had.
+        changed = nearest != tested
+        out[i] = np.where(changed, _press_each_button(lab, movements, seeds, changed),
+                          out[i - 1] if i else False)
+        tested = nearest
     return out
 
 
@@ -475,16 +481,20 @@ def press_failures(result):
     return codes
 
 
-def _press_each_button(lab, press_movements, seeds):
+def _press_each_button(lab, press_movements, seeds, which=None):
     """[seed, button]: whether the movement for each button, run on a physics console
     where that button is lit red (one console per button), presses that button and
-    no other, and opens the red box only."""
+    no other, and opens the red box only; only where `which` ([seed, button] bools)
+    holds, if given (False elsewhere)."""
     n_seeds = len(press_movements)
     out = np.zeros((n_seeds, buttons.N_BUTTONS), dtype=bool)
+    which = np.ones_like(out) if which is None else which
     check = buttons.physics.check_press_motions
     for button in range(buttons.N_BUTTONS):
+        if not which[:, button].any():
+            continue
         console = buttons.PhysicsButtonConsole(red_button=button)
-        for k in range(n_seeds):
+        for k in np.flatnonzero(which[:, button]):
             console.press_motions = check([lab.phases(m) for m in press_movements[k]])
             console.reseed(seeds[k])
             console.reset()
