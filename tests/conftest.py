@@ -23,7 +23,8 @@ EXECUTE_BOOK = ROOT / "book" / "_ext" / "execute_book.py"
 RECORDS = ROOT / "_build"
 """Where the last test run leaves its records (`make bench` reads them)."""
 DURATIONS_RECORD = RECORDS / "icm-test-durations.json"
-"""The last run's durations per test, with the reference workload timed at its end."""
+"""The last run's durations per test (wall time without the wait for the book's build,
+and CPU time), with the reference workload timed at its end."""
 BASELINE_RECORD = ROOT / "tests" / "data" / "module-seconds.json"
 """Seconds per test module in a full run, committed: the order of the modules in a
 checkout that has no DURATIONS_RECORD yet (without it, a module of minutes may start
@@ -299,7 +300,9 @@ def built_book(_book_built_in_the_background, request):
     if reuse:
         return pathlib.Path(reuse)
     build = _book_built_in_the_background
+    started = time.time()
     status = build.wait()
+    _BOOK_WAIT.append(time.time() - started)
     log = build.log.read_text()
     assert status == 0, "book build failed:\n" + log[-8000:]
     assert "book execution:" in log, log[-8000:]
@@ -324,6 +327,9 @@ def note(request):
 
 
 _CPU_MARK = pytest.StashKey[float]()
+_BOOK_WAIT = []
+"""The seconds this process's first test that needed the book waited for its build
+(`built_book`), until that test's setup is reported."""
 _DURATIONS = {}
 _CPU = {}
 _NOTES = []
@@ -351,13 +357,18 @@ def pytest_runtest_makereport(item, call):
     now = _cpu_seconds()
     report.user_properties = list(report.user_properties) + [  # the item's list kept
         ("icm-cpu", now - item.stash.get(_CPU_MARK, now))]
+    if _BOOK_WAIT:  # the setup in which built_book waited for the build
+        report.user_properties.append(("icm-book-wait", _BOOK_WAIT.pop()))
     item.stash[_CPU_MARK] = now
 
 
 def pytest_runtest_logreport(report):
     """Adds up each test's setup, call and teardown (wall and CPU time), and keeps its
-    notes (on the controller, the workers' reports too)."""
-    _DURATIONS[report.nodeid] = _DURATIONS.get(report.nodeid, 0.0) + report.duration
+    notes (on the controller, the workers' reports too). A test's wall time leaves
+    out its wait for the book's build: the record orders the modules by their own
+    work, and which module happened to ask for the book first is not its work."""
+    waited = sum(value for key, value in report.user_properties if key == "icm-book-wait")
+    _DURATIONS[report.nodeid] = _DURATIONS.get(report.nodeid, 0.0) + report.duration - waited
     _CPU[report.nodeid] = _CPU.get(report.nodeid, 0.0) + sum(
         value for key, value in report.user_properties if key == "icm-cpu")
     if report.when == "call":
