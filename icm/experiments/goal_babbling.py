@@ -23,7 +23,7 @@ down. All seeds run at once: rollout k of every seed is stepped in one call of
 `mujoco.rollout`, and seed k of a batch is seed k run alone.
 
 The goal space, its regions and the outcomes are in
-`icm.experiments.babbling_space`, the result class in
+`icm.experiments.babbling_space`, the result class and its table in
 `icm.experiments.babbling_results`; their names are importable here too.
 """
 
@@ -38,7 +38,6 @@ from icm.envs.buttons.movements import (  # noqa: F401 (re-exported)
     HOLD_TIME, REACH_TIME, RETRACT_TIME, MovementLab)
 from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments._progress import progress_bar
-from icm.experiments.results import check_results
 from icm.experiments._seeding import check_run_size, run_seeds
 from icm.learners import goal_oriented
 from icm.learners.goal_babbling import (  # noqa: F401 (N_BOOTSTRAP re-exported)
@@ -58,7 +57,7 @@ from icm.experiments.babbling_space import (  # noqa: F401 (re-exported)
     goal_outcomes, outcome_vectors, press_distances, region_bounds, region_columns,
     region_grid, region_of, RANGE_SHARES, touch_shares)
 from icm.experiments.babbling_results import (  # noqa: F401 (re-exported)
-    GoalBabblingResult, median_first_press)
+    GoalBabblingResult, comparison_table, median_first_press)
 
 STRATEGIES = tuple(_goal_choice.STRATEGIES)
 """How the next movement is chosen (see the module docstring): the names of the
@@ -590,21 +589,3 @@ def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True,
     return FormedActionsResult(settings, learner, float(np.mean(matches)), int(np.size(matches)),
                                matches.mean(axis=0))
 
-
-def comparison_table(results):
-    """A Markdown table of the three strategies' numbers, one row per run.
-
-    Args:
-      results: a dict {row label: GoalBabblingResult}.
-    """
-    check_results("results", results, GoalBabblingResult)
-    lines = ["| strategy | seeds | rollouts | test error at the end, cm (95% band) "
-             "| buttons pressed (of 5) | seeds pressing all 5 | rollouts that pressed a button |",
-             "|---|---|---|---|---|---|---|"]
-    for label, result in results.items():
-        s = result.summary()
-        lines.append(f"| {label} | {result.n_seeds} | {result.n_rollouts} "
-                     f"| {100 * s['test_error']:.1f} ({100 * s['test_error_low']:.1f} to "
-                     f"{100 * s['test_error_high']:.1f}) | {s['buttons_pressed']:.1f} "
-                     f"| {s['all_pressed_share']:.0%} | {s['press_share']:.1%} |")
-    return "\n".join(lines)
