@@ -237,12 +237,12 @@ def book_execution_report(reference, slowest_cells=8):
 
 def slowest_tests_report(reference, count=10):
     """Lines: the test suite's `count` slowest tests, from the last run's record
-    (`_build/icm-test-durations.json`, written by every run of 100 tests or more:
-    `make test`, `make test-quick`), with the reference workload timed at its end."""
+    (`_build/icm-test-durations.json`, written by each run of the whole suite: `make
+    test`), with the reference workload timed at its end."""
     record = _read_record("icm-test-durations.json")
     if not record:
-        return ["The test suite's slowest tests: no record yet (make test or make "
-                "test-quick writes _build/icm-test-durations.json)."]
+        return ["The test suite's slowest tests: no record yet (make test writes "
+                "_build/icm-test-durations.json)."]
     then = record["reference_seconds"]
     lines = [f"The test suite's {count} slowest tests (setup, call and teardown; the run "
              f"of {record['finished']}, `{record['command']}`, {record['tests']} tests in "

@@ -23,8 +23,9 @@ EXECUTE_BOOK = ROOT / "book" / "_ext" / "execute_book.py"
 RECORDS = ROOT / "_build"
 """Where the last test run leaves its records (`make bench` reads them)."""
 DURATIONS_RECORD = RECORDS / "icm-test-durations.json"
-"""The last run's durations per test (wall time without the wait for the book's build,
-and CPU time), with the reference workload timed at its end."""
+"""The durations per test of the last run of the whole suite (wall time without the
+wait for the book's build, and CPU time), with the reference workload timed at its
+end."""
 BASELINE_RECORD = ROOT / "tests" / "data" / "module-seconds.json"
 """Seconds per test module in a full run, committed: the order of the modules in a
 checkout that has no DURATIONS_RECORD yet (without it, a module of minutes may start
@@ -383,11 +384,20 @@ def pytest_terminal_summary(terminalreporter):
             terminalreporter.write_line(line)
 
 
+def _whole_suite(config):
+    """Whether the run is of every test (`make test`): no paths, -m or -k given."""
+    return (config.args_source == pytest.Config.ArgsSource.TESTPATHS
+            and not config.getoption("markexpr") and not config.getoption("keyword"))
+
+
 def pytest_sessionfinish(session, exitstatus):
     """Writes the run's durations, slowest first, with the reference workload timed
     now (`make bench` prints the ten slowest): `_build/icm-test-durations.json`. Only
-    a run of at least 100 tests writes it (a run of a few tests says little)."""
-    if hasattr(session.config, "workerinput") or len(_DURATIONS) < 100:
+    a run of the whole suite that ran at least 100 tests writes it: a part (`make
+    test-quick`, a file, --collect-only) would replace the record of the whole, which
+    orders the next run's modules."""
+    if hasattr(session.config, "workerinput") or not _whole_suite(session.config) \
+            or len(_DURATIONS) < 100:
         return
     sys.path.insert(0, str(ROOT / "benchmarks"))
     try:
