@@ -6,7 +6,7 @@ import statistics
 
 import numpy as np
 
-from icm import _validate
+from icm import _exact, _validate
 
 
 BAND_LEVEL = 0.95
@@ -128,9 +128,11 @@ def bootstrap_band(values, level=None, resamples=1000, seed=0):
     n = values.shape[0]
     mean = values.mean(axis=0)
     # How many times each seed is drawn in each resample; a resample's mean is then a
-    # weighted mean, one matrix product for all of them.
+    # weighted mean, one matrix product for all of them (_exact's: the same band on
+    # every processor).
     counts = _resample_counts(n, resamples, seed)
-    means = (counts @ values.reshape(n, -1) / n).reshape((resamples,) + values.shape[1:])
+    means = (_exact.matmul(counts, values.reshape(n, -1)) / n).reshape(
+        (resamples,) + values.shape[1:])
     low, high = np.quantile(means, [(1 - level) / 2, (1 + level) / 2], axis=0)
     # Rounding in the weighted means must not put the band outside the values' range.
     low = np.clip(low, values.min(axis=0), mean)
@@ -195,7 +197,7 @@ def paired_p_value(differences, seed=0, alternative="two-sided"):
     else:
         signs = np.random.default_rng(seed).choice([-1, 1], size=(SIGN_FLIPS, n))
         signs[0] = 1  # the observed arrangement is one of the flips
-    means = signs @ differences / n
+    means = _exact.matvec(signs, differences) / n
     observed = differences.mean()
     if alternative == "two-sided":
         means, observed = np.abs(means), abs(observed)

@@ -12,7 +12,8 @@ import icm
 ROOT = pathlib.Path(icm.__file__).parent
 
 LAYERS = (
-    ("icm._validate", "icm._streams", "icm._system", "icm._install", "icm._book"),
+    ("icm._validate", "icm._streams", "icm._system", "icm._install", "icm._book",
+     "icm._exact"),
     ("icm._settings", "icm.stats"),
     ("icm.envs",),
     ("icm.learners",),

@@ -16,7 +16,7 @@ from dm_control.rl import control
 from dm_control.suite import base
 from dm_env import specs
 
-from icm import _system, _validate
+from icm import _exact, _system, _validate
 from icm.envs._assets import ASSETS, asset_path  # noqa: F401 (part of this module's API)
 from icm.envs._common import check_time_limit
 
@@ -101,9 +101,9 @@ class Arm:
         iterations = _validate.integer_at_least("iterations", iterations, 2)
         if pointing is not None:
             pointing = _validate.finite_array("pointing", pointing, shape=(3,))
-            if not np.linalg.norm(pointing) > 0:
+            if not _exact.norm(pointing) > 0:
                 raise ValueError(f"pointing must be a non-zero direction, got {pointing!r}")
-            pointing = pointing / np.linalg.norm(pointing)
+            pointing = pointing / _exact.norm(pointing)
         model, data = self.physics.model, self.physics.data
         saved_qpos = data.qpos.copy()
         q = np.clip(start, self.lower, self.upper)
@@ -116,24 +116,26 @@ class Arm:
                 mujoco.mj_comPos(model.ptr, data.ptr)
                 error = target - data.site_xpos[self.site_id]
                 settling = iteration >= iterations // 2
-                if settling and np.linalg.norm(error) < tolerance:
+                if settling and _exact.norm(error) < tolerance:
                     return q
                 mujoco.mj_jacSite(model.ptr, data.ptr, jac_pos, jac_rot, self.site_id)
                 jac = jac_pos[:, self.dof_index]
-                inverse = jac.T @ np.linalg.inv(jac @ jac.T + damping * np.eye(3))
-                step = inverse @ error
+                # A damped pseudo-inverse, jac' (jac jac' + damping I)^-1, by _exact's
+                # products and solve: every machine finds the same posture.
+                inverse = _exact.solve(_exact.matmul(jac, jac.T) + damping * np.eye(3), jac).T
+                step = _exact.matvec(inverse, error)
                 secondary = np.zeros(len(q))
                 if not settling:
                     secondary += 0.1 * (posture - q)
                     if pointing is not None:
                         finger = -data.site_xmat[self.site_id].reshape(3, 3)[:, 2]
-                        secondary += 0.5 * (jac_rot[:, self.dof_index].T
-                                            @ np.cross(finger, pointing))
-                step += (np.eye(len(q)) - inverse @ jac) @ secondary
+                        secondary += 0.5 * _exact.matvec(jac_rot[:, self.dof_index].T,
+                                                         np.cross(finger, pointing))
+                step += _exact.matvec(np.eye(len(q)) - _exact.matmul(inverse, jac), secondary)
                 scale = min(1.0, 0.2 / (np.abs(step).max() + 1e-12))
                 q = np.clip(q + scale * step, self.lower, self.upper)
             raise RuntimeError(f"fingertip target {np.round(target, 3).tolist()} is out of "
-                               f"reach (remaining error {np.linalg.norm(error):.4f} m)")
+                               f"reach (remaining error {_exact.norm(error):.4f} m)")
         finally:
             data.qpos[:] = saved_qpos
             mujoco.mj_kinematics(model.ptr, data.ptr)

@@ -7,7 +7,7 @@ import functools
 
 import numpy as np
 
-from icm import _validate
+from icm import _exact, _validate
 from icm.envs import buttons
 from icm.envs.buttons import movements as _movements
 from icm.envs.buttons.movements import MovementLab
@@ -139,8 +139,8 @@ def press_distances(button=buttons.DEFAULT_RED_BUTTON):
                                    press),
              "press and neighbour": (goal, press + travel
                                      * np.eye(buttons.N_BUTTONS)[neighbour])}
-    return {space: {name: float(np.linalg.norm(outcome_vectors(point, depths, space)
-                                               - goal_outcomes(goal, space)))
+    return {space: {name: float(_exact.norm(outcome_vectors(point, depths, space)
+                                            - goal_outcomes(goal, space)))
                     for name, (point, depths) in cases.items()}
             for space in OUTCOME_SPACES}
 

@@ -138,7 +138,7 @@ class GoalOrientedResult:
         curve = self.mean_interest()[:, TASKS.index(task)]
         if curve.sum() == 0:
             return float("nan")
-        return float(np.arange(1, len(curve) + 1) @ curve / curve.sum())
+        return float((np.arange(1, len(curve) + 1) * curve).sum() / curve.sum())
 
     def summary(self):
         """The numbers the book quotes, as a dict."""

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from icm import _validate
+from icm import _exact, _validate
 
 DRAWS_PER_CHOICE = 3
 """Uniform numbers an agent draws for each choice, whether it uses them or not: one for
@@ -107,7 +107,7 @@ def softmax_unchecked(preferences, temperature):
     # (p - top) <= 0, so exp never overflows; a difference that overflows to -inf
     # (preferences 1e308 apart) gives exp 0.0, as it should.
     with np.errstate(over="ignore"):
-        weights = np.exp((p - p.max()) / temperature)
+        weights = _exact.exp((p - p.max()) / temperature)  # the same on every processor
     total = 0.0
     for w in weights.tolist():  # >= 1: the top preference contributes exp(0) = 1
         total += w

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from icm import _streams, _validate
+from icm import _exact, _streams, _validate
 from icm.learners._common import check_keys, check_state, check_values, read_observation
 from icm.learners import action_selection
 from icm.learners.action_selection import (epsilon_greedy, epsilon_greedy_rows, softmax,
@@ -422,7 +422,7 @@ class ActorCriticBatch:
         for a in range(1, self.n_actions):
             top = np.maximum(top, preferences[..., a])
         with np.errstate(over="ignore"):  # a difference of -inf gives exp 0.0
-            weights = np.exp((preferences - top[..., None]) / per_row(self.temperature))
+            weights = _exact.exp((preferences - top[..., None]) / per_row(self.temperature))
         total = weights[..., 0]
         for a in range(1, self.n_actions):  # in order, as the one-agent sum
             total = total + weights[..., a]

@@ -345,7 +345,8 @@ class SplittingRegionProgress:
             return 0.0
         if self.measure == "learning_progress":
             x = np.arange(len(distances)) - (len(distances) - 1) / 2.0
-            return max(0.0, -float(x @ (distances - distances.mean()) / (x @ x)))
+            # Sums of products, not x @ ...: a BLAS dot rounds by the processor.
+            return max(0.0, -float((x * (distances - distances.mean())).sum() / (x * x).sum()))
         return float(competence_progress(-distances[None, :], np.array([len(distances)]))[0])
 
     def _split(self, k, leaf):

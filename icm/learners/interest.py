@@ -103,13 +103,13 @@ def least_squares_slope(values):
     if len(y) < 2:
         raise ValueError(f"values must hold at least 2 numbers for a slope, got {len(y)}")
     x = np.arange(len(y)) - (len(y) - 1) / 2.0
-    return float(x @ (y - y.mean()) / (x @ x))
+    return float((x * (y - y.mean())).sum() / (x * x).sum())  # not @: see icm._exact
 
 
 def slope_weights(n):
     """Weights w with slope = w @ y for n equally spaced values (w sums to 0)."""
     x = np.arange(n) - (n - 1) / 2.0
-    return tuple((x / (x @ x)).tolist())
+    return tuple((x / (x * x).sum()).tolist())
 
 
 def interest_signal(cls):

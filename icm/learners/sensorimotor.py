@@ -18,7 +18,7 @@ gives none of these settings: its actions are scripted.
 
 import numpy as np
 
-from icm import _validate
+from icm import _exact, _validate
 from icm._settings import Setting
 
 EXPLORATION_NOISE = Setting(
@@ -180,20 +180,24 @@ class LocallyWeightedInverse(NearestNeighbourInverse):
         z = (self.movements[:, :self.size] - start[:, None, :]) / self.span  # [rows, n, j]
         squared = (z ** 2).sum(axis=2)
         near = np.argpartition(squared, self.neighbours - 1, axis=1)[:, :self.neighbours]
-        weights = np.exp(-np.take_along_axis(squared, near, axis=1)
-                         / (2.0 * self.kernel_width ** 2))
+        # _exact's exp, products and solve, not NumPy's: theirs round differently on
+        # different processors, and a run must be the same on every machine.
+        weights = _exact.exp(-np.take_along_axis(squared, near, axis=1)
+                             / (2.0 * self.kernel_width ** 2))
         x = np.take_along_axis(z, near[:, :, None], axis=1)  # [rows, k, j]
         x = np.concatenate([np.ones(x.shape[:2] + (1,)), x], axis=2)
         y = np.take_along_axis(self.outcomes[:, :self.size], near[:, :, None], axis=1)
         root = np.sqrt(weights)[:, :, None]
         wx, wy = x * root, y * root
-        gram = wx.transpose(0, 2, 1) @ wx + self.DAMPING * np.eye(x.shape[2])
-        beta = np.linalg.solve(gram, wx.transpose(0, 2, 1) @ wy)  # [rows, 1 + j, outcome]
+        gram = _exact.matmul(wx.transpose(0, 2, 1), wx) + self.DAMPING * np.eye(x.shape[2])
+        # beta [rows, 1 + j, outcome]: the intercept, then dy/dz for each joint
+        beta = _exact.solve(gram, _exact.matmul(wx.transpose(0, 2, 1), wy))
         jacobian = beta[:, 1:, :].transpose(0, 2, 1)  # [rows, outcome, j]: dy/dz
         residual = goals - beta[:, 0, :]  # at z = 0, the start
-        normal = jacobian.transpose(0, 2, 1) @ jacobian + self.DAMPING * np.eye(z.shape[2])
-        step = np.linalg.solve(normal, (jacobian.transpose(0, 2, 1)
-                                        @ residual[:, :, None]))[:, :, 0]
+        normal = (_exact.matmul(jacobian.transpose(0, 2, 1), jacobian)
+                  + self.DAMPING * np.eye(z.shape[2]))
+        step = _exact.solve(normal, _exact.matmul(jacobian.transpose(0, 2, 1),
+                                                  residual[:, :, None]))[:, :, 0]
         largest = np.abs(step).max(axis=1, keepdims=True)
         step *= np.minimum(1.0, self.max_step / np.maximum(largest, 1e-300))
         return np.clip(start + step * self.span, self.lower, self.upper)

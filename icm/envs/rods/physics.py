@@ -14,7 +14,7 @@ import mujoco
 import numpy as np
 from dm_env import specs
 
-from icm import _validate
+from icm import _exact, _validate
 from icm.envs import icub
 from icm.envs._common import check_discrete_action, check_seed, dm_control_random
 from icm.envs.rods import rules
@@ -83,7 +83,7 @@ class RodsPhysics(icub.ArmPhysics):
         """The grid cell whose centre is nearest the fingertip (in the table's plane)."""
         tip = self.fingertip_position()[:2]
         cells = [(c, r) for r in range(N_ROWS) for c in range(N_COLUMNS)]
-        distances = [np.linalg.norm(self.cell_centre(cell)[:2] - tip) for cell in cells]
+        distances = [_exact.norm(self.cell_centre(cell)[:2] - tip) for cell in cells]
         return cells[int(np.argmin(distances))]
 
     def stand_rods(self):
