@@ -24,7 +24,7 @@ import numpy as np
 
 from icm import _validate
 from icm._settings import Names, Setting
-from icm.learners.interest import InterestTable
+from icm.learners.interest import InterestTable, least_squares_slope
 
 MEASURES = ("learning_progress", "competence_progress")
 """How a region's interest is measured (see the module docstring)."""
@@ -344,9 +344,7 @@ class SplittingRegionProgress:
         if len(distances) < 2:
             return 0.0
         if self.measure == "learning_progress":
-            x = np.arange(len(distances)) - (len(distances) - 1) / 2.0
-            # Sums of products, not x @ ...: a BLAS dot rounds by the processor.
-            return max(0.0, -float((x * (distances - distances.mean())).sum() / (x * x).sum()))
+            return max(0.0, -least_squares_slope(distances))
         return float(competence_progress(-distances[None, :], np.array([len(distances)]))[0])
 
     def _split(self, k, leaf):
