@@ -24,8 +24,26 @@ NumPy is imported, and cannot be relied on from a library imported after it.
 """
 
 import math
+import platform
 
 import numpy as np
+
+
+def _numpy_exp_is_the_c_librarys():
+    """Whether NumPy's float64 exp here is the C library's: on x86-64 without AVX-512
+    it calls it element by element (NumPy's own code is for AVX512F only; seen equal on
+    a million values, and `tests/test_exact.py` checks a hundred thousand on every
+    run). Read from NumPy's private record of the processor's features: if it moves,
+    the answer is False and `exp` takes the slow path, never a wrong one."""
+    try:
+        from numpy._core._multiarray_umath import __cpu_features__ as features
+    except ImportError:
+        return False
+    return platform.machine().lower() in ("x86_64", "amd64") and \
+        features.get("AVX512F") is False
+
+
+_FAST_EXP = _numpy_exp_is_the_c_librarys()
 
 
 def _exp(value):
@@ -37,8 +55,13 @@ def _exp(value):
 
 def exp(values):
     """exp of every element (float64), by the C library's exp, not NumPy's AVX-512
-    code (inf where it overflows, as NumPy's)."""
+    code (inf where it overflows, as NumPy's, without a warning). Where NumPy's exp is
+    the C library's (`_FAST_EXP`), NumPy computes it, 10 times as fast on a few hundred
+    values; elsewhere Python's `math.exp` does, one value at a time."""
     values = np.asarray(values, dtype=float)
+    if _FAST_EXP:
+        with np.errstate(over="ignore"):
+            return np.exp(values)
     flat = values.ravel().tolist()
     return np.fromiter(map(_exp, flat), dtype=float, count=len(flat)).reshape(values.shape)
 

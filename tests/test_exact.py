@@ -32,6 +32,19 @@ def test_the_functions_agree_with_numpy_up_to_rounding():
     assert _exact.exp([800.0, -np.inf, 0.0]).tolist() == [math.inf, 0.0, 1.0]
 
 
+@pytest.mark.parametrize("fast", [True, False])
+def test_exp_is_the_c_librarys_on_either_path(fast, monkeypatch):
+    # The fast path (NumPy's exp, where it is the C library's) and the slow one give
+    # math.exp's bits on a hundred thousand values of the softmax's and LWLR's range.
+    if fast and not _exact._FAST_EXP:
+        pytest.skip("NumPy's exp is not the C library's on this processor: the slow "
+                    "path only")
+    monkeypatch.setattr(_exact, "_FAST_EXP", fast)
+    x = np.random.default_rng(8).uniform(-60.0, 5.0, size=100_000)
+    assert _exact.exp(x).tolist() == [math.exp(v) for v in x.tolist()]
+    assert _exact.exp(np.array([[800.0, -np.inf]])).tolist() == [[math.inf, 0.0]]
+
+
 def test_the_sums_are_added_in_order():
     # 1e16 + 1 + 1 - 1e16 is 0 added left to right, 2 added pairwise: matmul adds the
     # products term by term, in order.
