@@ -91,10 +91,18 @@ SLOW = ("tests/test_remedies.py::test_the_study_file_is_what_the_library_compute
         "tests/test_build_cache.py::",
         "tests/test_shared_navigation.py::",
         "tests/test_studies.py::test_every_registered_study_runs_tiny",
-        "tests/test_studies.py::test_remedies_seeds_run_one_at_a_time_are_those_of_a_batched_run")
+        "tests/test_studies.py::test_remedies_seeds_run_one_at_a_time_are_those_of_a_batched_run",
+        "tests/test_studies.py::test_a_study_is_byte_identical_serially_on_joblib_and_on_a_dask_cluster",
+        "tests/test_studies.py::test_a_dask_worker_killed_mid_run_costs_only_its_unit_and_the_result_is_unchanged",
+        "tests/test_sweep.py::test_dask_local_cluster_gives_the_same_numbers",
+        "tests/test_exact.py::test_runs_are_the_same_whichever_kernels_blas_picks")
 """Tests (node ids, or their start) that take minutes: the reruns of the stored studies
 and the chapters' claims on many seeds, the physics' thousands of random actions, the
-memory bounds (a large run each, in a process of its own), the slowest chapter under
+memory bounds (a large run each, in a process of its own), the runs on a pool of
+processes or a Dask cluster and under other BLAS kernels (each starts Python processes
+that import icm; left out, make test-quick went from 127 s and 236 CPU-seconds to
+102 s and 184, 2026-12-03, reference workload 0.019 to 0.037 s before, 0.026 to 0.019
+after), the slowest chapter under
 load, and the book executor's own tests (tests/test_build*.py: kernels on small
 notebooks, many under CPU burners; 170 s of a make test-quick of 210 s on 2 cores,
 2026-12-02). `make test` runs them; `make test-quick` leaves them out (marker `slow`).
