@@ -9,12 +9,16 @@ the last bit, and a learner that compares numbers (which movement is nearest, wh
 goal to try) can take another path after one such bit: the same seed then gives
 another run on another machine. Seen here: a goal-babbling study made on an Intel
 machine with AVX-512 and rerun on an AMD EPYC without it differed from the fifth
-digit on, and the runs of being shown buttons pressed other buttons.
+digit on, and the runs of being shown buttons pressed other buttons. The studies
+written again with these functions on the machine without AVX-512 passed every pin
+of `make test` on an AMD EPYC with it (NumPy's exp differs from the C library's
+there in 4.7% of a hundred thousand values).
 
 So these functions use only what IEEE 754 rounds the same way everywhere:
 elementwise +, -, *, / (each rounded once; NumPy never fuses a multiply and an add)
 and sums along an axis (added in an order fixed by the array's shape, whatever the
-processor), and Python's `math.exp` (the C
+processor), and the C library's exp (through Python's `math.exp`, or a loop
+Numba compiles that calls it; the C
 library's: glibc picks its exp by the processor too, but only by whether it has FMA,
 which every machine seen here has). They are
 slower than BLAS on large matrices and as fast on the small ones they get here (a
@@ -53,15 +57,55 @@ def _exp(value):
         return math.inf
 
 
+COMPILED_FROM = 64
+"""Where NumPy's exp is not the C library's, `exp` takes arrays of at least this many
+values to a loop compiled by Numba (`_compiled_exp`), fewer to Python's `math.exp`
+one at a time (a call into the compiled loop costs more than a few values take)."""
+
+
+def _compiled_exp():
+    """A loop, compiled by Numba, that calls the C library's exp on every value of a
+    flat float64 array into another (LLVM lowers `math.exp` to a call to the C
+    library's `exp`; the same bits as `math.exp`, checked on a hundred thousand values
+    by `tests/test_exact.py`), or None where Numba would hand it to Intel's SVML
+    instead (another exp, other bits). Compiled on first use and cached on disk, as
+    the rods' loop is: Numba is imported only by the processes that need it."""
+    global _COMPILED
+    if _COMPILED is None:
+        import numba
+
+        if numba.config.USING_SVML:
+            _COMPILED = False
+        else:
+            @numba.njit(cache=True, nogil=True)
+            def loop(flat, out):
+                for i in range(flat.size):
+                    out[i] = math.exp(flat[i])  # inf on overflow, as NumPy's
+
+            _COMPILED = loop
+    return _COMPILED or None
+
+
+_COMPILED = None
+
+
 def exp(values):
     """exp of every element (float64), by the C library's exp, not NumPy's AVX-512
     code (inf where it overflows, as NumPy's, without a warning). Where NumPy's exp is
     the C library's (`_FAST_EXP`), NumPy computes it, 10 times as fast on a few hundred
-    values; elsewhere Python's `math.exp` does, one value at a time."""
+    values; elsewhere a loop compiled by Numba calls it (`_compiled_exp`, from
+    `COMPILED_FROM` values), or Python's `math.exp`, one value at a time."""
     values = np.asarray(values, dtype=float)
     if _FAST_EXP:
         with np.errstate(over="ignore"):
             return np.exp(values)
+    if values.size >= COMPILED_FROM:
+        loop = _compiled_exp()
+        if loop is not None:
+            flat = np.ascontiguousarray(values).ravel()
+            out = np.empty_like(flat)
+            loop(flat, out)
+            return out.reshape(values.shape)
     flat = values.ravel().tolist()
     return np.fromiter(map(_exp, flat), dtype=float, count=len(flat)).reshape(values.shape)
 

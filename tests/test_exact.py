@@ -32,17 +32,24 @@ def test_the_functions_agree_with_numpy_up_to_rounding():
     assert _exact.exp([800.0, -np.inf, 0.0]).tolist() == [math.inf, 0.0, 1.0]
 
 
-@pytest.mark.parametrize("fast", [True, False])
-def test_exp_is_the_c_librarys_on_either_path(fast, monkeypatch):
-    # The fast path (NumPy's exp, where it is the C library's) and the slow one give
-    # math.exp's bits on a hundred thousand values of the softmax's and LWLR's range.
-    if fast and not _exact._FAST_EXP:
-        pytest.skip("NumPy's exp is not the C library's on this processor: the slow "
-                    "path only")
-    monkeypatch.setattr(_exact, "_FAST_EXP", fast)
-    x = np.random.default_rng(8).uniform(-60.0, 5.0, size=100_000)
-    assert _exact.exp(x).tolist() == [math.exp(v) for v in x.tolist()]
-    assert _exact.exp(np.array([[800.0, -np.inf]])).tolist() == [[math.inf, 0.0]]
+@pytest.mark.parametrize("path", ["numpy", "compiled", "python"])
+def test_exp_is_the_c_librarys_on_every_path(path, monkeypatch):
+    # Each path (NumPy's exp, where it is the C library's; the loop compiled by Numba;
+    # Python's math.exp one value at a time) gives math.exp's bits on a hundred
+    # thousand values of the softmax's and LWLR's range, in a 2-D array, strided too.
+    if path == "numpy" and not _exact._FAST_EXP:
+        pytest.skip("NumPy's exp is not the C library's on this processor")
+    if path == "compiled" and _exact._compiled_exp() is None:
+        pytest.skip("Numba would use Intel's SVML here: the compiled loop is not used")
+    monkeypatch.setattr(_exact, "_FAST_EXP", path == "numpy")
+    monkeypatch.setattr(_exact, "COMPILED_FROM", 1 if path == "compiled" else 10 ** 9)
+    x = np.random.default_rng(8).uniform(-60.0, 5.0, size=(500, 200))
+    for values in (x, x[:, ::3], x.T):
+        assert _exact.exp(values).tolist() == [[math.exp(v) for v in row]
+                                               for row in values.tolist()]
+    edges = np.array([[800.0, -np.inf], [0.0, -800.0]])
+    assert _exact.exp(edges).tolist() == [[math.inf, 0.0], [1.0, 0.0]]
+    assert np.isnan(_exact.exp([np.nan])).all()
 
 
 def test_the_sums_are_added_in_order():
