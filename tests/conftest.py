@@ -189,9 +189,9 @@ class _LongestFirst:
         # module first takes them, so that the workers end together (with the book's
         # modules last, one worker ran Chromium's modules alone for the last 52 s of
         # a make test of 518 s, 2026-12-03, while the other had nothing left).
-        tail, total = [], sum(recorded.get(m, 0.0) for m in modules)
-        while others and (sum(recorded.get(m, 0.0) for m in tail + others[-1:])
-                          <= TAIL_SHARE * total):
+        tail, room = [], TAIL_SHARE * sum(recorded.get(m, 0.0) for m in modules)
+        while others and recorded.get(others[-1], 0.0) <= room:
+            room -= recorded.get(others[-1], 0.0)
             tail.insert(0, others.pop())
         items[:] = [item for module in others + book + tail
                     for item in sorted(modules[module], key=_needs_book)]

@@ -258,14 +258,20 @@ def test_bad_input_to_the_remedies_is_refused(call, name, shown, kind):
     refused(call, name, shown, kind)
 
 
+def _range_targets(lab, rng, share, n):
+    """n joint targets uniform in the range a share of the arm's reaches: [home - share
+    (home - lower), home + share (upper - home)], drawn from rng (the test's own
+    statement of what `touch_shares` draws)."""
+    return rng.uniform(lab.home - share * (lab.home - lab.lower),
+                       lab.home + share * (lab.upper - lab.home), (n, 7))
+
+
 def test_touch_shares_rolls_out_random_movements_within_each_range(lab):
     reach = goal_babbling.touch_shares([0.3, 1.0], n_movements=300, seed=2, threads=1)
     assert reach["shares"] == [0.3, 1.0]
     rng = np.random.default_rng(2)
     for i, share in enumerate((0.3, 1.0)):
-        low = lab.home - share * (lab.home - lab.lower)
-        high = lab.home + share * (lab.upper - lab.home)
-        done = lab.perform(rng.uniform(low, high, (300, 7)))
+        done = lab.perform(_range_targets(lab, rng, share, 300))
         assert reach["touched"][i] == done["touched"].mean()
         assert reach["pressed"][i] == (done["pressed"] >= 0).mean()
     # A narrower range touches the console less often.
@@ -362,9 +368,7 @@ def test_the_study_file_is_what_the_library_computes(study):
     lab, n = MovementLab(threads=1), remedies_study.REACH_MOVEMENTS
     rng = np.random.default_rng(remedies_study.REACH_SEED)
     for share in reach["shares"]:
-        low = lab.home - share * (lab.home - lab.lower)
-        high = lab.home + share * (lab.upper - lab.home)
-        targets = rng.uniform(low, high, (n, 7))
+        targets = _range_targets(lab, rng, share, n)
     done = lab.perform(targets)
     assert reach["touched"][-1] == float(done["touched"].mean()) > 0
     assert reach["pressed"][-1] == float((done["pressed"] >= 0).mean())
