@@ -11,6 +11,7 @@ from icm import _exact, _validate
 from icm.envs import buttons
 from icm.envs.buttons import movements as _movements
 from icm.envs.buttons.movements import MovementLab
+from icm.learners import maturation
 from icm.learners.goal_choice import RegionGrid
 
 OUTCOME_SPACES = ("point", "point_and_depths")
@@ -164,8 +165,8 @@ the resting posture to the joints' limits."""
 def touch_shares(shares=RANGE_SHARES, n_movements=500, seed=0, threads=None):
     """How often random movements reach the console when the arm's joint range is cut
     down around its resting posture, as a maturing arm's is
-    (`icm.learners.maturation.JointRangeMaturation` with psi = share): for each
-    share, `n_movements` joint targets uniform in [home - share (home - lower), home
+    (`icm.learners.maturation.reachable_range`, as `JointRangeMaturation` with psi =
+    share): for each share, `n_movements` joint targets uniform in [home - share (home - lower), home
     + share (upper - home)] are performed, and the share of them that end with the
     finger on the console or a cap is returned, with the share that pressed a button.
 
@@ -189,8 +190,7 @@ def touch_shares(shares=RANGE_SHARES, n_movements=500, seed=0, threads=None):
     lab = MovementLab(threads)
     touched, pressed = [], []
     for share in shares:
-        low = lab.home - share * (lab.home - lab.lower)
-        high = lab.home + share * (lab.upper - lab.home)
+        low, high = maturation.reachable_range(lab.home, lab.lower, lab.upper, share)
         done = lab.perform(rng.uniform(low, high, (n_movements, len(lab.home))))
         touched.append(float(done["touched"].mean()))
         pressed.append(float((done["pressed"] >= 0).mean()))

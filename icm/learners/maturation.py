@@ -65,6 +65,13 @@ DEFAULT_PLATEAU = MaturationSettings.spec("plateau").default
 DEFAULT_STEP = MaturationSettings.spec("step").default
 
 
+def reachable_range(home, lower, upper, share):
+    """The joint range an arm grown to `share` of its range reaches around its resting
+    posture: (home - share (home - lower), home + share (upper - home)). `share` is a
+    number in (0, 1] or an array that broadcasts against the joints (one per row)."""
+    return home - share * (home - lower), home + share * (upper - home)
+
+
 class JointRangeMaturation:
     """A reachable joint range that grows as competence stops progressing, for many
     agents (rows) at once.
@@ -127,9 +134,7 @@ class JointRangeMaturation:
 
     def bounds(self):
         """Each row's reachable range now: (lower [rows, joints], upper [rows, joints])."""
-        psi = self.psi[:, None]
-        return (self.home - psi * (self.home - self.lower),
-                self.home + psi * (self.upper - self.home))
+        return reachable_range(self.home, self.lower, self.upper, self.psi[:, None])
 
     def clip(self, movements):
         """`movements` [rows, joints] clipped to each row's reachable range."""
