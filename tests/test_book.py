@@ -133,6 +133,33 @@ def test_api_reference_covers_every_public_class_and_function(built_book):
 
 
 @pytest.mark.book
+def test_the_api_pages_contents_list_its_modules(built_book):
+    # The contents beside the API page: one entry per module (each a heading of
+    # book/api.md, under its section), none per function, class or constant; and no
+    # section id with a dot, which the contents' highlighting of where the reader is
+    # cannot follow.
+    import re
+
+    source = (ROOT / "book" / "api.md").read_text()
+    modules = re.findall(r"^\.\. automodule:: (\S+)$", source, re.M)
+    html = (built_book / "book" / "api.html").read_text()
+    contents = html[html.index('id="pst-page-toc-nav"'):]
+    contents = contents[:contents.index("</nav>")]
+    assert contents.count('class="toc-h3') == len(modules) > 80
+    assert 'class="toc-h4' not in contents and 'href="#icm.' not in contents
+    assert contents.count('class="toc-h2') == source.count("\n## ")
+    sections = re.findall(r'<section id="([^"]+)"', html)  # (the page's own: a class first)
+    assert len(sections) == len(modules) + source.count("\n## ")
+    assert not [s for s in sections if "." in s]
+    for module in modules:  # each module's heading names it, whole or within its section
+        heading = re.search(rf"^\(([\w-]+)\)=\n### `([\w.]+)`\n\n```{{eval-rst}}\n\.\.\n"
+                            rf"\.\. automodule:: {re.escape(module)}$", source, re.M)
+        assert heading and module.endswith(heading.group(2)), module
+        assert heading.group(1) == re.sub("[._]+", "-", module)
+        assert f'id="{heading.group(1)}"' in html, module  # its link that stays
+
+
+@pytest.mark.book
 def test_chapters_have_launch_and_download_buttons(built_book):
     config = yaml.safe_load((ROOT / "_config.yml").read_text())
     repository = config["repository"]["url"].removeprefix("https://github.com/")
