@@ -160,6 +160,28 @@ def test_the_api_pages_contents_list_its_modules(built_book):
 
 
 @pytest.mark.book
+def test_no_glued_share_reads_as_all_or_none_when_it_is_not(built_book):
+    # A number glued into the prose as a percentage ({glue:text}`key:.0%`) reads as
+    # "every seed" at 100%: 199 seeds of 200 must not show so (nor 1 of 200 as 0%).
+    import ast
+    import json
+    import re
+
+    executed = built_book.parent / "jupyter_execute" / "book"
+    checked = 0
+    for path in NOTEBOOKS:
+        glued = json.loads((executed / f"{path.stem}.glue.json").read_text())
+        text = "\n".join(c.source for c in nbformat.read(path, as_version=4).cells)
+        for key, spec in re.findall(r"\{glue(?::text)?\}`(\w+):([^`]*%)`", text):
+            value = float(ast.literal_eval(glued[key]["data"]["text/plain"]))
+            shown = format(value, spec)
+            assert value in (0, 1) or not re.fullmatch(r"(100|0)(\.0*)?%", shown), \
+                f"{path.name}: {key} = {value} shows as {shown}"
+            checked += 1
+    assert checked > 200
+
+
+@pytest.mark.book
 def test_chapters_have_launch_and_download_buttons(built_book):
     config = yaml.safe_load((ROOT / "_config.yml").read_text())
     repository = config["repository"]["url"].removeprefix("https://github.com/")

@@ -210,6 +210,35 @@ def test_the_fewest_seeds_in_words_stay_true():
         in_seeds("all")
 
 
+def test_a_percentage_says_all_or_none_only_when_it_is():
+    # 199 seeds of 200 read as "100%" to a reader, who takes it for every seed: a share
+    # that is neither 0 nor 1 never shows as 0% or 100%, at any precision asked for.
+    from icm.experiments.results import MAX_DECIMALS, percent
+
+    assert percent(199 / 200) == "99.5%" and percent(1 / 200) == "0.5%"
+    assert percent(1) == "100%" and percent(0) == "0%" and percent(1, 1) == "100.0%"
+    assert percent(0.73) == "73%" and percent(1 / 6, 1) == "16.7%"  # as .0% and .1% elsewhere
+    assert percent(0.9996, 1) == "99.96%" and percent(1 - 1e-12) == "99.999%"
+    assert percent(1e-12) == "0.001%" and percent(float("nan")) == "n/a"
+    rng = np.random.default_rng(0)
+    shares = np.concatenate([rng.random(2000), 1 - 10.0 ** -rng.uniform(1, 12, 500),
+                             10.0 ** -rng.uniform(1, 12, 500), np.arange(1, 200) / 200])
+    for share in shares:
+        for decimals in range(MAX_DECIMALS + 1):
+            text = percent(share, decimals)
+            value = float(text.rstrip("%")) / 100
+            assert text not in (f"{0:.{decimals}%}", f"{1:.{decimals}%}"), (share, text)
+            assert 0 < value < 1 and abs(value - share) <= 0.5 * 10 ** -(decimals + 2) + 1e-12 \
+                or (share < 1e-5 or share > 1 - 1e-5), (share, decimals, text)
+    for bad in (1.5, -0.1):
+        with pytest.raises(ValueError, match="share"):
+            percent(bad)
+    with pytest.raises(TypeError, match="share"):
+        percent("all")
+    with pytest.raises(ValueError, match="decimals"):
+        percent(0.5, MAX_DECIMALS + 1)
+
+
 def test_the_trace_is_the_run_press_by_press():
     """`goal_oriented.trace` records seed k of `run_goal_oriented`: the interest the
     run keeps after a trial is the one the next trial's first press sees, the boxes

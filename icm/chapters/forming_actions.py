@@ -13,6 +13,7 @@ from icm.experiments.remedies_study import (REMEDY_KEYS, TEACHING, chapter_verdi
                                             check_study, comparisons, load_study,
                                             load_test_error_split, pooled, seed_values,
                                             shown_buttons)
+from icm.experiments.results import percent
 from icm.stats import PANEL_RESAMPLES, at_bound, bootstrap_band
 
 
@@ -65,9 +66,9 @@ def comparison_table(study=None, roots=None):
         shown = shown_buttons(label)
         others = ("none left" if row["others_pressed"] is None else
                   f"{row['others_pressed']:.2f} of {buttons.N_BUTTONS - len(shown)}")
-        lines.append(f"| {label} | {row['n_seeds']} | {row['all_pressed_share']:.0%} "
+        lines.append(f"| {label} | {row['n_seeds']} | {percent(row['all_pressed_share'])} "
                      f"| {row['buttons_pressed']:.2f} | {others} "
-                     f"| {100 * row['test_error']:.2f} | {row['red_first_share']:.0%} |")
+                     f"| {100 * row['test_error']:.2f} | {percent(row['red_first_share'])} |")
     return "\n".join(lines)
 
 

@@ -13,6 +13,7 @@ from icm.exercises import _core, _own
 from icm.exercises._core import Case
 from icm.exercises._own import Forbidden
 from icm.exercises._runs import EXERCISE_SEEDS, EXERCISE_TRIALS, run_goal_oriented_with
+from icm.experiments.results import percent
 from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW, slope_weights,
                                    least_squares_slope)
 
@@ -338,8 +339,8 @@ def check_task_interest(task_interest, experiment=True, n_seeds=EXERCISE_SEEDS,
                                  "interest in the red and green tasks against trial")
         result.notes.append(
             f"Your Figure 5, {n_seeds} seeds of {n_trials} trials: red mastered first in "
-            f"{yours.red_first_fraction():.0%} of the seeds (the library's interest, the "
-            f"same seeds: {library.red_first_fraction():.0%}).")
+            f"{percent(yours.red_first_fraction())} of the seeds (the library's interest, the "
+            f"same seeds: {percent(library.red_first_fraction())}).")
     return result
 
 
@@ -544,9 +545,10 @@ def check_curiosity_signal(signal, experiment=True, n_seeds=EXERCISE_SEEDS,
         share = lambda run: float(run.button_share[:, :, 5].mean())
         result.notes.append(
             f"With the noisy button, {n_seeds} seeds of {n_trials} trials: your signal "
-            f"spent {share(yours):.0%} of the presses on the noisy button and mastered red "
-            f"first in {yours.red_first_fraction():.0%} of the seeds; learning progress "
-            f"{share(progress):.0%} and {progress.red_first_fraction():.0%}; the "
-            f"prediction error {share(error):.0%} and {error.red_first_fraction():.0%}. "
+            f"spent {percent(share(yours))} of the presses on the noisy button and mastered "
+            f"red first in {percent(yours.red_first_fraction())} of the seeds; learning "
+            f"progress {percent(share(progress))} and "
+            f"{percent(progress.red_first_fraction())}; the prediction error "
+            f"{percent(share(error))} and {percent(error.red_first_fraction())}. "
             f"A press at random would spend {1 / 6:.0%} there.")
     return result

@@ -16,7 +16,7 @@ from icm.experiments import _grid
 from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import run_seeds
-from icm.experiments.results import check_results, measures_table
+from icm.experiments.results import check_results, measures_table, percent
 from icm.learners import action_selection, actor_critic
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
                        first_from_which)
@@ -467,21 +467,24 @@ def comparison_table(results):
     check_results("results", results, ActorCriticResult)
     summaries = {id(r): r.summary() for r in results.values()}
 
+    def shown(value, fmt):  # a share as a percentage that is not 0% or 100% unless it is
+        return percent(value) if fmt == "%" else f"{value:{fmt}}"
+
     def number(key, fmt):
-        return lambda r: f"{summaries[id(r)][key]:{fmt}}"
+        return lambda r: shown(summaries[id(r)][key], fmt)
 
     def pair(key, fmt):
-        return lambda r: (f"{summaries[id(r)]['red_' + key]:{fmt}} / "
-                          f"{summaries[id(r)]['green_' + key]:{fmt}}")
+        return lambda r: (f"{shown(summaries[id(r)]['red_' + key], fmt)} / "
+                          f"{shown(summaries[id(r)]['green_' + key], fmt)}")
 
     table = measures_table(results, [
         ("seeds", lambda r: str(r.n_seeds)),
         ("error 0 from trial (mean†): red / green", pair("zero_mean", ".1f")),
-        ("green learned", number("green_zero_share", ".0%")),
-        ("red first", number("red_first", ".0%")),
-        ("green below red at some trial", number("green_below_red", ".0%")),
+        ("green learned", number("green_zero_share", "%")),
+        ("red first", number("red_first", "%")),
+        ("green below red at some trial", number("green_below_red", "%")),
         (f"presses opening red / green, last {LATE_TRIALS} trials",
-         pair("late_practice_share", ".0%")),
+         pair("late_practice_share", "%")),
         ("largest abs(V)", number("max_abs_value", ".3g")),
     ])
     return table + "\n\n† mean over the seeds whose error reaches 0 for good within the run."

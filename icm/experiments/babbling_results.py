@@ -8,7 +8,7 @@ import numpy as np
 from icm import _validate
 from icm.envs import buttons
 from icm.experiments.babbling_space import COLUMN_NAMES, REGION_GRID, region_columns
-from icm.experiments.results import check_results
+from icm.experiments.results import check_results, percent
 from icm.stats import PANEL_RESAMPLES, bootstrap_band
 
 @dataclasses.dataclass(frozen=True)
@@ -199,5 +199,5 @@ def comparison_table(results):
         lines.append(f"| {label} | {result.n_seeds} | {result.n_rollouts} "
                      f"| {100 * s['test_error']:.1f} ({100 * s['test_error_low']:.1f} to "
                      f"{100 * s['test_error_high']:.1f}) | {s['buttons_pressed']:.1f} "
-                     f"| {s['all_pressed_share']:.0%} | {s['press_share']:.1%} |")
+                     f"| {percent(s['all_pressed_share'])} | {percent(s['press_share'], 1)} |")
     return "\n".join(lines)

@@ -22,7 +22,7 @@ from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments import rod_toppling as _rod_toppling
 from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments._progress import progress_bar
-from icm.experiments.results import in_seeds
+from icm.experiments.results import in_seeds, percent
 from icm.learners import goal_oriented, interest, predictors, q_learning
 from icm.stats import bootstrap_band, corrected_verdicts
 
@@ -312,8 +312,8 @@ class SignalComparison:
             for task in _goal_oriented.TASKS:
                 mean, low, high = n[f"{task}_mastery"]
                 cells.append(f"{mean:.1f} [{low:.1f}, {high:.1f}] "
-                             f"({n[f'{task}_mastered'][0]:.0%} of seeds)")
-            cells.append(f"{n['red_first']:.0%}")
+                             f"({percent(n[f'{task}_mastered'][0])} of seeds)")
+            cells.append(percent(n['red_first']))
             cells.append(" / ".join(f"{n[f'{t}_presses'][0]:.0f}"
                                     for t in ("red", "green", "nothing")))
             mean, low, high = n["noisy_share"]
@@ -534,7 +534,7 @@ class RewardComparison:
             cells = [reward.replace("_", " "), "yes" if wobbly else "no", shares]
             for rod in _rod_toppling.RODS:
                 episode = n[f"{rod}_well_episode"][0]
-                cells.append(f"{n[f'{rod}_well'][0]:.0%} "
+                cells.append(f"{percent(n[f'{rod}_well'][0])} "
                              f"({'-' if np.isnan(episode) else f'{episode:.0f}'})")
             lines.append("| " + " | ".join(cells) + " |")
         return "\n".join(lines)

@@ -17,6 +17,7 @@ import numpy as np
 from icm import _validate
 from icm.envs._assets import ASSETS, asset_path
 from icm.experiments import goal_babbling
+from icm.experiments.results import percent
 from icm.stats import PANEL_RESAMPLES, bootstrap_band
 
 STUDY_FILE = "goal_babbling_study.json"
@@ -192,10 +193,10 @@ def study_table(study=None):
             if group not in by_group:
                 continue
             row = by_group[group]
-            loop = (f"{row['red_first_share']:.0%} | {row['as_scripted']:.1%}"
+            loop = (f"{percent(row['red_first_share'])} | {percent(row['as_scripted'], 1)}"
                     if "red_first_share" in row else "not run | not run")
             lines.append(f"| {label} | {', '.join(map(str, roots))} | {row['n_seeds']} "
-                         f"| {row['all_pressed_share']:.0%} | {row['buttons_pressed']:.2f} "
+                         f"| {percent(row['all_pressed_share'])} | {row['buttons_pressed']:.2f} "
                          f"| {100 * row['test_error']:.2f} | {loop} |")
     return "\n".join(lines)
 

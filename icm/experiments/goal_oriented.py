@@ -13,7 +13,7 @@ from icm import _streams, _validate
 from icm._settings import with_settings
 from icm.envs import buttons
 from icm.experiments import _grid
-from icm.experiments.results import check_results, measures_table
+from icm.experiments.results import check_results, measures_table, percent
 from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES, check_memory
 from icm.experiments._progress import progress_bar
 from icm.experiments._seeding import run_seeds
@@ -547,7 +547,7 @@ def comparison_table(results):
     return measures_table(results, [
         ("seeds", lambda r: str(r.n_seeds)),
         ("mastered, mean trial: red / green", pair("mastery_mean", ".1f")),
-        ("red mastered first", lambda r: f"{summaries[id(r)]['red_first']:.0%}"),
+        ("red mastered first", lambda r: percent(summaries[id(r)]['red_first'])),
         ("peak interest: red / green", pair("peak_interest", ".3f")),
         ("centre of interest, trial: red / green", pair("interest_centre", ".1f")),
         ("interest below 10% of its peak from trial: red / green", pair("fade_trial", "")),

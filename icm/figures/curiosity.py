@@ -11,6 +11,7 @@ from icm import _validate
 from icm.envs import buttons, icub, rods
 from icm.experiments import curiosity as _curiosity
 from icm.experiments.curiosity import RewardComparison, SignalComparison
+from icm.experiments.results import percent
 from icm.experiments.rod_toppling import WELL_PREDICTED_ERROR
 from icm.figures._common import (LINESTYLES, MARKERS, TASK_COLOURS, check_result, new_figure,
                                  legend_below, plot_mean_band, series_style)
@@ -89,7 +90,7 @@ def signal_mastery_figure(comparison):
                             color=colour, mfc=colour if share >= MASTERED_SHARE else "white",
                             markersize=6, capsize=2)
                 if share < MASTERED_SHARE:
-                    ax.annotate(f"{share:.0%} of seeds", (high, y + offset),
+                    ax.annotate(f"{percent(share)} of seeds", (high, y + offset),
                                 xytext=(4, -3), textcoords="offset points", fontsize=7,
                                 color=colour)
         ax.set_yticks(range(len(rows)))

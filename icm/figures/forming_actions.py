@@ -11,7 +11,7 @@ from icm import _validate
 from icm.envs import buttons
 from icm.experiments import goal_babbling as _babbling
 from icm.experiments.goal_babbling import GoalBabblingResult
-from icm.experiments.results import check_results
+from icm.experiments.results import check_results, percent
 from icm.learners import goal_choice
 from icm.figures._common import (LINESTYLES, MARKERS, check_result, figure_and_axes, legend_below,
                                  new_figure, plot_mean_band)
@@ -105,7 +105,7 @@ def coverage_figure(results, early=0.2):
                        linewidths=1, label="press goals")
             pressed = (result.pressed[:, :stop] >= 0).mean()
             ax.set_title(f"{label}:\nfirst {stop} rollouts, {result.n_seeds} seeds\n"
-                         f"{touched.mean():.0%} on the console, {pressed:.0%} pressed",
+                         f"{percent(touched.mean())} on the console, {percent(pressed)} pressed",
                          fontsize=8)
     # Under the maps, not on them: a legend there would cover the console's buttons.
     handles, labels = axes[0, 0].get_legend_handles_labels()
