@@ -467,8 +467,8 @@ def comparison_table(results):
     check_results("results", results, ActorCriticResult)
     summaries = {id(r): r.summary() for r in results.values()}
 
-    def shown(value, fmt):  # a share as a percentage that is not 0% or 100% unless it is
-        return percent(value) if fmt == "%" else f"{value:{fmt}}"
+    def shown(value, fmt):  # fmt: a format spec, or a function such as `percent`
+        return fmt(value) if callable(fmt) else f"{value:{fmt}}"
 
     def number(key, fmt):
         return lambda r: shown(summaries[id(r)][key], fmt)
@@ -480,11 +480,11 @@ def comparison_table(results):
     table = measures_table(results, [
         ("seeds", lambda r: str(r.n_seeds)),
         ("error 0 from trial (mean†): red / green", pair("zero_mean", ".1f")),
-        ("green learned", number("green_zero_share", "%")),
-        ("red first", number("red_first", "%")),
-        ("green below red at some trial", number("green_below_red", "%")),
+        ("green learned", number("green_zero_share", percent)),
+        ("red first", number("red_first", percent)),
+        ("green below red at some trial", number("green_below_red", percent)),
         (f"presses opening red / green, last {LATE_TRIALS} trials",
-         pair("late_practice_share", "%")),
+         pair("late_practice_share", percent)),
         ("largest abs(V)", number("max_abs_value", ".3g")),
     ])
     return table + "\n\n† mean over the seeds whose error reaches 0 for good within the run."
