@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import icm
+from icm import stats
 from icm.experiments import run_goal_oriented
 
 
@@ -72,6 +73,23 @@ def test_the_literal_reading_has_almost_no_interest_in_red(default_run):
     literal = run_goal_oriented(n_seeds=120, n_trials=60, seed=0, reading="literal")
     summary, literal_summary = default_run.summary(), literal.summary()
     assert literal_summary["red_peak_interest"] < 0.1 * summary["red_peak_interest"]
+
+
+def test_read_as_printed_green_is_mastered_sooner_and_red_practised_less():
+    # The chapter's sentence, on seeds of its own: nearly random presses master green
+    # sooner than learning progress, which spends presses on red once red is learned.
+    progress = run_goal_oriented(n_seeds=200, n_trials=60, seed=1)
+    literal = run_goal_oriented(n_seeds=200, n_trials=60, seed=1, reading="literal")
+    both = (literal.mastery_trial[:, 1] >= 1) & (progress.mastery_trial[:, 1] >= 1)
+    gap = (literal.mastery_trial[both, 1] - progress.mastery_trial[both, 1]).astype(float)
+    assert both.sum() >= 190 and stats.bootstrap_band(gap)[2] < 0
+    assert stats.paired_p_value(gap, alternative="less") < 0.05
+
+    def red_after_mastery(run):
+        return np.mean([run.practice[k, t:, 0].sum() if t >= 1 else 0
+                        for k, t in enumerate(run.mastery_trial[:, 0])])
+
+    assert red_after_mastery(progress) > red_after_mastery(literal)
 
 
 def test_plain_hamming_distance_loses_the_red_advantage(default_run):
