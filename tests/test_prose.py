@@ -64,6 +64,7 @@ ALLOWED = {
     "rod_toppling": [
         "cell (0, 0)", "cell (2, 2)", "(2, 2)",  # cells of the grid, named in the text
         "Columns 0-4", "rows 0-2",  # the grid's numbering
+        "runs count from 0", "run 0",  # the runs' numbering: run 0 is the first run
     ],
 }
 
