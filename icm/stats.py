@@ -89,6 +89,32 @@ def comes_first(first, second):
     return (first >= 1) & ((second == -1) | (first < second))
 
 
+def paired_gaps(arm, baseline):
+    """The per-seed differences `arm` - `baseline` of two runs' event numbers (a trial
+    or an episode from 1, -1 for never; the same seeds in the same order), on the seeds
+    where both events happened: what a paired comparison of "how soon" tests. Floats;
+    negative where the arm's event came sooner.
+
+    Raises:
+      TypeError: for arrays that do not hold integers.
+      ValueError: for arrays that are not one-dimensional or differ in length.
+    """
+    arm, baseline = np.asarray(arm), np.asarray(baseline)
+    for name, value in (("arm", arm), ("baseline", baseline)):
+        if value.dtype.kind not in "iu":
+            raise _validate.ArgumentTypeError(f"{name} must hold integers (event numbers "
+                                              f"from 1, -1 for never), got "
+                                              f"{_validate.show(value)}")
+        if value.ndim != 1:
+            raise ValueError(f"{name} must be one-dimensional (one event number per seed), "
+                             f"got shape {value.shape}")
+    if arm.shape != baseline.shape:
+        raise ValueError(f"arm and baseline must hold one event number per seed each, "
+                         f"got {len(arm)} and {len(baseline)}")
+    both = (arm >= 1) & (baseline >= 1)
+    return (arm[both] - baseline[both]).astype(float)
+
+
 @functools.lru_cache(maxsize=16)
 def _resample_counts(n, resamples, seed):
     """How many times each of n seeds is drawn in each of `resamples` resamples (kept:

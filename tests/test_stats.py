@@ -104,3 +104,16 @@ def test_the_paired_p_value_refuses_bad_input():
         stats.paired_p_value([1.0, 2.0], alternative="up")
     with pytest.raises((ValueError, TypeError), match="differences"):
         stats.paired_p_value([[1.0, 2.0]])
+
+
+def test_paired_gaps_keep_the_seeds_where_both_events_happened():
+    arm, baseline = np.array([3, -1, 5, 2, 7]), np.array([4, 2, -1, 2, 1])
+    gaps = stats.paired_gaps(arm, baseline)
+    assert gaps.dtype == float and gaps.tolist() == [-1.0, 0.0, 6.0]
+    assert stats.paired_gaps(np.array([-1, -1]), np.array([1, 2])).size == 0
+    with pytest.raises(TypeError, match="arm must hold integers"):
+        stats.paired_gaps(np.array([1.5, 2.0]), np.array([1, 2]))
+    with pytest.raises(ValueError, match="one event number per seed each, got 2 and 3"):
+        stats.paired_gaps(np.array([1, 2]), np.array([1, 2, 3]))
+    with pytest.raises(ValueError, match="baseline must be one-dimensional"):
+        stats.paired_gaps(np.array([1, 2]), np.array([[1, 2]]))

@@ -24,7 +24,7 @@ from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments._progress import progress_bar
 from icm.experiments.results import in_seeds, percent
 from icm.learners import goal_oriented, interest, predictors, q_learning
-from icm.stats import bootstrap_band, corrected_verdicts
+from icm.stats import bootstrap_band, corrected_verdicts, paired_gaps
 
 CHANCE_SHARE = 1.0 / 6.0
 """The share of presses a learner pressing at random gives each of the six buttons."""
@@ -232,9 +232,8 @@ class SignalComparison:
             i = _goal_oriented.TASKS.index(task)
             a = self.results[(*arm, False)].mastery_trial[:, i]
             b = self.results[(*baseline, False)].mastery_trial[:, i]
-            both = (a >= 1) & (b >= 1)
-            family[name] = (a[both] - b[both]).astype(float)
-            bands[name], counts[name] = _band(family[name]), int(both.sum())
+            family[name] = paired_gaps(a, b)
+            bands[name], counts[name] = _band(family[name]), len(family[name])
         corrected = corrected_verdicts(family)
         return {name: {"mean": bands[name][0], "low": bands[name][1],
                        "high": bands[name][2], "p": v["p"], "p_holm": v["p_holm"],
@@ -354,8 +353,7 @@ def replicate(directions, root=None, n_seeds=REPLICATION_SEEDS):
         i = _goal_oriented.TASKS.index(task)
         a = fresh.results[(*arm, False)].mastery_trial[:, i]
         b = fresh.results[(*baseline, False)].mastery_trial[:, i]
-        both = (a >= 1) & (b >= 1)
-        out[name] = replication.replicated((a[both] - b[both]).astype(float), direction)
+        out[name] = replication.replicated(paired_gaps(a, b), direction)
     return out
 
 
