@@ -80,13 +80,18 @@ def comes_first(first, second):
     """Where an event numbered `first` (a trial or an episode, from 1; -1 for never)
     comes strictly before one numbered `second`: it happened, and the other never did
     or did later. Works on numbers and on arrays (element-wise)."""
-    first, second = np.asarray(first), np.asarray(second)
-    for name, value in (("first", first), ("second", second)):
-        if value.dtype.kind not in "iu":
-            raise _validate.ArgumentTypeError(f"{name} must hold integers (event numbers "
-                                              f"from 1, -1 for never), got "
-                                              f"{_validate.show(value)}")
+    first, second = _event_numbers("first", first), _event_numbers("second", second)
     return (first >= 1) & ((second == -1) | (first < second))
+
+
+def _event_numbers(name, value):
+    """`value` as an array of event numbers (integers: from 1, -1 for never)."""
+    value = np.asarray(value)
+    if value.dtype.kind not in "iu":
+        raise _validate.ArgumentTypeError(f"{name} must hold integers (event numbers "
+                                          f"from 1, -1 for never), got "
+                                          f"{_validate.show(value)}")
+    return value
 
 
 def paired_gaps(arm, baseline):
@@ -99,12 +104,8 @@ def paired_gaps(arm, baseline):
       TypeError: for arrays that do not hold integers.
       ValueError: for arrays that are not one-dimensional or differ in length.
     """
-    arm, baseline = np.asarray(arm), np.asarray(baseline)
+    arm, baseline = _event_numbers("arm", arm), _event_numbers("baseline", baseline)
     for name, value in (("arm", arm), ("baseline", baseline)):
-        if value.dtype.kind not in "iu":
-            raise _validate.ArgumentTypeError(f"{name} must hold integers (event numbers "
-                                              f"from 1, -1 for never), got "
-                                              f"{_validate.show(value)}")
         if value.ndim != 1:
             raise ValueError(f"{name} must be one-dimensional (one event number per seed), "
                              f"got shape {value.shape}")
