@@ -133,6 +133,41 @@ def test_api_reference_covers_every_public_class_and_function(built_book):
 
 
 @pytest.mark.book
+def test_every_section_of_a_chapter_reaches_the_pages_contents(built_book):
+    # Each "## " heading of a chapter's markdown (outside code fences) is a section of
+    # the built page, listed in the contents beside it, in order: a heading that a
+    # fold or a directive swallowed by mistake becomes a line of bold text and leaves
+    # the contents.
+    import html as html_module
+    import re
+
+    for name in toc_files():
+        path = ROOT / f"{name}.ipynb"
+        if not path.exists():
+            continue
+        headings = []
+        for cell in nbformat.read(path, as_version=4).cells:
+            if cell.cell_type != "markdown":
+                continue
+            fenced = False
+            for line in cell.source.splitlines():
+                if line.startswith("```"):
+                    fenced = not fenced
+                elif not fenced and line.startswith("## "):
+                    headings.append(line[3:].strip())
+        page = (built_book / f"{name}.html").read_text()
+        contents = page[page.index('id="pst-page-toc-nav"'):]
+        contents = contents[:contents.index("</nav>")]
+        listed = [re.sub(r"<[^>]+>", "", html_module.unescape(entry)).strip() for entry in
+                  re.findall(r'class="[^"]*toc-h2[^"]*"[^>]*>\s*<a[^>]*>(.*?)</a>',
+                             contents, re.S)]
+        plain = [re.sub(r"[`*]", "", h) for h in headings]
+        assert len(listed) == len(plain) > 2, (name, listed, plain)
+        for shown, written in zip(listed, plain):
+            assert shown.replace("\u2019", "'").endswith(written.replace("\u2019", "'")), \
+                (name, shown, written)
+
+
 def test_the_api_pages_contents_list_its_modules(built_book):
     # The contents beside the API page: one entry per module (each a heading of
     # book/api.md, under its section), none per function, class or constant; and no
