@@ -111,10 +111,11 @@ took 0.030 s, against 0.018 on a quiet machine), they took 420 of the 1,052 s th
 the tests took summed over both workers (273 of 634 CPU-seconds). The claims checked on
 many seeds read kept runs, and only their last seeds are rerun
 (tests/test_remedies_replication.py, tests/test_goal_babbling.py)."""
-SLOW_FIXTURES = ("assignments", "graded", "malicious")
-"""Fixtures that take minutes, so that every test using them is `slow` too: the course's
-assignments written by otter for every chapter, and the submissions graded from them
-(tests/test_course.py)."""
+SLOW_FIXTURES = ("assignments", "graded", "attacked")
+"""Fixtures that take tens of seconds, so that every test using them is `slow` too: the
+course's assignments written by otter (tests/test_course.py, tests/test_grading.py),
+and the classes graded from them, honest (tests/test_grading.py) and attacking
+(tests/test_grading_attacks.py)."""
 
 
 def pytest_configure(config):

@@ -13,7 +13,7 @@ ROOT = pathlib.Path(icm.__file__).parent
 
 LAYERS = (
     ("icm._validate", "icm._streams", "icm._system", "icm._install", "icm._book",
-     "icm._exact"),
+     "icm._exact", "icm.files", "icm.records"),
     ("icm._settings", "icm.stats"),
     ("icm.envs",),
     ("icm.learners",),

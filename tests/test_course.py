@@ -1,11 +1,10 @@
 """The course: each chapter's assignment written by otter from the chapter's own
 exercises (placeholders and public tests for the students, solutions and hidden tests
-for the autograder only), graded end to end from a folder of submissions (a correct
-one, one with typical mistakes, one that imports the library's answers, one that
-hard-codes the public cases; and notebooks that loop, exit, die, fail at import or
-delete the files around them), the tests' time limits and the own-answer rule, the
-questions exported to Moodle XML and read back, the slide decks opened offline in
-Chromium, and the instructors' page's directives."""
+for the autograder only, numbered as the book numbers them), the in-kernel tests of the
+students' notebooks (their time limits and the own-answer rule), the questions
+exported to Moodle XML and read back, the slide decks opened offline in Chromium, and
+the instructors' page's directives. Grading a class is in tests/test_grading.py, and
+the attacks on it in tests/test_grading_attacks.py."""
 
 import csv
 import dataclasses
@@ -28,8 +27,6 @@ from icm.exercises.registry import EXERCISES
 
 SEED = 20261202
 """The grading seed of the tests' assignments."""
-CHAPTER = "goal_oriented_interest"
-"""The chapter whose submissions are graded end to end (two implement exercises)."""
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 
 
@@ -266,8 +263,15 @@ def test_each_chapter_gets_a_students_notebook_and_an_autograder(assignments):
                 assert f'grader.check("{exercise.label}")' in text
                 assert exercise.placeholder.strip() in text
         manifest = json.loads((folder / "autograder" / assign.MANIFEST).read_text())
-        assert [e["label"] for e in manifest["exercises"]] == [e.label for e in implement]
-        assert manifest["number"] == [n for n, _ in assign.chapters()].index(name) + 1
+        number = [n for n, _ in assign.chapters()].index(name) + 1
+        graded = [e for e in assign.chapter_exercises(path) if e.kind != "predict"]
+        assert [e["label"] for e in manifest["exercises"]] == [e.label for e in graded]
+        assert manifest["number"] == number
+        # Numbered as the book numbers them (the marking guides' "Exercise N.k").
+        everything = [e.label for e in assign.chapter_exercises(path)]
+        for entry in manifest["exercises"]:
+            assert entry["number"] == f"{number}.{everything.index(entry['label']) + 1}"
+            assert f"## Exercise {entry['number']}. " in text
         assert len(list((folder / "autograder").glob("*-autograder_*.zip"))) == 1
     # The grade sheet's columns follow the book.
     loaded = grade.load_assignments(out)
@@ -280,7 +284,8 @@ def test_no_solution_and_no_hidden_test_reaches_a_student(assignments):
         notebook = nbformat.read(out / name / "student" / f"{name}.ipynb", as_version=4)
         text = "\n".join(cell.source for cell in notebook.cells)
         everything = text + json.dumps(notebook.metadata)
-        assert str(SEED) not in everything and "hidden_test" not in everything
+        assert str(assign.chapter_seed(SEED, name)) not in everything
+        assert "hidden_test" not in everything
         assert "hidden=True" not in everything
         for exercise in _implement(path):
             for line in exercise.solution.splitlines():
@@ -316,7 +321,11 @@ def test_the_autograder_zip_holds_the_hidden_tests_and_what_gradescope_runs(assi
                     [False] + [True] * len(registered.hidden_points)
                 assert [c.points for c in cases] == \
                     [registered.points] + list(registered.hidden_points)
-                assert source.count(f"seed = {SEED}") == len(registered.hidden_points)
+                # Each chapter's own seed, drawn from the assignment's: no chapter's
+                # autograder tells another's hidden cases.
+                seed = assign.chapter_seed(SEED, name)
+                assert source.count(f"seed = {seed}") == len(registered.hidden_points)
+                assert f"seed = {SEED}\n" not in source
 
 
 def test_the_master_notebook_is_otters_format(tmp_path):
@@ -341,272 +350,6 @@ def test_bad_input_to_assign_is_refused(tmp_path):
                            "It took {glue:text}`n` tries.")
     assert assign.markdown_of("See {ref}`the chapter <ch>` and {doc}`api`.") == \
         "See the chapter and *api*."
-
-
-# --- grading end to end --------------------------------------------------------------
-
-def _fill(student_path, answers, folder, name, extra=None, setup=None):
-    """A submission: the student's notebook with its answer cells replaced (by function
-    name), `extra` code run right after the setup cell, the setup cell replaced."""
-    notebook = nbformat.read(student_path, as_version=4)
-    cells = []
-    for cell in notebook.cells:
-        defined = re.search(r"def (\w+)\(", cell.source) if cell.cell_type == "code" else None
-        if defined and "otter_answer_cell" in cell.metadata.get("tags", []) and \
-                defined.group(1) in answers:
-            cell.source = answers[defined.group(1)]
-        if "grader = otter.Notebook" in cell.source:
-            if setup is not None:
-                cell.source = setup
-            cells.append(cell)
-            if extra is not None:
-                cells.append(nbformat.v4.new_code_cell(extra))
-            continue
-        cells.append(cell)
-    notebook.cells = cells
-    folder.mkdir(parents=True, exist_ok=True)
-    nbformat.write(notebook, folder / f"{name}.ipynb")
-
-
-SLOPE_DIVIDED_BY_N = """def least_squares_slope(values):
-    n = len(values)
-    x_mean, y_mean = (n - 1) / 2, sum(values) / n
-    return sum((x - x_mean) * (y - y_mean) for x, y in enumerate(values)) / n
-"""
-INTEREST_FORGETS_NEW_TASKS = """def task_interest(history, others, window=5, new_task_factor=0.5):
-    if len(history) < 2:
-        return 0.0
-    recent = history[-window:]
-    n = len(recent)
-    x_mean, y_mean = (n - 1) / 2, sum(recent) / n
-    slope = sum((x - x_mean) * (y - y_mean) for x, y in enumerate(recent)) / sum(
-        (x - x_mean) ** 2 for x in range(n))
-    return max(0.0, -slope)
-"""
-INTEREST_OWN = """def task_interest(history, others, window=5, new_task_factor=0.5):
-    if len(history) == 0:
-        return 0.0
-    if len(history) == 1:
-        return new_task_factor * sum(others) / len(others) if others else 0.0
-    recent = history[-window:]
-    n = len(recent)
-    x_mean, y_mean = (n - 1) / 2, sum(recent) / n
-    slope = sum((x - x_mean) * (y - y_mean) for x, y in enumerate(recent)) / sum(
-        (x - x_mean) ** 2 for x in range(n))
-    return max(0.0, -slope)
-"""
-
-
-def _hard_coded(label, definition):
-    """An answer that looks its result up in a table of the public cases' answers."""
-    exercise = EXERCISES[label]
-    table = {repr(case.args): SOLUTIONS[exercise.function](*case.args)
-             for case in exercise.public_cases()}
-    arguments = definition.split("(", 1)[1].split(")")[0]
-    names = ", ".join(a.split("=")[0].strip() for a in arguments.split(","))
-    return (f"ANSWERS = {table!r}\n\n\n{definition}\n"
-            f"    return ANSWERS.get(repr(({names},)), 0.0)\n").replace(
-        "ANSWERS", f"ANSWERS_{exercise.function}")
-
-
-@pytest.fixture(scope="module")
-def graded(assignments, tmp_path_factory):
-    """The four submissions of the issue, graded as an instructor would."""
-    out, _ = assignments
-    student = out / CHAPTER / "student" / f"{CHAPTER}.ipynb"
-    folder = tmp_path_factory.mktemp("submissions")
-    solution = {e.function: s for e, s in
-                ((EXERCISES[x.label], x.solution) for x in
-                 _implement(ROOT / "book" / f"{CHAPTER}.ipynb"))}
-    _fill(student, solution, folder, "correct")
-    _fill(student, {"least_squares_slope": solution["least_squares_slope"],
-                    "task_interest": INTEREST_FORGETS_NEW_TASKS}, folder, "mistakes")
-    _fill(student, {"least_squares_slope": "from icm.learners.interest import "
-                                           "least_squares_slope\n",
-                    "task_interest": INTEREST_OWN}, folder, "imports")
-    _fill(student, {"least_squares_slope": _hard_coded(
-        "ex-least-squares-slope", "def least_squares_slope(values):"),
-                    "task_interest": _hard_coded(
-        "ex-task-interest", "def task_interest(history, others, window=5, "
-                            "new_task_factor=0.5):")}, folder, "hard_coded")
-    sheet = folder.parent / f"{folder.name}-grades.csv"
-    results = grade.grade(folder, sheet, assignments=out, jobs=2, time_limit=400,
-                          progress=lambda _: None)
-    return sheet, {r.submission: r for r in results}, folder
-
-
-def _rows(sheet):
-    with open(sheet, newline="") as file:
-        return {row["submission"]: row for row in csv.DictReader(file)}
-
-
-def test_four_submissions_graded_end_to_end(graded):
-    sheet, results, _ = graded
-    rows = _rows(sheet)
-    with open(sheet, newline="") as file:
-        header = next(csv.reader(file))
-    assert header == ["submission", "chapter", "ex-least-squares-slope", "ex-task-interest",
-                      "total", "possible", "problem"]
-    assert set(rows) == {"correct.ipynb", "mistakes.ipynb", "imports.ipynb",
-                         "hard_coded.ipynb"}
-    total = {name: float(row["total"]) for name, row in rows.items()}
-    assert all(row["chapter"] == CHAPTER and row["possible"] == "20" and not row["problem"]
-               for row in rows.values()), rows
-    # The correct one scores highest: every point.
-    assert total["correct.ipynb"] == 20 and max(total, key=total.get) == "correct.ipynb"
-    assert all(total[name] < 20 for name in total if name != "correct.ipynb")
-    # Typical mistakes: the slope right, the interest without its new-task rule.
-    assert rows["mistakes.ipynb"]["ex-least-squares-slope"] == "10"
-    assert rows["mistakes.ipynb"]["ex-task-interest"] == "0"
-    # The importing one gets 0 on the exercise it cheats, and every point on the other.
-    assert rows["imports.ipynb"]["ex-least-squares-slope"] == "0"
-    assert rows["imports.ipynb"]["ex-task-interest"] == "10"
-    # The hard-coded one passes the public tests and fails every hidden one.
-    for label in ("ex-least-squares-slope", "ex-task-interest"):
-        cases = results["hard_coded.ipynb"].tests[label]
-        assert [c["passed"] for c in cases if not c["hidden"]] == [True]
-        assert not any(c["passed"] for c in cases if c["hidden"]) and len(cases) == 5
-        assert rows["hard_coded.ipynb"][label] == "2"
-
-
-def test_each_student_gets_a_feedback_file_that_says_why(graded):
-    sheet = graded[0]
-    folder = sheet.parent / f"{sheet.stem}-feedback"
-    files = sorted(p.name for p in folder.glob("*.md"))
-    assert files == ["correct.md", "hard_coded.md", "imports.md", "mistakes.md"]
-    correct = (folder / "correct.md").read_text()
-    assert "**20 of 20 points**" in correct and "failed" not in correct
-    imports = (folder / "imports.md").read_text()
-    assert "`icm.learners.interest.least_squares_slope`" in imports
-    assert "the library's implementation" in imports and "gets 0" in imports
-    mistakes = (folder / "mistakes.md").read_text()
-    assert "one element" in mistakes and "new_task_factor" in mistakes  # the public report
-    assert "expected:" in mistakes  # the public test shows its case
-    hard = (folder / "hard_coded.md").read_text()
-    assert hard.count("hidden test (0 of 2)") == 8 and "values are not shown" in hard
-    for text in (correct, imports, mistakes, hard):
-        assert str(SEED) not in text and "seed =" not in text
-
-
-MALICIOUS = {
-    # name: (the task_interest answer, a cell after the setup, a replaced setup cell)
-    # A loop that never ends, sleeping: the limit of a test is on wall-clock time
-    # (grading._time_limit), so it stops this loop as it stops a spinning one, without
-    # spending the limit's 20 s of CPU that the other tests of a run need.
-    "loops": ("import time\n\n\ndef task_interest(history, others, window=5, "
-              "new_task_factor=0.5):\n    while True:\n        time.sleep(0.05)\n", None, None),
-    "exits": ("import sys\n\n\ndef task_interest(history, others, window=5, "
-              "new_task_factor=0.5):\n    sys.exit(1)\n", None, None),
-    "dies": (None, "import os\nos._exit(3)\n", None),
-    "raises_at_import": ("def task_interest(history, others, window=5, new_task_factor=0.5):\n"
-                         "    return float(np.mean(history)) if history else 0.0\n", None,
-                         "import icm_no_such_module\nimport numpy as np\nimport otter\n"
-                         f"grader = otter.Notebook(\"{CHAPTER}.ipynb\")\n"),
-    # Within the machine's memory, beyond the grader's limit (6 GiB of address space).
-    "hogs_memory": (INTEREST_OWN.replace(
-        "    if len(history) == 0:",
-        "    buffer = np.empty(2 ** 30)  # 8 GiB, never written\n    if len(history) == 0:"),
-        None, None),
-    "deletes": (None, "import os\nimport shutil\n\nfor name in os.listdir('..'):\n"
-                "    path = os.path.join('..', name)\n"
-                "    shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)\n", None),
-}
-
-
-@pytest.fixture(scope="module")
-def malicious(assignments, graded, tmp_path_factory):
-    """A folder with the correct submission and five that break things, graded."""
-    out, _ = assignments
-    student = out / CHAPTER / "student" / f"{CHAPTER}.ipynb"
-    folder = tmp_path_factory.mktemp("malicious")
-    solution = {EXERCISES[x.label].function: x.solution
-                for x in _implement(ROOT / "book" / f"{CHAPTER}.ipynb")}
-    shutil.copy(graded[2] / "correct.ipynb", folder / "correct.ipynb")
-    for name, (interest_answer, extra, setup) in MALICIOUS.items():
-        answers = dict(solution)
-        if interest_answer is not None:
-            answers["task_interest"] = interest_answer
-        _fill(student, answers, folder, name, extra=extra, setup=setup)
-    (folder / "not_a_notebook.ipynb").write_text("{ this is not JSON")
-    sheet = folder.parent / f"{folder.name}-grades.csv"
-    results = grade.grade(folder, sheet, assignments=out, jobs=2, time_limit=300,
-                          progress=lambda _: None)
-    return sheet, {r.submission: r for r in results}
-
-
-def test_a_submission_that_breaks_things_costs_only_its_own_points(graded, malicious):
-    rows = _rows(malicious[0])
-    first = _rows(graded[0])["correct.ipynb"]
-    # The other submissions' grades are unchanged.
-    assert rows["correct.ipynb"] == first
-    # An infinite loop in the answer, sys.exit in the answer, an error at import: 0 on
-    # what they break, the rest graded.
-    for name in ("loops", "exits", "raises_at_import", "hogs_memory"):
-        row = rows[f"{name}.ipynb"]
-        assert row["ex-least-squares-slope"] == "10" and row["ex-task-interest"] == "0", row
-    loops = malicious[1]["loops.ipynb"].tests["ex-task-interest"]
-    assert "time limit" in loops[0]["message"]
-    assert "SystemExit" in malicious[1]["exits.ipynb"].tests["ex-task-interest"][0]["message"]
-    # A kernel that dies, a notebook that deletes the grader's files: 0, and why.
-    assert rows["dies.ipynb"]["total"] == "0" and "died" in rows["dies.ipynb"]["problem"]
-    assert "MemoryError" in \
-        malicious[1]["hogs_memory.ipynb"].tests["ex-task-interest"][0]["message"]
-    assert rows["deletes.ipynb"]["total"] == "0"
-    assert "deleted" in rows["deletes.ipynb"]["problem"]
-    assert rows["not_a_notebook.ipynb"]["total"] == "0"
-    assert "not a notebook" in rows["not_a_notebook.ipynb"]["problem"]
-    feedback = malicious[0].parent / f"{malicious[0].stem}-feedback"
-    assert "died" in (feedback / "dies.md").read_text()
-
-
-def test_a_cell_that_never_ends_is_interrupted_and_the_next_cells_run(tmp_path):
-    import nbconvert.preprocessors
-
-    from icm.course import _worker
-
-    original = nbconvert.preprocessors.ExecutePreprocessor
-    try:
-        _worker._limited_executor(3)
-        notebook = nbformat.v4.new_notebook(cells=[
-            nbformat.v4.new_code_cell("while True:\n    pass"),
-            nbformat.v4.new_code_cell("print('after the loop')")])
-        notebook.metadata["kernelspec"] = {"name": "python3", "language": "python",
-                                           "display_name": "Python 3"}
-        executor = nbconvert.preprocessors.ExecutePreprocessor(allow_errors=True)
-        assert executor.timeout == 3 and executor.interrupt_on_timeout
-        executed, _ = executor.preprocess(notebook, {"metadata": {"path": str(tmp_path)}})
-    finally:
-        nbconvert.preprocessors.ExecutePreprocessor = original
-    assert executed.cells[0].outputs[0]["ename"] == "KeyboardInterrupt"
-    assert "after the loop" in executed.cells[1].outputs[0]["text"]
-
-
-def test_grade_refuses_bad_input(tmp_path, assignments):
-    out, _ = assignments
-    with pytest.raises(grade.GradeError, match="no notebook"):
-        grade.grade(tmp_path, tmp_path / "grades.csv", assignments=out)
-    (tmp_path / "a.ipynb").write_text("{}")
-    with pytest.raises(grade.GradeError, match="no assignment"):
-        grade.grade(tmp_path, tmp_path / "grades.csv", assignments=tmp_path / "none")
-    with pytest.raises(ValueError, match="time_limit"):
-        grade.grade(tmp_path, tmp_path / "grades.csv", assignments=out, time_limit=0)
-    with pytest.raises(ValueError, match="not an assignment's notebook"):
-        grade.chapter_of(b'{"metadata": {}}')
-
-
-def test_the_command_line_grades_a_folder(assignments, graded, tmp_path):
-    out, _ = assignments
-    folder = tmp_path / "one"
-    folder.mkdir()
-    (folder / "a.ipynb").write_text('{"cells": [], "metadata": {"otter": '
-                                    '{"assignment_name": "no_such_chapter"}}}')
-    done = subprocess.run([sys.executable, "-m", "icm.course", "grade", str(folder),
-                           "--out", str(tmp_path / "g.csv"), "--assignments", str(out)],
-                          capture_output=True, text=True, cwd=ROOT)
-    assert done.returncode == 0, done.stderr
-    row = _rows(tmp_path / "g.csv")["a.ipynb"]
-    assert "no autograder for the chapter 'no_such_chapter'" in row["problem"]
-    assert (tmp_path / "g-feedback" / "a.md").exists()
 
 
 # --- the questions for a learning platform -------------------------------------------------

@@ -23,9 +23,10 @@ def _grade(args):
     from icm.course.grade import grade
 
     results = grade(args.submissions, args.out, assignments=args.assignments,
-                    feedback_dir=args.feedback, time_limit=args.time_limit,
-                    memory_limit=args.memory_limit, cell_timeout=args.cell_timeout,
-                    jobs=args.jobs)
+                    feedback_dir=args.feedback, roster=args.roster,
+                    time_limit=args.time_limit, memory_limit=args.memory_limit,
+                    cell_timeout=args.cell_timeout, jobs=args.jobs, trusted=args.trusted,
+                    force=args.force)
     problems = sum(1 for graded in results if graded.problem)
     print(f"{len(results)} submissions graded ({problems} with a problem): {args.out}")
 
@@ -71,13 +72,23 @@ def main(argv=None):
                        help="the folder `assign` wrote (default: _build/assignments)")
     grade.add_argument("--feedback", default=None,
                        help="the feedback files' folder (default: <out>-feedback beside it)")
+    grade.add_argument("--roster", default=None, help="the class: a CSV with the "
+                       "columns id, name and file; the sheet gets a row per student")
     grade.add_argument("--time-limit", type=float, default=600.0,
                        help="seconds for one submission (default 600)")
-    grade.add_argument("--memory-limit", type=float, default=6.0,
-                       help="GiB of memory for each process of one submission (default 6)")
+    grade.add_argument("--memory-limit", type=float, default=4.0,
+                       help="GiB of memory for one submission, all its processes "
+                            "together (default 4)")
     grade.add_argument("--cell-timeout", type=float, default=120.0,
-                       help="seconds for one cell before it is interrupted (default 120)")
-    grade.add_argument("--jobs", type=int, default=1, help="submissions graded at once")
+                       help="seconds for one cell before it is left out (default 120)")
+    grade.add_argument("--jobs", type=int, default=1,
+                       help="submissions graded at once (at most the machine's cores)")
+    grade.add_argument("--trusted", action="store_true",
+                       help="run the notebooks without confinement: only for notebooks "
+                            "you trust (your own tests), where bubblewrap or control "
+                            "groups are missing")
+    grade.add_argument("--force", action="store_true",
+                       help="replace a sheet or feedback folder this command did not write")
     grade.set_defaults(run=_grade)
 
     lms = commands.add_parser("lms", help="export the book's \"predict, then check\" "

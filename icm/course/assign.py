@@ -29,6 +29,7 @@ with a cell for the answer, marked by hand.
 
 import concurrent.futures
 import dataclasses
+import hashlib
 import json
 import pathlib
 import re
@@ -51,6 +52,9 @@ EXERCISE = re.compile(r"\{exercise(?:-start)?\} (Implement|Predict, then check|E
 """An exercise's directive in a chapter: its kind, its title and its label."""
 KINDS = {"Implement": "implement", "Predict, then check": "predict", "Extend": "extend"}
 SOLUTION_TAG = "solution"
+EXTEND_POINTS = 5.0
+"""The points of an extend exercise, marked by hand (its marking guide, on the
+instructors' page, is out of this many)."""
 ROLE = re.compile(r"\{([a-z]+)(?::[a-z]+)?\}`([^`]*)`")
 """A MyST role (`{ref}`text <target>``, `{doc}`name``, ...)."""
 
@@ -268,19 +272,23 @@ def master_notebook(name, path, seed, root=ROOT):
                  f"says which case fails, with its input, the expected and the given result, "
                  f"and a hint. Your grade also rests on **hidden tests**: cases of the same "
                  f"kinds, drawn when your notebook is graded, whose values you never see. "
-                 f"Keep each function's name. Write your own code: an answer that calls the "
-                 f"library's implementation of what it asks for (or a reference answer of "
-                 f"`icm.exercises`) gets 0 for that exercise. The extend exercises are marked "
-                 f"by hand."),
+                 f"Keep each function's name, and write it with Python and NumPy alone: "
+                 f"when your notebook is graded, its code runs on its own, where icm is not "
+                 f"installed (an answer must be your own code, so the library's "
+                 f"implementation of what it asks for is not there to call). Each case of a "
+                 f"test earns its share of the test's points. The extend exercises are "
+                 f"marked by hand."),
              nbformat.v4.new_code_cell(
-                 _install_cell(path).rstrip() + "\n\n"
+                 "import numpy as np\n\n" + _install_cell(path).rstrip() + "\n\n"
                  f"# The grader of this notebook's checks, when missing.\n"
                  f"if importlib.util.find_spec(\"otter\") is None:\n"
                  f"    subprocess.check_call([sys.executable, \"-m\", \"pip\", \"install\", "
                  f"\"--quiet\", \"{pinned('otter-grader', root)}\"])\n\n"
-                 f"import numpy as np\nimport otter\n\ngrader = otter.Notebook(\"{name}.ipynb\")")]
-    for number, exercise in enumerate(exercises, 1):
-        heading = f"## Exercise {number}. {exercise.kind.capitalize()}: {exercise.title}\n\n"
+                 f"import otter\n\ngrader = otter.Notebook(\"{name}.ipynb\")")]
+    numbers = exercise_numbers(name, path, root)
+    for exercise in exercises:
+        heading = (f"## Exercise {numbers[exercise.label]}. {exercise.kind.capitalize()}: "
+                   f"{exercise.title}\n\n")
         if exercise.kind == "extend":
             cells += [nbformat.v4.new_markdown_cell(
                 heading + exercise.prompt + "\n\n*Marked by hand. Where the exercise "
@@ -325,7 +333,7 @@ def master_notebook(name, path, seed, root=ROOT):
                 function,
                 f"def test_hidden_{test + 1}({function}):\n"
                 f"    from icm.course.grading import hidden_test\n"
-                f"    seed = {seed}\n"
+                f"    seed = {chapter_seed(seed, name)}\n"
                 f"    hidden_test(\"{exercise.label}\", {function}, seed, {test})",
                 points, hidden=True))
         cells += [_raw("# END TESTS"), _raw("# END QUESTION")]
@@ -399,14 +407,17 @@ def check_solutions(written, jobs=2, progress=print):
     Raises:
       AssignError: naming each test the solutions fail.
     """
-    from icm.course import grade
+    from icm.course import grade, sandbox
 
     folder = pathlib.Path(next(iter(written.values()))).parent
     assignments = grade.load_assignments(folder)
+    confinement = sandbox.probe()  # our own notebooks: confined where it can be
+    secret = secrets.token_bytes(32)
 
     def one(name):
         notebook = (written[name] / "autograder" / f"{name}.ipynb").read_bytes()
-        return grade.grade_one(f"{name} (solutions)", notebook, assignments)
+        return grade.grade_submission(f"{name} (solutions)", notebook, assignments, secret,
+                                      confinement if confinement.available else None)
 
     failed = []
     with concurrent.futures.ThreadPoolExecutor(jobs) as pool:
@@ -416,9 +427,10 @@ def check_solutions(written, jobs=2, progress=print):
             if graded.problem or graded.total < possible:
                 failed.append(f"{graded.submission}: {graded.total:g} of {possible:g} "
                               f"{graded.problem}".strip() + "; " + "; ".join(
-                                  f"{label}: {case['name']}" for label, cases in
-                                  graded.tests.items() for case in cases
-                                  if not case["passed"]))
+                                  f"{label}, {test.name}, {case.name}: {case.message}"
+                                  for label, exercise in graded.exercises.items()
+                                  for test in exercise.tests for case in test.cases
+                                  if not case.passed))
     if failed:
         raise AssignError("the solutions fail their own tests:\n" + "\n".join(failed))
 
@@ -434,13 +446,52 @@ def manifest(name, path):
     Returns:
       A dict.
     """
-    number = [found for found, _ in chapters()].index(name) + 1 if name in \
-        dict(chapters()) else 0
-    return {"chapter": name, "number": number, "title": _title(path),
-            "exercises": [{"label": e.label, "title": e.title,
-                           "function": EXERCISES[e.label].function,
-                           "points": EXERCISES[e.label].total}
-                          for e in chapter_exercises(path) if e.kind == "implement"]}
+    numbers = exercise_numbers(name, path)
+    return {"chapter": name, "number": int(numbers["chapter"]), "title": _title(path),
+            "exercises": [{"label": e.label, "title": e.title, "number": numbers[e.label],
+                           "kind": e.kind,
+                           "function": EXERCISES[e.label].function if e.kind == "implement"
+                           else None,
+                           "points": EXERCISES[e.label].total if e.kind == "implement"
+                           else EXTEND_POINTS}
+                          for e in chapter_exercises(path) if e.kind != "predict"]}
+
+
+def exercise_numbers(name, path, root=ROOT):
+    """The numbers the book gives a chapter's exercises ("2.4": the chapter's number,
+    then the exercise's place among all the chapter's exercises), which the
+    assignment's notebook, its grade sheet and the instructors' marking guides share.
+
+    Args:
+      name: the chapter's name.
+      path: its notebook.
+      root: the project's folder.
+
+    Returns:
+      {label: "N.k"}, and "chapter": "N" (0 for a notebook outside the book's
+      chapters).
+    """
+    order = [found for found, _ in chapters(root)]
+    chapter = order.index(name) + 1 if name in order else 0
+    numbers = {e.label: f"{chapter}.{k}" for k, e in enumerate(chapter_exercises(path), 1)}
+    numbers["chapter"] = str(chapter)
+    return numbers
+
+
+def chapter_seed(seed, name):
+    """The seed of one chapter's hidden tests in its autograder zip (what Gradescope
+    runs): the assignment's seed and the chapter's name, hashed, so that one chapter's
+    autograder says nothing of another's hidden cases.
+
+    Args:
+      seed: the assignment's seed, an integer >= 0.
+      name: the chapter's name.
+
+    Returns:
+      An integer >= 0 (of 63 bits).
+    """
+    digest = hashlib.blake2b(f"{seed}:{name}".encode(), digest_size=8).digest()
+    return int.from_bytes(digest, "big") >> 1
 
 
 def check_student_notebook(name, path, result, seed):
@@ -465,9 +516,10 @@ def check_student_notebook(name, path, result, seed):
             if len(line) > 25 and line not in placeholders and line in text:
                 raise AssignError(f"{name}: the student's notebook holds a solution line: "
                                   f"{line}")
-    for leak in ("hidden_test", str(seed)):
-        if leak in text:
-            raise AssignError(f"{name}: the student's notebook holds {leak!r}")
+    if "hidden_test" in text:
+        raise AssignError(f"{name}: the student's notebook holds a hidden test")
+    if re.search(rf"(?<!\d){chapter_seed(seed, name)}(?!\d)", text):
+        raise AssignError(f"{name}: the student's notebook holds the hidden tests' seed")
 
 
 def assign(out, seed=None, names=None, run_tests=True, jobs=2, root=ROOT, progress=print):

@@ -1,113 +1,104 @@
-"""Grades a folder of students' notebooks with the autograders of `assign`, on this
-machine, with no server.
+"""Grades a folder of students' notebooks on this machine, with no server, without ever
+running a student's code in the grader's own process.
 
     python -m icm.course grade SUBMISSIONS_DIR --out grades.csv [--assignments DIR]
-        [--feedback DIR] [--time-limit S] [--memory-limit GB] [--cell-timeout S] [--jobs N]
+        [--roster ROSTER.csv] [--feedback DIR] [--time-limit S] [--memory-limit GIB]
+        [--cell-timeout S] [--jobs N] [--trusted] [--force]
 
-Each notebook says which chapter it is (otter's `assignment_name` in its metadata,
-written by `assign`); it is graded by that chapter's autograder zip (the one
-Gradescope would run), with `otter.api.grade_submission` (otter run: the notebook
-executed in a Jupyter kernel, then the tests, public and hidden).
+How a submission is graded:
 
-A submission is someone else's code running here, so each is graded in a process of
-its own (`icm.course._worker`), in a new session, from a folder of its own holding a
-copy of the notebook and of the autograder (read into memory before any submission
-runs), with a limit on its memory (address space) and on its time: at the limit the
-process and every process it started are killed. A cell that runs too long is
-interrupted and the next cells run. An infinite loop, a crash, `sys.exit`, a kernel
-that dies, an error at import, a notebook that deletes the files around it: each
-costs that submission its points, never another's. This is not a sandbox: the
-notebook runs as the user who grades, and can read and write what that user can.
-Grade submissions you do not trust in otter's containers (see the instructors' page).
+1. The grader reads the notebook as data (`icm.records.SubmittedNotebook`): which
+   chapter it is (otter's assignment name in its metadata) and its code cells. A file
+   that is not such a notebook costs its own row, never the run.
+2. The notebook's cells run in its own confinement (`icm.course.sandbox`: no network,
+   no icm, no grading material, no other submission, limits on its memory, processes,
+   disk and time), in the program `icm.course.runner`. The handed-out cells that only
+   a student's kernel needs (the install and `grader.check` cells, left unchanged) are
+   not run; an unchanged setup cell is replaced by `GRADING_SETUP`.
+3. For each implement exercise, the grader calls the student's function through that
+   program (`icm.course.session.RemoteFunction`): the exercise's check runs here, in
+   the grader, on plain values that come back. Its public test is the check's public
+   cases; its hidden tests are cases of the same kinds drawn from a secret made for
+   this run (`secrets`), per chapter, which exists only in this process. Each test's
+   points are shared among its cases: one case wrong costs that case's share.
 
-Writes one CSV row per submission (its points per exercise, its total, what went
-wrong) and, per submission, a feedback file in Markdown: the points of each test, the
-public tests' reports, the hidden tests' verdicts with their hints (never their
-cases).
+Nothing the notebook does can reach the grader: it cannot patch the checks (they are
+not in its process), read the hidden cases or the expected results (never sent),
+forge the results (its answers are compared here), survive its run (its processes are
+killed with its PID namespace and control group), or touch another submission or the
+grader's files (not in its view). Where the confinement is not available
+(`sandbox.probe` says why), `grade` refuses, unless told `trusted=True` (notebooks
+you trust: the solutions, your own tests), which runs the same program unconfined.
+
+Writes one CSV row per student (`icm.course.gradebook.write_csv`, joined to a roster
+when given) and one feedback file per submission, in Markdown.
 """
 
 import concurrent.futures
-import csv
 import dataclasses
-import json
+import hashlib
 import os
 import pathlib
-import shutil
-import signal
-import subprocess
-import sys
-import tempfile
+import secrets
 import time
-import zipfile
 
-from icm import _validate
+from icm import _validate, files, records
+from icm.course import gradebook, grading, sandbox, session
+from icm.exercises._core import NOT_IMPLEMENTED
+from icm.exercises.registry import EXERCISES
 
 MANIFEST = "assignment.json"
-"""The file, beside the autograder, that `icm.course.assign.manifest` writes (here, not
-in `assign`, so that grading does not import `assign`: nbformat and every exercise's
-check, 3 s of a `python -m icm.course grade` that needs none of them)."""
+"""The file, beside the autograder, that `icm.course.assign.manifest` writes."""
 TIME_LIMIT = 600.0
-"""Seconds one submission may take, kernel start and every test included."""
+"""Seconds one submission may take, its cells and every test included."""
 CELL_TIMEOUT = 120.0
-"""Seconds one cell may run before it is interrupted."""
-MEMORY_LIMIT = 6.0
-"""GiB of address space for one submission's processes, each (the kernel's imports
-alone reserve about 2)."""
+"""Seconds one cell may run before it is left out."""
+MEMORY_LIMIT = 4.0
+"""GiB of memory for one submission, all its processes and its RAM disk together."""
+MAX_JOBS = os.cpu_count() or 1
+"""The most submissions graded at once: the machine's cores."""
+GRADING_SETUP = "import numpy as np"
+"""What the grader runs in place of an assignment's setup cell left unchanged (the
+setup installs icm and otter and starts `grader.check`, which only the student's own
+kernel runs): the import it gives the student's answers."""
+SETUP_MARK = "grader = otter.Notebook("
+"""How the setup cell of an assignment's notebook is recognised."""
 
 
 class GradeError(ValueError):
-    """Grading that cannot start: no submissions, no autograder."""
+    """Grading that cannot start: no submissions, no assignment, no confinement."""
 
 
 @dataclasses.dataclass
 class Assignment:
-    """One chapter's grading material, read into memory.
+    """One chapter's assignment, as the grader needs it.
 
     Attributes:
       chapter: the chapter's name.
+      number: its number in the book.
       title: its title.
-      exercises: [(label, title, points)] of its autograded exercises, in order.
-      autograder: the bytes of otter's autograder zip.
-      zip_name: that zip's file name.
+      exercises: its `records.ManifestExercise`s, in order (implement and extend).
+      handed_out: the sources of the student's notebook's code cells that are not
+        answer cells (setup, checks, export, the extend exercises' empty cells).
+      setup: the source of its setup cell ("" if none).
     """
 
     chapter: str
+    number: int
     title: str
     exercises: list
-    autograder: bytes
-    zip_name: str
-
-
-@dataclasses.dataclass
-class Graded:
-    """One submission's grade.
-
-    Attributes:
-      submission: its file name.
-      chapter: its chapter (None if unknown).
-      points: {label: points earned}.
-      possible: {label: points possible}.
-      tests: {label: [test cases as `_worker.summary` gives them]}.
-      problem: what went wrong with the submission as a whole ("" if nothing).
-      seconds: how long its grading took.
-    """
-
-    submission: str
-    chapter: str = None
-    points: dict = dataclasses.field(default_factory=dict)
-    possible: dict = dataclasses.field(default_factory=dict)
-    tests: dict = dataclasses.field(default_factory=dict)
-    problem: str = ""
-    seconds: float = 0.0
+    handed_out: frozenset = frozenset()
+    setup: str = ""
 
     @property
-    def total(self):
-        """The points earned."""
-        return sum(self.points.values())
+    def autograded(self):
+        """Its implement exercises."""
+        return [e for e in self.exercises if e.kind == "implement"]
 
 
 def load_assignments(folder):
-    """Every chapter's grading material under `folder` (what `assign` wrote).
+    """Every chapter's assignment under `folder` (what `assign` wrote): its manifest
+    and its student's notebook.
 
     Args:
       folder: the assignments' folder.
@@ -116,292 +107,357 @@ def load_assignments(folder):
       {chapter: `Assignment`}, in the book's order.
 
     Raises:
-      GradeError: if it holds none.
+      GradeError: if it holds none, or a manifest or notebook is malformed (named).
     """
     folder = pathlib.Path(folder)
-    found, numbers = {}, {}
-    for manifest_path in sorted(folder.glob(f"*/autograder/{MANIFEST}")):
-        manifest = json.loads(manifest_path.read_text())
-        numbers[manifest["chapter"]] = manifest.get("number", 0)
-        zips = sorted(manifest_path.parent.glob("*-autograder_*.zip"))
-        if not zips:
-            continue
-        found[manifest["chapter"]] = Assignment(
-            manifest["chapter"], manifest["title"],
-            [(e["label"], e["title"], float(e["points"])) for e in manifest["exercises"]],
-            zips[-1].read_bytes(), zips[-1].name)
+    found = {}
+    for path in sorted(folder.glob(f"*/autograder/{MANIFEST}")):
+        try:
+            manifest = records.read_json(path, records.Manifest)
+            student = path.parent.parent / "student" / f"{manifest.chapter}.ipynb"
+            template = records.read_json(student, records.SubmittedNotebook)
+        except records.RecordError as error:
+            raise GradeError(f"a malformed assignment: {error}") from None
+        for exercise in manifest.exercises:
+            if exercise.kind == "implement" and exercise.label not in EXERCISES:
+                raise GradeError(f"{path}: {exercise.label} is not an implement exercise "
+                                 f"of icm.exercises.registry")
+        code = [cell for cell in template.cells if cell.cell_type == "code"]
+        found[manifest.chapter] = Assignment(
+            manifest.chapter, manifest.number, manifest.title, manifest.exercises,
+            frozenset(cell.text for cell in code
+                      if "otter_answer_cell" not in cell.metadata.get("tags", [])),
+            next((cell.text for cell in code if SETUP_MARK in cell.text), ""))
     if not found:
         raise GradeError(f"no assignment in {folder}: run `python -m icm.course assign "
                          f"{folder}` (or `make assignments`) first")
-    return dict(sorted(found.items(), key=lambda item: (numbers[item[0]], item[0])))
+    return dict(sorted(found.items(), key=lambda item: (item[1].number, item[0])))
 
 
-def chapter_of(notebook_bytes):
-    """The chapter a submitted notebook says it is (otter's assignment name).
+def chapter_seed(secret, chapter):
+    """The seed of a chapter's hidden cases in one run: the run's secret and the
+    chapter's name, hashed (so that one chapter's cases say nothing of another's).
 
     Args:
-      notebook_bytes: the notebook's file.
+      secret: the run's secret, bytes.
+      chapter: the chapter's name.
 
     Returns:
-      The chapter's name.
-
-    Raises:
-      ValueError: for a file that is not a notebook of an assignment.
+      An integer >= 0.
     """
-    try:
-        notebook = json.loads(notebook_bytes)
-    except (ValueError, UnicodeDecodeError) as error:
-        raise ValueError(f"not a notebook (not JSON: {error})") from None
-    name = notebook.get("metadata", {}).get("otter", {}).get("assignment_name") \
-        if isinstance(notebook, dict) else None
-    if not isinstance(name, str):
-        raise ValueError("not an assignment's notebook (no otter assignment_name in its "
-                         "metadata)")
-    return name
+    digest = hashlib.blake2b(chapter.encode(), key=secret, digest_size=16).digest()
+    return int.from_bytes(digest, "big")
 
 
-def _kill_all(process):
-    """Kills a worker, every process it started (its kernel has a session of its own),
-    and whatever is left in its process group."""
-    from icm.course._worker import kill_descendants
-
-    kill_descendants(process.pid)
-    try:
-        os.killpg(process.pid, signal.SIGKILL)
-    except (ProcessLookupError, PermissionError):
-        pass
-
-
-_PROBLEMS = (("DeadKernelError", "its kernel died: the notebook ended its own process "
-                                 "(os._exit, a crash) or ran out of memory"),
-             ("results.pkl", "it deleted or moved the grader's files around it"),
-             ("No such file or directory", "it deleted or moved the grader's files around "
-                                           "it"))
-"""Known ways a notebook stops otter, and what the feedback says of them."""
-
-
-def grade_one(name, notebook_bytes, assignments, time_limit=TIME_LIMIT,
-              memory_limit=MEMORY_LIMIT, cell_timeout=CELL_TIMEOUT):
-    """Grades one submission in a process of its own.
+def read_submission(name, data, assignments):
+    """The chapter and the cells to run of a submitted notebook.
 
     Args:
-      name: the submission's file name.
-      notebook_bytes: its content.
+      name: the file's name.
+      data: its bytes.
       assignments: {chapter: `Assignment`}.
+
+    Returns:
+      (the `Assignment`, [a code cell's source, or None for a cell not run]).
+
+    Raises:
+      ValueError: for a file that is not a notebook of one of the assignments, naming
+        what is wrong.
+    """
+    try:
+        notebook = records.parse_json(data, records.SubmittedNotebook, name)
+    except records.RecordError as error:
+        text = str(error).split(": ", 1)[-1]
+        if text.startswith("metadata"):
+            raise ValueError(f"not an assignment's notebook ({text}: it has no otter "
+                             f"assignment_name in its metadata)") from None
+        raise ValueError(f"not a notebook ({text})") from None
+    chapter = notebook.metadata.otter.assignment_name
+    assignment = assignments.get(chapter)
+    if assignment is None:
+        raise ValueError(f"no assignment for the chapter {chapter[:80]!r} (there are: "
+                         f"{', '.join(assignments)})")
+    cells = []
+    for cell in notebook.cells:
+        if cell.cell_type != "code":
+            continue
+        source = cell.text
+        if source == assignment.setup:
+            cells.append(GRADING_SETUP)
+        elif source in assignment.handed_out:
+            cells.append(None)
+        else:
+            cells.append(source)
+    return assignment, cells
+
+
+def _judged(exercise, function, cases, hidden):
+    """Every case of one test, judged: ([`gradebook.CaseGrade`], what stopped the
+    student's function, or "").
+
+    A check stops at the first case that fails (its report is about that case), and
+    may judge cases of its own after the given ones (the goal-choice rule's generator).
+    So the check is run again on the cases after each one that fails; the cases of its
+    own are judged on the cases that passed.
+    """
+    verdicts, remaining, passed_cases = {}, list(cases), []
+    order, stopped, own_cases_judged = None, "", False
+    while True:
+        try:
+            result = exercise.check(function, cases=remaining)
+        except session.CallStopped as error:  # a time limit, an exit: the rest fails
+            stopped = error.reason
+            for case in remaining:
+                verdicts.setdefault(case.name, gradebook.CaseGrade(case.name, False, stopped))
+            break
+        except (TypeError, ValueError) as error:  # a function the check cannot call
+            for case in remaining:
+                verdicts.setdefault(case.name, gradebook.CaseGrade(case.name, False,
+                                                                   str(error)))
+            break
+        if order is None:
+            order = list(result.cases)
+        if result.status == NOT_IMPLEMENTED:
+            message = grading.case_message(result, hidden)
+            for name in result.cases:
+                verdicts.setdefault(name, gradebook.CaseGrade(name, False, message))
+            break
+        failed = None if result.passed else result.case.name
+        for name in result.cases:
+            if name == failed:
+                break
+            verdicts.setdefault(name, gradebook.CaseGrade(name, True))
+            passed_cases += [case for case in remaining if case.name == name]
+        if failed is None:
+            break
+        verdicts[failed] = gradebook.CaseGrade(failed, False,
+                                               grading.case_message(result, hidden))
+        given = [case.name for case in remaining]
+        if failed not in given:  # a case of the check's own: the last it judges
+            break
+        remaining = remaining[given.index(failed) + 1:]
+        if not remaining:
+            unjudged = [name for name in order if name not in verdicts]
+            if unjudged and passed_cases and not own_cases_judged:
+                remaining, own_cases_judged = passed_cases, True  # on those that passed
+                continue
+            break
+    names = order or [case.name for case in cases]
+    return [verdicts.get(name) or gradebook.CaseGrade(
+        name, False, stopped or "not judged: every case before it failed")
+        for name in names], stopped
+
+
+def _tests(exercise, seed):
+    """The tests of an exercise: (name, hidden, points, cases)."""
+    tests = [("public test", False, exercise.points, list(exercise.public_cases()))]
+    for test, points in enumerate(exercise.hidden_points):
+        tests.append((f"hidden test {test + 1}", True, points,
+                      list(exercise.hidden_cases(exercise.generator(seed, test)))))
+    return tests
+
+
+def _grade_exercise(run, entry, seed):
+    """Grades one implement exercise through the session `run`."""
+    exercise = EXERCISES[entry.label]
+    grade = gradebook.ExerciseGrade(entry.label, f"Exercise {entry.number}: {entry.title}",
+                                    entry.points)
+    function, why = run.function(exercise.function)
+    if function is None:
+        imports = any("No module named 'icm'" in error for error in run.cell_errors.values())
+        grade.problem = why + (" (your notebook imports icm, which the grader does not "
+                               "give your code: write the function with Python and NumPy "
+                               "alone; an answer must be your own)" if imports else "")
+    stopped = ""
+    for name, hidden, points, cases in _tests(exercise, seed):
+        test = gradebook.TestGrade(name, hidden, points)
+        grade.tests.append(test)
+        if function is None or stopped:
+            test.cases = [gradebook.CaseGrade(case.name, False, grade.problem or
+                                              f"not run: {stopped}") for case in cases]
+            continue
+        run.call_deadline = time.monotonic() + exercise.timeout
+        test.cases, stopped = _judged(exercise, function, cases, hidden)
+    return grade
+
+
+def grade_submission(name, data, assignments, secret, confinement,
+                     limits=sandbox.Limits(), time_limit=TIME_LIMIT,
+                     cell_timeout=CELL_TIMEOUT):
+    """Grades one submission. Never raises for anything the submission does: what goes
+    wrong is its `problem`.
+
+    Args:
+      name: the file's name.
+      data: its bytes.
+      assignments: {chapter: `Assignment`}.
+      secret: the run's secret (bytes), from which the hidden cases are drawn.
+      confinement: a `sandbox.Confinement`, or None to run unconfined (trusted work).
+      limits: a `sandbox.Limits`.
       time_limit: seconds for the whole submission.
-      memory_limit: GiB of address space for each of its processes.
       cell_timeout: seconds for one cell.
 
     Returns:
-      A `Graded`.
+      A `gradebook.Graded`.
     """
-    graded = Graded(name)
+    graded = gradebook.Graded(name)
+    start = time.monotonic()
     try:
-        graded.chapter = chapter_of(notebook_bytes)
+        assignment, cells = read_submission(name, data, assignments)
     except ValueError as error:
         graded.problem = str(error)
         return graded
-    assignment = assignments.get(graded.chapter)
-    if assignment is None:
-        graded.problem = (f"no autograder for the chapter {graded.chapter!r} (there are: "
-                          f"{', '.join(sorted(assignments))})")
-        return graded
-    graded.possible = {label: points for label, _, points in assignment.exercises}
-    graded.points = {label: 0.0 for label in graded.possible}
-    start = time.monotonic()
-    with tempfile.TemporaryDirectory(prefix="icm-grade-") as folder:
-        here = pathlib.Path(folder)
-        submission = here / "submission"
-        submission.mkdir()
-        notebook = submission / f"{graded.chapter}.ipynb"
-        notebook.write_bytes(notebook_bytes)
-        autograder = here / assignment.zip_name
-        autograder.write_bytes(assignment.autograder)
-        result = here / "result.json"
-        log = here / "worker.log"
-        command = [sys.executable, "-m", "icm.course._worker", str(autograder), str(notebook),
-                   str(result), str(cell_timeout), str(int(memory_limit * 2 ** 30)),
-                   str(int(time_limit) + 10)]
-        with open(log, "wb") as output:
-            process = subprocess.Popen(command, cwd=submission, stdin=subprocess.DEVNULL,
-                                       stdout=output, stderr=subprocess.STDOUT,
-                                       start_new_session=True)
-            try:
-                status = process.wait(timeout=time_limit)
-            except subprocess.TimeoutExpired:
-                status = None
-            finally:
-                _kill_all(process)  # and whatever the notebook left running
-                process.wait()
-        graded.seconds = time.monotonic() - start
-        if status is None:
-            graded.problem = (f"stopped after {time_limit:g} s, the time limit of a "
-                              f"submission: the notebook ran too long (a loop that never "
-                              f"ends?)")
-            return graded
-        try:
-            data = json.loads(result.read_text())
-        except (OSError, ValueError):
-            tail = log.read_bytes()[-4000:].decode(errors="replace").strip().splitlines()
-            reason = tail[-1] if tail else f"exit status {status}"
-            said = next((text for key, text in _PROBLEMS if key in reason), None)
-            graded.problem = f"the notebook stopped the grader: {said or reason}"
-            return graded
-    if data.get("error"):
-        graded.problem = f"otter could not grade the notebook: {data['error']}"
-    for label, test in data.get("tests", {}).items():
-        if label in graded.points:
-            graded.points[label] = float(test["score"])
-            graded.tests[label] = test["cases"]
+    graded.chapter = assignment.chapter
+    graded.hand_marked = [(e.label, f"Exercise {e.number}: {e.title}", e.points)
+                          for e in assignment.exercises if e.kind == "extend"]
+    seed = chapter_seed(secret, assignment.chapter)
+    functions = [EXERCISES[e.label].function for e in assignment.autograded]
+    run = session.Session(cells, functions, confinement, limits, start + time_limit,
+                          cell_timeout)
+    try:
+        with run:
+            for entry in assignment.autograded:
+                if graded.problem:
+                    grade = gradebook.ExerciseGrade(
+                        entry.label, f"Exercise {entry.number}: {entry.title}",
+                        entry.points, problem="not run (see above)")
+                else:
+                    try:
+                        grade = _grade_exercise(run, entry, seed)
+                    except session.SessionOver as error:
+                        graded.problem = str(error)
+                        grade = gradebook.ExerciseGrade(
+                            entry.label, f"Exercise {entry.number}: {entry.title}",
+                            entry.points, problem="not run (see above)")
+                graded.exercises[entry.label] = grade
+    except (OSError, sandbox.ConfinementError) as error:  # the grader's own trouble
+        graded.problem = f"the grader could not run it ({error})"
+        for entry in assignment.autograded:
+            graded.exercises.setdefault(entry.label, gradebook.ExerciseGrade(
+                entry.label, f"Exercise {entry.number}: {entry.title}", entry.points,
+                problem="not run (see above)"))
+    graded.notes = [f"cell {cell + 1} raised {error}"
+                    for cell, error in sorted(run.cell_errors.items())]
+    graded.notes += [f"cell {cell + 1} was left out: {reason}"
+                     for cell, reason in sorted(run.left_out.items())]
+    graded.peak_memory = run.peak_memory
+    if run.survivors:
+        graded.notes.append("a process it started could not be stopped")
+    graded.seconds = time.monotonic() - start
     return graded
 
 
-def _message(case):
-    """What a test case's feedback says: the test's own message, without otter's
-    frame (the test's source line)."""
-    if case["passed"]:
-        return "passed"
-    message = case["message"] or ""
-    if "AssertionError: " in message:
-        return message.split("AssertionError: ", 1)[1].strip()
-    lines = [line for line in message.strip().splitlines() if line.strip()]
-    return lines[-1].strip() if lines else "failed"
+def _submissions(folder):
+    """The notebooks of a folder: every file whose name ends in .ipynb, in any case."""
+    found = []
+    for path in sorted(folder.iterdir()):
+        if path.name.lower().endswith(".ipynb") and not path.is_dir():
+            found.append(path)
+    return found
 
 
-def feedback(graded, assignment):
-    """A submission's feedback, in Markdown.
+def _read(path):
+    """A submission's bytes, or (None, why not)."""
+    if path.is_symlink():
+        return None, "a symbolic link, not a file: not read"
+    try:
+        size = path.stat().st_size
+        if size > records.MAX_JSON_BYTES:
+            return None, f"larger than {records.MAX_JSON_BYTES // 2 ** 20} MiB: not read"
+        return path.read_bytes(), ""
+    except OSError as error:
+        return None, f"cannot be read ({error.strerror})"
 
-    Args:
-      graded: its `Graded`.
-      assignment: its chapter's `Assignment` (None if unknown).
 
-    Returns:
-      The text.
-    """
-    lines = [f"# Feedback: {graded.submission}", ""]
-    if assignment is None:
-        return "\n".join(lines + [f"Not graded: {graded.problem}.", ""])
-    possible = sum(graded.possible.values())
-    lines += [f"Chapter: {assignment.title}. Total: **{graded.total:g} of {possible:g} "
-              f"points**.", ""]
-    if graded.problem:
-        lines += [f"**The notebook as a whole:** {graded.problem}.", ""]
-    for label, title, points in assignment.exercises:
-        lines += [f"## {title} (`{label}`): {graded.points.get(label, 0):g} of {points:g}", ""]
-        cases = graded.tests.get(label)
-        if not cases:
-            lines += ["Not graded (see above).", ""]
-            continue
-        said = None
-        for case in cases:
-            kind = "hidden test" if case["hidden"] else "public test"
-            earned = case["points"] if case["passed"] else 0
-            text = _message(case)
-            verdict = "passed" if case["passed"] else \
-                "failed, for the same reason" if text == said else "failed"
-            lines.append(f"- {kind} ({earned:g} of {case['points']:g}): {verdict}")
-            if verdict == "failed":
-                lines += ["", "  ```text"] + [f"  {line}" for line in text.splitlines()] + \
-                    ["  ```", ""]
-                said = text
-        lines.append("")
-    return "\n".join(lines)
+def _is_grade_sheet(path):
+    """Whether a file is a grade sheet this command wrote (its header's first cells)."""
+    with open(path, encoding="utf-8", errors="replace") as file:
+        first = file.readline()
+    return first.startswith(("submission,chapter,", "id,name,submission,chapter,"))
 
 
 def grade(submissions, out, assignments="_build/assignments", feedback_dir=None,
-          time_limit=TIME_LIMIT, memory_limit=MEMORY_LIMIT, cell_timeout=CELL_TIMEOUT,
-          jobs=1, progress=print):
+          roster=None, time_limit=TIME_LIMIT, memory_limit=MEMORY_LIMIT,
+          cell_timeout=CELL_TIMEOUT, jobs=1, trusted=False, force=False, progress=print):
     """Grades every notebook in a folder and writes the grade sheet and the feedback.
 
     Args:
-      submissions: the folder of submitted notebooks (their .ipynb files).
+      submissions: the folder of submitted notebooks (their .ipynb files, any case).
       out: the CSV to write.
       assignments: the folder `assign` wrote.
       feedback_dir: the folder of the feedback files (default: beside `out`, in
         "<out's stem>-feedback").
+      roster: a CSV of the class (columns id, name, file), or None.
       time_limit: seconds for one submission.
-      memory_limit: GiB of address space for each process of one submission.
+      memory_limit: GiB of memory for one submission, all its processes together.
       cell_timeout: seconds for one cell.
-      jobs: submissions graded at once.
+      jobs: submissions graded at once (at most the machine's cores).
+      trusted: run the notebooks unconfined (only notebooks you trust).
+      force: replace an existing sheet or feedback folder that this command did not
+        write.
       progress: a function of one line, told as each submission is graded.
 
     Returns:
-      The list of `Graded`, in the order of the rows.
+      The list of `gradebook.Graded`, one per submission, in the files' order.
 
     Raises:
-      GradeError: for a folder with no notebook, or no assignment.
-      ValueError: for bad limits.
+      GradeError: for a folder with no notebook, no assignment, or no confinement
+        (unless `trusted`).
+      ValueError: for bad limits or destinations (before any work).
     """
-    time_limit = _validate.positive("time_limit", time_limit)
-    memory_limit = _validate.positive("memory_limit", memory_limit)
-    cell_timeout = _validate.positive("cell_timeout", cell_timeout)
-    jobs = _validate.integer_at_least("jobs", jobs, 1)
+    time_limit = _validate.real("time_limit", time_limit, 1.0, 86400.0)
+    memory_limit = _validate.real("memory_limit", memory_limit, 0.25, 1024.0)
+    cell_timeout = _validate.real("cell_timeout", cell_timeout, 1.0, 86400.0)
+    jobs = _validate.integer("jobs", jobs, 1, MAX_JOBS)
+    trusted = _validate.boolean("trusted", trusted)
     submissions = pathlib.Path(submissions)
-    paths = sorted(p for p in submissions.glob("*.ipynb") if p.is_file())
-    if not paths:
-        raise GradeError(f"no notebook (*.ipynb) in {submissions}")
-    loaded = load_assignments(assignments)
-    # Everything is read before any submission runs: none can change another's input.
-    contents = [(path.name, path.read_bytes()) for path in paths]
+    if not submissions.is_dir():
+        raise GradeError(f"the submissions' folder {submissions} does not exist")
     out = pathlib.Path(out)
     feedback_dir = pathlib.Path(feedback_dir) if feedback_dir else \
         out.parent / f"{out.stem}-feedback"
+    inputs = [submissions, assignments] + ([roster] if roster else [])
+    files.check_file(out, own=_is_grade_sheet, force=force, inputs=inputs, what="--out")
+    files.check_folder(feedback_dir, force=force, inputs=inputs + [out],
+                       what="--feedback")
+    paths = _submissions(submissions)
+    if not paths:
+        raise GradeError(f"no notebook (*.ipynb) in {submissions}")
+    loaded = load_assignments(assignments)
+    students = gradebook.read_roster(roster) if roster else None
+    confinement = None
+    if not trusted:
+        confinement = sandbox.probe()
+        if not confinement.available:
+            raise GradeError(f"submissions cannot be confined here: {confinement.problem}. "
+                             f"Grade only notebooks you trust with --trusted")
+    limits = sandbox.Limits(memory=int(memory_limit * 2 ** 30),
+                            cpu_seconds=int(time_limit) + 30)
+    secret = secrets.token_bytes(32)  # this run's hidden cases; never written anywhere
+    # Everything is read before any submission runs.
+    contents = [(path.name, *_read(path)) for path in paths]
 
     def one(item):
-        graded = grade_one(*item, loaded, time_limit, memory_limit, cell_timeout)
-        progress(f"{graded.submission}: {graded.total:g} of {sum(graded.possible.values()):g}"
+        name, data, unread = item
+        if data is None:
+            graded = gradebook.Graded(name, problem=unread)
+        else:
+            graded = grade_submission(name, data, loaded, secret, confinement, limits,
+                                      time_limit, cell_timeout)
+        progress(f"{graded.submission}: {gradebook.number(graded.total)} of "
+                 f"{gradebook.number(sum(graded.possible.values()))}"
                  + (f" ({graded.problem})" if graded.problem else "") +
                  f" [{graded.seconds:.0f} s]")
         return graded
 
     with concurrent.futures.ThreadPoolExecutor(jobs) as pool:
         results = list(pool.map(one, contents))
-    write_csv(results, loaded, out)
-    if feedback_dir.exists():
-        shutil.rmtree(feedback_dir)
-    feedback_dir.mkdir(parents=True)
+    gradebook.write_csv(results, loaded, out, students)
+    files.fresh_folder(feedback_dir)
+    written = set()
     for graded in results:
-        (feedback_dir / f"{pathlib.Path(graded.submission).stem}.md").write_text(
-            feedback(graded, loaded.get(graded.chapter)))
+        stem = pathlib.Path(graded.submission).stem
+        name = f"{stem}.md" if stem.lower() not in written else f"{graded.submission}.md"
+        written.add(stem.lower())
+        files.write_text(feedback_dir / name, gradebook.feedback(graded))
     return results
-
-
-def write_csv(results, assignments, out):
-    """The grade sheet: one row per submission; its name, its chapter, its points in
-    each exercise (of every chapter present, in the book's order; empty for another
-    chapter's), its total, the points possible, and what went wrong.
-
-    Args:
-      results: the list of `Graded`.
-      assignments: {chapter: `Assignment`}.
-      out: the CSV's path.
-    """
-    chapters = {graded.chapter for graded in results}
-    labels = [label for chapter, assignment in assignments.items() if chapter in chapters
-              for label, _, _ in assignment.exercises]
-    out.parent.mkdir(parents=True, exist_ok=True)
-    with open(out, "w", newline="") as file:
-        writer = csv.writer(file)
-        writer.writerow(["submission", "chapter"] + labels + ["total", "possible", "problem"])
-        for graded in results:
-            writer.writerow(
-                [graded.submission, graded.chapter or ""] +
-                [f"{graded.points[label]:g}" if label in graded.points else ""
-                 for label in labels] +
-                [f"{graded.total:g}", f"{sum(graded.possible.values()):g}", graded.problem])
-
-
-def read_zip_tests(autograder_bytes):
-    """The names of the tests in an autograder zip (for checks).
-
-    Args:
-      autograder_bytes: the zip.
-
-    Returns:
-      {file name: source} of its tests/ folder.
-    """
-    import io
-
-    with zipfile.ZipFile(io.BytesIO(autograder_bytes)) as archive:
-        return {name: archive.read(name).decode() for name in archive.namelist()
-                if name.startswith("tests/")}

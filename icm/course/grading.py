@@ -26,7 +26,7 @@ import threading
 import numpy as np
 
 from icm.exercises import _own
-from icm.exercises._core import FAILED, NOT_IMPLEMENTED, show
+from icm.exercises._core import NOT_IMPLEMENTED, PASSED, show
 from icm.exercises.registry import EXERCISES
 
 _SEEN = {}
@@ -199,13 +199,30 @@ def hidden_test(label, function, seed, test):
         raise AssertionError(f"{exercise.label}, {where}: {stopped}.")
     if result.borrowed is not None:
         raise _not_own(exercise, result.borrowed)
+    if result.status != PASSED:
+        raise AssertionError(f"{exercise.label}, {where}: {case_message(result, hidden=True)}")
+
+
+def case_message(result, hidden):
+    """What a student is told of a check that did not pass: for a public case, the
+    check's report (the case, its input, the expected and the given result, a hint);
+    for a hidden case, its kind and hint, never its input or expected result.
+
+    Args:
+      result: the `CheckResult` (failed, or not implemented).
+      hidden: whether the case is hidden.
+
+    Returns:
+      The text.
+    """
     if result.status == NOT_IMPLEMENTED:
-        raise AssertionError(f"{exercise.label}, {where}: not implemented yet.")
-    if result.status == FAILED:
-        what = (f"your function raised {type(result.given).__name__}"
-                if isinstance(result.given, BaseException) else "your result differs")
-        hint = result.hint
-        if isinstance(result.given, BaseException):  # the check's prefix, said above
-            hint = hint.split(" on this case. ", 1)[-1]
-        raise AssertionError(f"{exercise.label}, {where}: a case like \"{result.case.name}\" "
-                             f"failed ({what}; its values are not shown). Hint: {hint}")
+        return "not implemented yet (your function raises NotImplementedError)."
+    if not hidden:
+        return repr(result)
+    what = (f"your function raised {type(result.given).__name__}"
+            if isinstance(result.given, BaseException) else "your result differs")
+    hint = result.hint
+    if isinstance(result.given, BaseException):  # the check's prefix, said above
+        hint = hint.split(" on this case. ", 1)[-1]
+    return (f"a case like \"{result.case.name}\" failed ({what}; its values are not "
+            f"shown). Hint: {hint}")

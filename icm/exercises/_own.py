@@ -15,6 +15,7 @@ No library does this for us: otter-grader and nbgrader grade what a function
 returns, not what it calls.
 """
 
+import copy
 import dataclasses
 import gc
 import importlib
@@ -169,6 +170,63 @@ class _Watch:
         raise BorrowedAnswer(borrowed.name)
 
 
+class Remote:
+    """A student's function that runs in another process: the grader's confinement
+    (`icm.course.grade`), where the library is absent. The checks call it as any
+    function; it calls nothing in this process, so it is called unwatched.
+
+    Subclasses implement `__call__` and `many`.
+    """
+
+    def many(self, arguments, times):
+        """Calls the function `times` times (see `call_own_many`).
+
+        Args:
+          arguments: the arguments, a tuple.
+          times: how many calls.
+
+        Returns:
+          The list of what each call returned.
+        """
+        raise NotImplementedError
+
+
+def _fresh(arguments):
+    """A deep copy of `arguments` that shares their random generators."""
+    memo = {id(value): value for value in arguments
+            if type(value).__name__ == "Generator"}
+    return copy.deepcopy(arguments, memo)
+
+
+def call_own_many(function, arguments, times, forbidden):
+    """Calls `function` `times` times, each on a fresh copy of `arguments` except
+    their random generators, which every call shares (a random rule drawn many times
+    from one generator). A `Remote` function does it in one exchange with its process.
+
+    Args:
+      function: the student's function.
+      arguments: its arguments, a tuple.
+      times: how many calls, an integer >= 1.
+      forbidden: a `Forbidden`, or None to call it unwatched.
+
+    Returns:
+      (the list of results, None), or (the results before it, a `Borrowed`) for an
+      answer that called what it must not.
+
+    Raises:
+      Whatever the function raises, unchanged.
+    """
+    if isinstance(function, Remote):
+        return function.many(arguments, times), None
+    results = []
+    for _ in range(times):
+        result, borrowed = call_own(function, _fresh(arguments), forbidden)
+        if borrowed is not None:
+            return results, borrowed
+        results.append(result)
+    return results, None
+
+
 def call_own(function, arguments, forbidden):
     """Calls `function(*arguments)` watching what it calls.
 
@@ -184,7 +242,7 @@ def call_own(function, arguments, forbidden):
     Raises:
       Whatever the function raises, unchanged.
     """
-    if forbidden is None:
+    if forbidden is None or isinstance(function, Remote):
         return function(*arguments), None
     forbidden._resolve()  # (imports, before the watch starts)
     watch = _Watch(forbidden, sys._getframe())

@@ -16,7 +16,7 @@ import numpy as np
 from icm import _validate
 from icm.exercises import _core
 from icm.exercises._core import Case
-from icm.exercises._own import Borrowed, Forbidden, call_own
+from icm.exercises._own import Borrowed, Forbidden, call_own_many
 
 PARAMETERS = ("interests", "epsilon", "rng")
 DRAWS = 3000
@@ -90,15 +90,14 @@ def _sequence(rule, interests, epsilon, seed, draws):
     (the list of choices, None), (None, a value that is not a region) or (None, a
     `Borrowed`)."""
     rng = np.random.default_rng(seed)
-    choices = []
-    for _ in range(draws):
-        region, borrowed = call_own(rule, (list(interests), epsilon, rng), FORBIDDEN)
-        if borrowed is not None:
-            return None, borrowed
+    regions, borrowed = call_own_many(rule, (list(interests), epsilon, rng), draws,
+                                      FORBIDDEN)
+    if borrowed is not None:
+        return None, borrowed
+    for region in regions:
         if not _validate.is_integer(region) or not 0 <= int(region) < len(interests):
             return None, region
-        choices.append(int(region))
-    return choices, None
+    return [int(region) for region in regions], None
 
 
 def _draw(rule, interests, epsilon, seed):

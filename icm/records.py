@@ -1,0 +1,174 @@
+"""The shapes of the files icm reads back, in one place, as pydantic models: a file is
+read through `read_json` (or a model's `model_validate`), whose error names the file,
+the line where there is one, and the field that is wrong.
+
+Files read here: a submitted notebook (what the grader needs of it), an assignment's
+manifest (written by `icm.course.assign`), a class roster (CSV rows).
+"""
+
+import json
+import re
+
+import pydantic
+from pydantic import BaseModel, ConfigDict, Field
+
+MAX_JSON_BYTES = 64 * 2 ** 20
+"""The largest JSON file read back (a notebook with its outputs included)."""
+
+
+class RecordError(ValueError):
+    """A file that is not what it should be; the message names the file and the
+    field."""
+
+
+def problem(error):
+    """A pydantic `ValidationError` in one sentence: the first wrong field and why.
+
+    Args:
+      error: the `pydantic.ValidationError`.
+
+    Returns:
+      The text, e.g. "metadata.otter: Input should be a valid dictionary".
+    """
+    first = error.errors()[0]
+    where = ".".join(str(part) for part in first.get("loc", ())) or "the whole"
+    more = len(error.errors()) - 1
+    return f"{where}: {first.get('msg', 'invalid')}" + (f" (and {more} more)" if more else "")
+
+
+def parse_json(data, model, name):
+    """Reads JSON bytes or text into `model`.
+
+    Args:
+      data: the bytes or text.
+      model: a pydantic model class.
+      name: how the error names what was read (a file's name).
+
+    Returns:
+      The model instance.
+
+    Raises:
+      RecordError: for data too large, not JSON, nested too deeply, or not of the
+        model's shape, naming `name` and the field.
+    """
+    if len(data) > MAX_JSON_BYTES:
+        raise RecordError(f"{name}: larger than {MAX_JSON_BYTES // 2 ** 20} MiB")
+    try:
+        content = json.loads(data)
+    except RecursionError:
+        raise RecordError(f"{name}: JSON nested too deeply") from None
+    except (ValueError, UnicodeDecodeError) as error:
+        raise RecordError(f"{name}: not JSON ({error})") from None
+    try:
+        return model.model_validate(content)
+    except pydantic.ValidationError as error:
+        raise RecordError(f"{name}: {problem(error)}") from None
+    except RecursionError:
+        raise RecordError(f"{name}: nested too deeply") from None
+
+
+def read_json(path, model):
+    """Reads a JSON file into `model` (see `parse_json`).
+
+    Args:
+      path: a `pathlib.Path`.
+      model: a pydantic model class.
+
+    Returns:
+      The model instance.
+
+    Raises:
+      RecordError: naming the file.
+    """
+    try:
+        data = path.read_bytes()
+    except OSError as error:
+        raise RecordError(f"{path}: cannot be read ({error.strerror})") from None
+    return parse_json(data, model, str(path))
+
+
+# --- a submitted notebook ------------------------------------------------------------
+
+class NotebookCell(BaseModel):
+    """A cell of a notebook: its kind, its source (a string or a list of lines) and
+    its metadata (its tags, for the grader)."""
+
+    model_config = ConfigDict(extra="allow")
+    cell_type: str
+    source: str | list[str] = ""
+    metadata: dict = Field(default_factory=dict)
+
+    @property
+    def text(self):
+        """The source as one string."""
+        return self.source if isinstance(self.source, str) else "".join(self.source)
+
+
+class OtterMetadata(BaseModel):
+    """What otter writes into an assignment's notebook: the assignment's name."""
+
+    model_config = ConfigDict(extra="allow")
+    assignment_name: str = Field(min_length=1, max_length=200)
+
+
+class NotebookMetadata(BaseModel):
+    """A notebook's metadata, of which the grader reads otter's."""
+
+    model_config = ConfigDict(extra="allow")
+    otter: OtterMetadata
+
+
+class SubmittedNotebook(BaseModel):
+    """What the grader reads of a submitted notebook: its cells and which assignment
+    it is."""
+
+    model_config = ConfigDict(extra="allow")
+    cells: list[NotebookCell] = Field(max_length=10_000)
+    metadata: NotebookMetadata
+
+
+# --- an assignment's manifest ----------------------------------------------------------
+
+LABEL = r"^ex-[a-z0-9-]+$"
+
+
+class ManifestExercise(BaseModel):
+    """One exercise of an assignment: an implement exercise (graded by its tests) or
+    an extend exercise (marked by hand)."""
+
+    model_config = ConfigDict(extra="forbid")
+    label: str = Field(pattern=LABEL)
+    title: str
+    number: str = Field(pattern=r"^\d+\.\d+$")
+    kind: str = Field(pattern=r"^(implement|extend)$")
+    points: float = Field(gt=0, le=1000)
+    function: str | None = None
+
+
+class Manifest(BaseModel):
+    """What the grader reads beside a chapter's assignment (`icm.course.assign`
+    writes it): the chapter, its number and title, and its exercises in order."""
+
+    model_config = ConfigDict(extra="forbid")
+    chapter: str = Field(pattern=r"^[a-z][a-z0-9_]*$")
+    number: int = Field(ge=0, le=1000)
+    title: str
+    exercises: list[ManifestExercise]
+
+
+# --- a roster ---------------------------------------------------------------------------
+
+class RosterRow(BaseModel):
+    """One student of a class: an id, a name, and the file they handed in."""
+
+    model_config = ConfigDict(extra="ignore", str_strip_whitespace=True)
+    id: str = Field(min_length=1, max_length=200)
+    name: str = Field(max_length=400)
+    file: str = Field(min_length=1, max_length=400)
+
+    @pydantic.field_validator("file")
+    @classmethod
+    def _a_file_name(cls, value):
+        if re.search(r"[/\\]", value) or value in (".", ".."):
+            raise ValueError("must be a file's name in the submissions' folder, not a path")
+        return value
