@@ -155,10 +155,9 @@ def panel_png(figure, width=PANEL_WIDTH_PX, pixel_ratio=PIXEL_RATIO):
     _validate.instance("figure", figure, Figure, "an icm.figures.Figure")
     width = _validate.integer("width", width, 100, 4000)
     pixel_ratio = _validate.real("pixel_ratio", pixel_ratio, 1.0, 4.0)
-    pixels = round(width * pixel_ratio)
-    # Agg makes the canvas int(inches * dpi) pixels wide: a hair more than the exact
-    # dpi keeps a product such as 1479.9999999 from losing the last pixel.
-    figure.png_dpi = (pixels + 1e-3) / figure.get_figwidth()
+    # Agg's canvas is inches x dpi pixels, truncated (matplotlib forgives a product
+    # 1e-8 short of a whole pixel, as 116 / 1.1 * 1.1 is).
+    figure.png_dpi = round(width * pixel_ratio) / figure.get_figwidth()
     return figure.png()
 
 
