@@ -2,12 +2,14 @@
 the live and the static panels, and the numbers the book quotes about the sweep."""
 
 import dataclasses
+import io
 import json
 import math
 
 import ipywidgets
 import numpy as np
 import pytest
+from PIL import Image
 
 import icm
 from icm import figures, widgets
@@ -573,3 +575,65 @@ def test_the_static_panels_band_spans_from_its_low_to_its_high_bound(name):
     assert band["mark"]["type"] == "area"
     assert (band["encoding"]["y"]["field"], band["encoding"]["y2"]["field"]) == ("low", "high")
     assert line["encoding"]["y"]["field"] == "mean"
+
+
+# --- the live panel's PNG: drawn at the width it is shown, for high-density screens -----
+
+def _png_size(png):
+    return Image.open(io.BytesIO(bytes(png))).size
+
+
+@pytest.mark.parametrize("name, make, fixed", [
+    ("figure5", widgets.figure5_panel, {"n_seeds": 4, "n_trials": 12}),
+    ("figure6", widgets.figure6_panel, {"n_seeds": 4, "n_trials": 12}),
+    ("figure7", widgets.figure7_panel, {"n_seeds": 4, "n_episodes": 20})])
+def test_a_live_panels_png_has_the_pixels_of_the_width_it_asks_for(name, make, fixed,
+                                                                    monkeypatch):
+    # Issue 43: drawn 441 x 307 and stretched to the output area (about 1,100 px).
+    drawn = []
+    real = figures.panel_figure
+    monkeypatch.setattr(figures, "panel_figure",
+                        lambda *args: drawn.append(real(*args)) or drawn[-1])
+    panel = make(static=False, **fixed)
+    image = panel.children[-1]
+    layout = image.layout
+    assert (layout.width, layout.max_width, layout.height) == (
+        f"{widgets._common.PANEL_WIDTH_PX}px", "100%", "auto")
+    shown = int(layout.width.removesuffix("px"))
+    ratio = widgets._common.PIXEL_RATIO
+    assert (shown, ratio) == (740, 2)
+    first = _png_size(image.value)
+    inches = drawn[0].get_size_inches()
+    assert first[0] == shown * ratio
+    assert abs(first[1] - first[0] * inches[1] / inches[0]) < 1  # the figure's proportions
+    spec = panel_data.PANELS[name]
+    slider = next(iter(spec.sliders))
+    controls = {w.description: w for box in panel.children[:-2] for w in box.children}
+    controls[slider].value = spec.sliders[slider][-1]  # a redraw
+    assert len(drawn) == 2 and _png_size(image.value) == first
+
+
+def test_the_live_sweep_panels_png_has_the_pixels_of_the_width_it_asks_for(monkeypatch):
+    spec = panel_data.PANELS["figure5"]
+    small = dataclasses.replace(spec, grids={"epsilon": (0.0, 0.1), "window": (3, 5)},
+                                fixed={**spec.fixed, "n_seeds": 4, "n_trials": 12})
+    monkeypatch.setitem(panel_data.PANELS, "figure5", small)
+    image = widgets.sweep_panel(static=False).children[-1]
+    assert image.layout.width == "740px"
+    assert _png_size(image.value)[0] == 740 * 2
+
+
+def test_panel_png_draws_width_times_pixel_ratio_whole_pixels():
+    from icm.widgets._common import panel_png
+
+    # 116 / 1.1 * 1.1 is 115.99999999999999: still 116 pixels.
+    for inches in ((4.6, 3.2), (9.6, 3.8), (1.1, 0.9)):
+        figure = figures.Figure(figsize=inches)
+        figure.subplots().plot([0, 1], [0, 1])
+        for width, ratio in ((740, 2), (333, 1.5), (116, 1)):
+            size = _png_size(panel_png(figure, width, ratio))
+            assert size[0] == round(width * ratio), (inches, width, ratio, size)
+            assert abs(size[1] - size[0] * inches[1] / inches[0]) < 1
+    refused(lambda: panel_png(figure, 50), "width", "50", "value")
+    refused(lambda: panel_png(figure, 740, 0.5), "pixel_ratio", "0.5", "value")
+    refused(lambda: panel_png("a figure", 740), "figure", "'a figure'", "type")

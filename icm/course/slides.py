@@ -9,27 +9,54 @@ deck changes when its chapter does.
 The decks work offline: reveal.js (and MathJax, for the formulas) come from the
 book's vendored copies (`book/_static/vendor`, copied into the built book's
 `_static`), the figures are copied beside the decks. Open `index.html`.
+
+Every slide fits its 960 x 700 frame, whatever the screen (reveal.js scales the frame
+to the window): a figure is stretched to the height its caption leaves it (reveal.js's
+`r-stretch`), and a list too long for one slide goes on over the next ones, split
+between its items (`split_text`). tests/test_slides.py opens every deck in Chromium
+and measures every slide.
 """
 
 import html
+import math
 import pathlib
 import shutil
 
+from icm import _validate
 from icm.course.assign import chapters
 
 OBJECTIVES = "icm-objectives"
 """The class of a chapter's learning-objectives block."""
 TAKEAWAYS = "icm-takeaways"
 """The class of a chapter's key-takeaways block."""
+SLIDE_WIDTH, SLIDE_HEIGHT = 960, 700
+"""The frame every slide is laid out in, in CSS pixels (reveal.js's default size),
+which reveal.js scales to the window."""
+TEXT_ROOM = 594.0
+"""The height a slide of text has for its text under its heading, in CSS pixels: 700
+less the heading (65.5: 1.3 x 42 px at line height 1.2) and the margins under it and
+under the text (20 each). Measured in Chromium: these decks' slides of text, heading
+and all, are 105.5 px taller than their text."""
+LINE_HEIGHT = 0.8 * 42 * 1.3
+"""The height of a line of text, in CSS pixels: the text is 0.8 of the theme's 42 px,
+at the theme's line height, 1.3."""
+GAP = 20.0
+"""The gap between two paragraphs or items, in CSS pixels (the theme's block margin)."""
+CHARS_PER_LINE = 55
+"""Characters of a line of text, to estimate where lines break: in Chromium, the
+items of these decks' lists broke after 53 to 82 characters (900 px of 33.6 px text),
+so an estimate of 55 never gave an item fewer lines than it took, and a line more
+than it took to about a third of them (a formula's source, longer than what it
+shows, counts whole)."""
 _STYLE = """
 .reveal h1 { font-size: 1.9em; }
 .reveal h2 { font-size: 1.3em; }
 .reveal section { text-align: left; }
 .reveal .icm-title { text-align: center; }
-.reveal figure { margin: 0; text-align: center; }
-.reveal figure img { max-height: 62vh; max-width: 100%; margin: 0 auto; }
-.reveal figcaption { font-size: 0.42em; line-height: 1.35; text-align: left; margin-top: 0.4em; }
-.reveal ul { font-size: 0.8em; }
+.reveal .icm-text { font-size: 0.8em; }
+.reveal .icm-text ul, .reveal .icm-text ol { display: block; }
+.reveal .icm-figure img { display: block; margin: 0 auto; max-width: 100%; max-height: none; }
+.reveal .icm-caption { font-size: 0.5em; line-height: 1.35; margin: 0.4em 0 0; }
 .reveal .icm-source { font-size: 0.45em; color: #555; }
 """
 
@@ -109,34 +136,180 @@ def chapter_slides(page_path):
             "exercises": exercises}
 
 
-def deck_html(content, chapter_number):
-    """A deck's HTML page.
+def _pieces(block):
+    """The pieces of a block of HTML that a slide may end between: each paragraph (or
+    other element) on its own, and each item of a list, with the list it belongs to.
+
+    Returns:
+      [(html, its list (its number in the block and its opening tag) or None, the
+      characters of its text)].
+    """
+    from bs4 import BeautifulSoup, Comment, NavigableString
+
+    pieces = []
+    for number, child in enumerate(BeautifulSoup(block, "html.parser").contents):
+        if isinstance(child, Comment):
+            continue
+        if isinstance(child, NavigableString):
+            if child.strip():
+                pieces.append((html.escape(child.strip()), None, len(child.strip())))
+        elif child.name in ("ul", "ol"):
+            opening = str(child)[:str(child).index(">") + 1]
+            for item in child.find_all("li", recursive=False):
+                pieces.append((str(item), (number, opening),
+                               len(item.get_text(" ", strip=True))))
+        else:
+            pieces.append((str(child), None, len(child.get_text(" ", strip=True))))
+    return pieces
+
+
+def _height(characters):
+    """The height a piece of text of `characters` takes (CSS pixels, estimated), with
+    the gap after it."""
+    return max(1, math.ceil(characters / CHARS_PER_LINE)) * LINE_HEIGHT + GAP
+
+
+def _balanced(costs, parts):
+    """Where to cut `costs` into `parts` runs of consecutive pieces, the largest run as
+    small as it can be: the runs' [start, end) bounds (the linear partition problem)."""
+    n = len(costs)
+    total = [0.0]
+    for cost in costs:
+        total.append(total[-1] + cost)
+    best = [[math.inf] * (parts + 1) for _ in range(n + 1)]
+    cut = [[0] * (parts + 1) for _ in range(n + 1)]
+    best[0][0] = 0.0
+    for end in range(1, n + 1):
+        for used in range(1, min(parts, end) + 1):
+            for start in range(used - 1, end):
+                worst = max(best[start][used - 1], total[end] - total[start])
+                if worst < best[end][used]:
+                    best[end][used], cut[end][used] = worst, start
+    bounds, end = [], n
+    for used in range(parts, 0, -1):
+        bounds.insert(0, (cut[end][used], end))
+        end = cut[end][used]
+    return bounds
+
+
+def split_text(block, room=TEXT_ROOM):
+    """A block of HTML (a list, paragraphs) cut into slides whose text is at most
+    `room` CSS pixels tall (estimated: lines of `CHARS_PER_LINE` characters), between
+    its pieces (`_pieces`: paragraphs and list items, never inside one), in as few
+    slides as that allows and as even as can be. A list cut in two goes on in the
+    next slide (an ordered list from the number it had reached). A piece taller than
+    `room` on its own has a slide to itself, its text made smaller to fit.
+
+    Args:
+      block: the HTML.
+      room: the height a slide has for its text (see `TEXT_ROOM`).
+
+    Returns:
+      [(the slide's HTML, its text's size relative to the usual one: 1 or less)].
+    """
+    _validate.text("block", block)
+    room = _validate.real("room", room, 0.0, low_open=True)
+    pieces = _pieces(block)
+    if not pieces:
+        return []
+    costs = [_height(characters) for _, _, characters in pieces]
+    parts, filled = 1, 0.0  # the fewest slides: fill each in turn
+    for i, cost in enumerate(costs):
+        if i and filled + cost - GAP > room:
+            parts, filled = parts + 1, 0.0
+        filled += cost
+    slides, counts = [], {}
+    for start, end in _balanced(costs, parts):
+        out, current = [], None
+        for text, in_list, _ in pieces[start:end]:
+            if in_list != current:
+                if current is not None:
+                    out.append(f"</{_tag(current[1])}>")
+                if in_list is not None:
+                    opening, before = in_list[1], counts.get(in_list, 0)
+                    if before and _tag(opening) == "ol":  # its numbers go on
+                        opening = opening[:-1] + f' start="{before + 1}">'
+                    out.append(opening)
+                current = in_list
+            if in_list is not None:
+                counts[in_list] = counts.get(in_list, 0) + 1
+            out.append(text)
+        if current is not None:
+            out.append(f"</{_tag(current[1])}>")
+        used = sum(costs[start:end]) - GAP
+        slides.append(("".join(out), min(1.0, room / used)))
+    return slides
+
+
+def _tag(opening):
+    """The tag name of an opening tag such as '<ul class="simple">'."""
+    return opening[1:].split(None, 1)[0].rstrip(">")
+
+
+def _text_slides(heading, block, room):
+    """The slides of a block of text under `heading`, numbered when there are several
+    ("Key takeaways (2 of 3)")."""
+    parts = split_text(block, room)
+    out = []
+    for i, (body, size) in enumerate(parts, 1):
+        title = heading if len(parts) == 1 else f"{heading} ({i} of {len(parts)})"
+        style = "" if size >= 1.0 else f' style="font-size: {0.8 * size:.3f}em"'
+        out.append(f'<section><h2>{html.escape(title)}</h2>'
+                   f'<div class="icm-text"{style}>{body}</div></section>')
+    return out
+
+
+def deck_slides(content, chapter_number, room=TEXT_ROOM):
+    """A deck's slides, as HTML sections, in order: the title, the objectives, one per
+    figure, the takeaways and the exercises (a block of text over as many slides as it
+    needs, `split_text`).
 
     Args:
       content: what `chapter_slides` read.
       chapter_number: the chapter's number in the book.
+      room: the height a slide has for its text (see `TEXT_ROOM`).
 
     Returns:
-      The page's text.
+      The sections' HTML.
     """
+    room = _validate.real("room", room, 0.0, low_open=True)
     title = html.escape(content["title"])
     slides = [f'<section class="icm-title"><h1>{chapter_number}. {title}</h1>'
               f'<p class="icm-source">Intrinsic motivation on the iCub: the chapter\'s '
               f'figures and its summary, from the book</p></section>']
     if content["objectives"]:
-        slides.append(f"<section><h2>Learning objectives</h2>{content['objectives']}</section>")
+        slides += _text_slides("Learning objectives", content["objectives"], room)
     for figure in content["figures"]:
         number = html.escape(figure["number"])
+        # reveal.js's r-stretch: the image takes the height the caption leaves, on
+        # any screen (reveal.js sets it at every layout, once the image has loaded).
         slides.append(
-            f'<section><figure><img src="{html.escape(figure["src"])}" '
+            f'<section class="icm-figure"><img class="r-stretch" '
+            f'src="{html.escape(figure["src"])}" '
             f'alt="{html.escape(figure["alt"], quote=True)}">'
-            f'<figcaption><strong>{number}</strong> {figure["caption"]}</figcaption>'
-            f'</figure></section>')
+            f'<p class="icm-caption"><strong>{number}</strong> {figure["caption"]}</p>'
+            f'</section>')
     if content["takeaways"]:
-        slides.append(f"<section><h2>Key takeaways</h2>{content['takeaways']}</section>")
+        slides += _text_slides("Key takeaways", content["takeaways"], room)
     if content["exercises"]:
         items = "".join(f"<li>{html.escape(e)}</li>" for e in content["exercises"])
-        slides.append(f"<section><h2>Exercises</h2><ul>{items}</ul></section>")
+        slides += _text_slides("Exercises", f"<ul>{items}</ul>", room)
+    return slides
+
+
+def deck_html(content, chapter_number, room=TEXT_ROOM):
+    """A deck's HTML page.
+
+    Args:
+      content: what `chapter_slides` read.
+      chapter_number: the chapter's number in the book.
+      room: the height a slide has for its text (see `TEXT_ROOM`).
+
+    Returns:
+      The page's text.
+    """
+    title = html.escape(content["title"])
+    slides = deck_slides(content, chapter_number, room)
     return f"""<!DOCTYPE html>
 <html lang="en">
 <head>
@@ -157,6 +330,8 @@ def deck_html(content, chapter_number):
 <script>
 Reveal.initialize({{
   hash: true,
+  width: {SLIDE_WIDTH},
+  height: {SLIDE_HEIGHT},
   plugins: [RevealMath.MathJax3],
   mathjax3: {{mathjax: "mathjax/tex-mml-chtml.js",
              tex: {{inlineMath: [["\\\\(", "\\\\)"]], displayMath: [["\\\\[", "\\\\]"]]}}}}

@@ -3,11 +3,25 @@
 import ipywidgets
 
 from icm import _book, _validate
+from icm.figures._common import DISPLAY_WIDTH_PX, Figure
 
 STATIC_ENV = _book.STATIC_ENV
 """When this environment variable is "1" (the book build sets it, see
 `book/_ext/execute_book.py`), the panels are drawn as their static, precomputed
 versions, which move in the HTML book without a kernel."""
+
+
+PANEL_WIDTH_PX = DISPLAY_WIDTH_PX
+"""The width, in CSS pixels, at which a live panel shows its figure (less in a
+narrower output area: the image never overflows it): the width the book's figures are
+shown at most (`icm.figures._common.DISPLAY_WIDTH_PX`). Without a width of its own the
+image was stretched to the output area (about 1,360 px in JupyterLab on a 1920 px
+screen, its PNG drawn 441 px wide: blurry, and taller than the screen)."""
+
+PIXEL_RATIO = 2
+"""Device pixels per CSS pixel that a live panel's PNG is drawn for: the 2 of
+high-density screens (most laptops' and phones'). Python cannot ask the browser for
+its own ratio; a screen of ratio 1 shows the PNG scaled down by half, still sharp."""
 
 
 def wants_static(static):
@@ -66,9 +80,13 @@ def choice(name, options, label=None):
                                     style={"description_width": "initial"})
 
 
-def panel(sliders, draw, per_row=2):
+def panel(sliders, draw, per_row=2, width=PANEL_WIDTH_PX):
     """A VBox of `sliders` (a dict name -> slider) above an image of `draw(**values)`
     (an `icm.figures.Figure`), redrawn whenever a slider is released.
+
+    The image is shown `width` CSS pixels wide (at most the output area's width) and
+    its PNG drawn `width * PIXEL_RATIO` pixels wide (`panel_png`), sharp on a
+    high-density screen.
 
     The figure is an `ipywidgets.Image` holding its PNG, not a display into an
     `ipywidgets.Output`. Every program that runs a notebook through nbclient
@@ -89,8 +107,18 @@ def panel(sliders, draw, per_row=2):
                                           f"widget, got {_validate.show(sliders)}")
     _validate.function("draw", draw, allow_none=False)
     per_row = _validate.integer("per_row", per_row, 1, 10)
-    image = ipywidgets.Image(value=_png(draw(**{n: s.value for n, s in sliders.items()})),
-                             format="png", layout=ipywidgets.Layout(max_width="100%"))
+    width = _validate.integer("width", width, 100, 4000)
+
+    def png(figure):
+        _validate.instance("the figure draw returned", figure, Figure,
+                           "an icm.figures.Figure")
+        return panel_png(figure, width)
+
+    # An explicit width: in a VBox (a flex column) an image without one is stretched
+    # to the output area's width.
+    image = ipywidgets.Image(value=png(draw(**{n: s.value for n, s in sliders.items()})),
+                             format="png", layout=ipywidgets.Layout(
+                                 width=f"{width}px", max_width="100%", height="auto"))
     message = ipywidgets.HTML()
 
     def redraw(_change=None):
@@ -100,7 +128,7 @@ def panel(sliders, draw, per_row=2):
             message.value = f"<b>{type(error).__name__}:</b> {html.escape(str(error))}"
             return
         message.value = ""
-        image.value = _png(figure)
+        image.value = png(figure)
 
     for s in sliders.values():
         s.observe(redraw, names="value")
@@ -109,13 +137,28 @@ def panel(sliders, draw, per_row=2):
     return ipywidgets.VBox(rows + [message, image])
 
 
-def _png(figure):
-    """The PNG of a figure (an `icm.figures.Figure`) as bytes."""
-    png = getattr(figure, "png", None)
-    if png is None:
-        raise _validate.ArgumentTypeError(f"draw must return a figure, got "
-                                          f"{_validate.show(figure)}")
-    return png()
+def panel_png(figure, width=PANEL_WIDTH_PX, pixel_ratio=PIXEL_RATIO):
+    """The PNG of a live panel's figure, drawn for where the panel shows it: `width`
+    CSS pixels wide on a screen of `pixel_ratio` device pixels per CSS pixel, so
+    `width * pixel_ratio` pixels wide (rounded to a whole pixel), and as tall as the
+    figure's proportions make it. Only the figure's resolution (`png_dpi`) changes:
+    its layout and its text, in inches and points, stay as drawn.
+
+    Args:
+      figure: an `icm.figures.Figure`.
+      width: the width it is shown at, in CSS pixels (100 to 4000).
+      pixel_ratio: device pixels per CSS pixel (1 to 4).
+
+    Returns:
+      The PNG's bytes.
+    """
+    _validate.instance("figure", figure, Figure, "an icm.figures.Figure")
+    width = _validate.integer("width", width, 100, 4000)
+    pixel_ratio = _validate.real("pixel_ratio", pixel_ratio, 1.0, 4.0)
+    # Agg's canvas is inches x dpi pixels, truncated (matplotlib forgives a product
+    # 1e-8 short of a whole pixel, as 116 / 1.1 * 1.1 is).
+    figure.png_dpi = round(width * pixel_ratio) / figure.get_figwidth()
+    return figure.png()
 
 
 def live_sliders(name):
