@@ -2,16 +2,13 @@
 exercises (placeholders and public tests for the students, solutions and hidden tests
 for the autograder only, numbered as the book numbers them), the in-kernel tests of the
 students' notebooks (their time limits and the own-answer rule), the questions
-exported to Moodle XML and read back, the slide decks opened offline in Chromium, and
-the instructors' page's directives. Grading a class is in tests/test_grading.py, and
+exported to Moodle XML and read back, and the instructors' page's directives (the slide
+decks are in tests/test_slides.py). Grading a class is in tests/test_grading.py, and
 the attacks on it in tests/test_grading_attacks.py."""
 
-import csv
 import dataclasses
 import json
-import pathlib
 import re
-import shutil
 import subprocess
 import sys
 import zipfile
@@ -20,14 +17,13 @@ import nbformat
 import numpy as np
 import pytest
 
-from conftest import ROOT, first_objective
+from conftest import ROOT
 
-from icm.course import assign, grade, grading, lms, slides
+from icm.course import assign, grade, grading, lms
 from icm.exercises.registry import EXERCISES
 
 SEED = 20261202
 """The grading seed of the tests' assignments."""
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 
 
 def _solutions():
@@ -398,125 +394,6 @@ def test_every_question_of_the_book_is_exported_to_moodle_xml(built_book, tmp_pa
         (right,) = [text for text, is_right, _ in question["options"] if is_right]
         assert right == quizzes[question["label"]]
         assert question["explanation"] and "{glue" not in question["explanation"]
-
-
-# --- the slides ---------------------------------------------------------------------------
-
-def _fake_book(folder, with_blocks=True):
-    """A built book's pages as the decks read them: a title, an objectives block, a
-    figure, a takeaways block and an exercise per chapter, with the vendored scripts."""
-    static = folder / "_static" / "vendor"
-    for name in ("reveal", "mathjax"):
-        shutil.copytree(ROOT / "book" / "_static" / "vendor" / name, static / name)
-    (folder / "_images").mkdir(parents=True)
-    (folder / "book").mkdir()
-    for number, (name, _) in enumerate(assign.chapters(), 1):
-        shutil.copy(ROOT / "assets" / "images" / "figure5.png",
-                    folder / "_images" / f"{name}.png")
-        blocks = (f'<div class="admonition icm-objectives"><p class="admonition-title">'
-                  f'Learning objectives</p><ul><li>Objective of {name}</li></ul></div>'
-                  f'<div class="admonition icm-takeaways"><p class="admonition-title">Key '
-                  f'takeaways</p><ul><li>Takeaway of {name}</li></ul></div>') \
-            if with_blocks else ""
-        (folder / "book" / f"{name}.html").write_text(
-            f'<html><body><main><section><h1>Chapter {name}<a class="headerlink" '
-            f'href="#">#</a></h1>{blocks}<figure id="fig-{number}"><img src="../_images/'
-            f'{name}.png" alt="a plot"><figcaption><p><span class="caption-number">Fig. '
-            f'{number}.1 </span><span class="caption-text">The caption of {name}, '
-            f'\\(x^2\\).</span></p></figcaption></figure><div class="exercise admonition" '
-            f'id="ex-{number}"><p class="admonition-title">Exercise {number}.1 (Implement: '
-            f'a thing)</p></div><div class="solution"><figure><img src="../_images/'
-            f'{name}.png" alt="hidden"></figure></div></section></main></body></html>')
-    return folder
-
-
-def test_a_deck_holds_the_chapters_objectives_figures_and_takeaways(tmp_path):
-    book = _fake_book(tmp_path / "html")
-    decks = slides.build_slides(book, tmp_path / "slides")
-    assert [d.stem for d in decks] == [name for name, _ in assign.chapters()]
-    for deck in decks:
-        text = deck.read_text()
-        assert f"Objective of {deck.stem}" in text and f"Takeaway of {deck.stem}" in text
-        assert f"The caption of {deck.stem}" in text and "headerlink" not in text
-        assert text.count("<section") == 5  # title, objectives, figure, takeaways, exercises
-        assert 'alt="hidden"' not in text  # a solution's figure stays in the book
-        assert f'src="images/{deck.stem}.png"' in text
-        assert "Exercise" in text and "http" not in text.split("<body>")[1]
-    assert (tmp_path / "slides" / "index.html").exists()
-    bare = _fake_book(tmp_path / "bare", with_blocks=False)
-    text = slides.build_slides(bare, tmp_path / "bare-slides")[0].read_text()
-    assert "Learning objectives" not in text and text.count("<section") == 3
-    with pytest.raises(slides.SlidesError, match="not a built book"):
-        slides.build_slides(tmp_path / "nothing", tmp_path / "x")
-
-
-def _open_offline(browser, deck):
-    """A deck loading in a context of its own that refuses the network: (the context,
-    the page, its console and page errors, the requests it tried to make off the
-    machine), as soon as the navigation starts."""
-    context = browser.new_context(offline=True, viewport={"width": 1280, "height": 720})
-    requests, errors = [], []
-
-    def refuse_network(route):
-        url = route.request.url
-        if url.startswith(("file:", "data:")):
-            route.continue_()
-        else:
-            requests.append(url)
-            route.abort()
-
-    context.route("**/*", refuse_network)
-    page = context.new_page()
-    page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.goto(deck.as_uri(), wait_until="commit")
-    return context, page, errors, requests
-
-
-def _open_decks(browser, decks):
-    """Opens every deck, each once loaded and ready, and moves it to its last slide:
-    [(its number of slides, the natural widths of its images 300 ms after that move, its
-    errors, its requests off the machine)], in the decks' order. The decks load side by
-    side (one browser, a page each), not one after the other."""
-    opened = [_open_offline(browser, deck) for deck in decks]
-    totals = []
-    for _, page, _, _ in opened:
-        page.wait_for_load_state("load")
-        page.wait_for_function("window.Reveal && Reveal.isReady()", timeout=30000)
-        totals.append(page.evaluate("Reveal.getTotalSlides()"))
-        page.evaluate(f"Reveal.slide({totals[-1] - 1})")
-    opened[-1][1].wait_for_timeout(300)  # every deck moved at least 300 ms ago
-    results = []
-    for total, (context, page, errors, requests) in zip(totals, opened):
-        images = page.eval_on_selector_all("img", "els => els.map(e => e.naturalWidth)")
-        context.close()
-        results.append((total, images, errors, requests))
-    return results
-
-
-@pytest.mark.book
-@pytest.mark.skipif(CHROMIUM is None, reason="Chromium is not installed (apt-get install "
-                    "chromium): the decks' offline check is skipped")
-def test_make_slides_gives_one_deck_per_chapter_that_opens_offline(built_book, tmp_path):
-    playwright_api = pytest.importorskip("playwright.sync_api")
-    decks = slides.build_slides(built_book, tmp_path / "slides")
-    assert len(decks) == len(assign.chapters()) == 8
-    with playwright_api.sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=CHROMIUM,
-                                             args=["--no-sandbox", "--disable-gpu"])
-        try:
-            for deck, (total, images, errors, requests) in zip(
-                    decks, _open_decks(browser, decks)):
-                content = slides.chapter_slides(built_book / "book" / deck.name)
-                assert errors == [] and requests == [], (deck.name, errors, requests)
-                expected = 1 + len(content["figures"]) + bool(content["objectives"]) + \
-                    bool(content["takeaways"]) + bool(content["exercises"])
-                assert total == expected and content["figures"], deck.name
-                assert images and all(width > 0 for width in images), deck.name
-        finally:
-            browser.close()
-    first = slides.chapter_slides(built_book / "book" / "button_experiment.html")
-    assert first_objective("button_experiment") in " ".join(first["objectives"].split())
 
 
 # --- the instructors' page's directives, on a small book ------------------------------------

@@ -17,7 +17,7 @@ from grading_support import (CHAPTER, INTEREST_OWN, ROOT, WRONG, rows, solution_
                              write_assignments)
 
 from icm import files, records
-from icm.course import grade, gradebook, runner, sandbox, session
+from icm.course import cgroups, grade, gradebook, runner, sandbox, session
 from icm.exercises.registry import EXERCISES
 
 CONFINED = sandbox.probe()
@@ -353,14 +353,14 @@ def test_control_groups_of_version_2_are_made_and_limited(tmp_path):
     root.mkdir()
     (root / "cgroup.controllers").write_text("cpu memory pids io\n")
     (root / "cgroup.subtree_control").write_text("")
-    (root / sandbox.GROUP).mkdir()  # (the kernel fills a new group with its files)
-    (root / sandbox.GROUP / "cgroup.subtree_control").write_text("")
+    (root / cgroups.GROUP).mkdir()  # (the kernel fills a new group with its files)
+    (root / cgroups.GROUP / "cgroup.subtree_control").write_text("")
     kind = sandbox.CgroupV2(root)
     assert kind.usable() == ""
     assert (root / "cgroup.subtree_control").read_text() == "+memory +pids"
-    assert (root / sandbox.GROUP / "cgroup.subtree_control").read_text() == "+memory +pids"
+    assert (root / cgroups.GROUP / "cgroup.subtree_control").read_text() == "+memory +pids"
     group = kind.create("one", sandbox.Limits(memory=2 ** 30, processes=10))
-    folder = root / sandbox.GROUP / "one"
+    folder = root / cgroups.GROUP / "one"
     assert (folder / "memory.max").read_text() == str(2 ** 30)
     assert (folder / "pids.max").read_text() == "10"
     (folder / "memory.events").write_text("low 0\nhigh 0\nmax 3\noom 1\noom_kill 1\n")

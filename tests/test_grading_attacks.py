@@ -15,7 +15,7 @@ succeed: the confinement is what stops it.
 
 import ast
 import hashlib
-import json
+import os
 import pathlib
 import socket
 import threading
@@ -27,7 +27,7 @@ import pytest
 from grading_support import ROOT, WRONG, rows, submission, write_assignments
 
 import icm
-from icm.course import grade, sandbox
+from icm.course import cgroups, grade, sandbox
 
 CONFINED = sandbox.probe()
 pytestmark = pytest.mark.skipif(not CONFINED.available,
@@ -295,8 +295,11 @@ def test_the_graders_files_and_the_other_submissions_are_untouched(attacked):
 
 def test_every_process_a_submission_started_is_gone(attacked):
     assert attacked["survivors"] == []
-    assert not list(pathlib.Path(f"/sys/fs/cgroup/memory/{sandbox.GROUP}").glob("*-*")) \
-        if isinstance(CONFINED.cgroups, sandbox.CgroupV1) else True
+    # The groups this process made for them are gone too.
+    root = pathlib.Path("/sys/fs/cgroup")
+    parents = [root / "memory" / cgroups.GROUP, root / "pids" / cgroups.GROUP] \
+        if isinstance(CONFINED.cgroups, cgroups.CgroupV1) else [root / cgroups.GROUP]
+    assert [p for parent in parents for p in parent.glob(f"{os.getpid()}-*")] == []
 
 
 def test_a_fork_bomb_a_kill_and_a_death_leave_the_next_submissions_graded(attacked):

@@ -54,7 +54,7 @@ import time
 
 from icm import _validate
 from icm.course import runner
-from icm.course.cgroups import GROUP, CgroupV1, CgroupV2
+from icm.course.cgroups import CgroupV1, CgroupV2
 
 PACKAGES = ("numpy",)
 """What the student's code may import besides the standard library (and what those
