@@ -254,7 +254,14 @@ NOBODY = 65534
 ENVIRONMENT = {"HOME": "/tmp", "PATH": "/usr/bin:/bin", "LANG": "C.UTF-8",
                "PYTHONDONTWRITEBYTECODE": "1", "PYTHONHASHSEED": "0",
                "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
-"""The program's whole environment (nothing of the grader's)."""
+"""The program's whole environment (nothing of the grader's), with `GRADER`."""
+GRADER = "ICM_GRADER"
+"""The variable that holds the grader's process id, so that a process a run left
+behind can be told from another grader's (it says nothing a run could use)."""
+
+
+def _environment():
+    return {**ENVIRONMENT, GRADER: str(os.getpid())}
 
 
 class Confined:
@@ -331,7 +338,7 @@ class Confined:
         work = self.folder / "work"
         work.mkdir()
         self.process = subprocess.Popen(
-            [_python(), "-I", "-S", runner.__file__], cwd=work, env=ENVIRONMENT,
+            [_python(), "-I", "-S", runner.__file__], cwd=work, env=_environment(),
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
             start_new_session=True)
         self._limit(self.process.pid)  # before the job: no student code has run yet
@@ -349,7 +356,7 @@ class Confined:
         else:
             arguments += ["--unshare-user", "--uid", str(NOBODY), "--gid", str(NOBODY)]
             user = []
-        for key, value in ENVIRONMENT.items():
+        for key, value in _environment().items():
             arguments += ["--setenv", key, value]
         arguments += _system_binds()
         arguments += _folders_open_to_all(f"{INSIDE}/packages/x")
