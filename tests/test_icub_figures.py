@@ -4,6 +4,7 @@ artefact on the elbow, and readable titles. Checked with MuJoCo's segmentation
 rendering (which geom is the nearest surface in each pixel), at small sizes."""
 
 import os
+import re
 
 os.environ.setdefault("MUJOCO_GL", "egl")  # before dm_control picks a renderer
 
@@ -178,3 +179,36 @@ def test_visible_geoms_and_titles_refuse_bad_input():
             "type")
     refused(lambda: figures_icub.camera_title(3), "camera", "3", "type")
     refused(lambda: figures_icub.topple_moment(action=9), "action", "9", "value")
+
+
+# --- the continuous task's observation, in words (issue 43) -----------------------------
+
+def test_the_observation_table_shows_units_words_and_no_negative_zero():
+    observation = {
+        "arm_joints": np.deg2rad([-26.7, 17.6, -4.1, 88.4, 0.5, -11.1, 1.8]),
+        "fingertip": np.array([0.33, -0.13, 0.575]),
+        "button_depths": np.array([-5.9e-6, 0.0, -0.0, 0.0143, 1e-7]),
+        "lights": np.array([0.0, 0.0, 1.0, 2.0, 0.0]),
+        "lid_angles": np.array([-0.0006, np.deg2rad(97.4)]),
+        "made_up": np.array([-0.00001, 1.23456]),
+    }
+    table = icm.figures.observation_table(observation)
+    rows = {line.split("|")[1].strip(" `"): line.split("|")[3:5]
+            for line in table.splitlines()[2:]}
+    assert re.search(r"-0\.0*(?![0-9])|-0\.0+\b", table) is None, table  # no -0.0, -0.000
+    assert rows["button_depths"][0].strip() == "mm"
+    assert rows["button_depths"][1].strip() == "0.0, 0.0, 0.0, 14.3, 0.0"
+    assert rows["lights"][1].strip() == "0 (off), 0 (off), 1 (red), 2 (green), 0 (off)"
+    assert rows["lights"][0].strip() == "0 off, 1 red, 2 green"
+    assert rows["lid_angles"][1].strip() == "0.0, 97.4"
+    assert rows["arm_joints"][1].strip() == "-26.7, 17.6, -4.1, 88.4, 0.5, -11.1, 1.8"
+    assert rows["made_up"][1].strip() == "0.000, 1.235"  # shown as it is, 3 decimals
+    assert figures_icub.shown_values([-0.04, -0.06], 1) == ["0.0", "-0.1"]
+    refused(lambda: icm.figures.observation_table([1, 2]), "observation", "[1, 2]", "type")
+    refused(lambda: icm.figures.observation_table({}), "observation", "{}", "type")
+    refused(lambda: icm.figures.observation_table({**observation, "lights": [0, 3, 0, 0, 0]}),
+            "observation['lights']", "3", "value")
+    refused(lambda: icm.figures.observation_table({**observation, "lights": [0.5] * 5}),
+            "observation['lights']", "0.5", "value")
+    refused(lambda: icm.figures.observation_table({"fingertip": [np.nan, 0, 0]}),
+            "observation['fingertip']", "nan", "value")

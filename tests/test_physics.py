@@ -690,3 +690,93 @@ def test_each_physics_has_a_model_of_its_own_and_a_changed_scene_is_compiled_aga
     scene.write_text('<mujoco><worldbody><geom name="g" type="sphere" size="0.1"/>'
                      '<geom name="h" type="sphere" size="0.2"/></worldbody></mujoco>')
     assert icub._compiled_scene(str(scene)).ngeom == 2
+
+
+# --- what the chapter "The simulated iCub" explains (issue 43) -------------------------
+
+def test_a_button_at_rest_reads_a_depth_of_zero_not_minus_zero():
+    # A depth is minus the button joint's position; negating a resting 0.0 gave -0.0,
+    # which an observation printed as "-0.".
+    env = buttons.PhysicsButtonConsole(seed=0)
+    env.reset()
+    depths = env.physics.button_depths()
+    assert np.all(depths == 0.0) and not np.signbit(depths).any(), depths
+    assert not np.signbit(env.physics.button_depth(0))
+    step = icm.envs.load_continuous("buttons", seed=0).reset()
+    assert not np.signbit(step.observation["button_depths"]).any()
+
+
+@pytest.mark.parametrize("n_steps, whole", [(24, True), (22, False)])
+def test_compare_twins_counts_the_steps_that_begin_a_trial(n_steps, whole):
+    from icm.chapters import simulated_icub as chapter
+
+    check = icm.envs.compare_twins("buttons", n_steps=n_steps, seed=3, action_seed=4)
+    per_trial = buttons.DEFAULT_PRESSES_PER_TRIAL + 1  # the presses, and a step to begin
+    assert check["ended"] == n_steps // per_trial
+    assert check["episodes"] == check["ended"] + 1
+    assert check["acted"] == n_steps - (check["episodes"] - 1)  # less those that began one
+    trials = chapter.trial_steps(check)
+    assert trials["presses"] == check["acted"] and trials["begun"] == check["episodes"]
+    held = chapter.claims(check, {**check, "mismatches": 0}, rods.load_topple_map(),
+                          *_two_tiny_runs())["button_steps_make_trials"]
+    assert held == whole  # 22 steps end in the middle of a trial: the sentence is false
+    refused(lambda: chapter.trial_steps({"steps": 3}), "button_check", "steps", "type")
+    refused(lambda: chapter.trial_steps(check, presses_per_trial=0), "presses_per_trial",
+            "0", "value")
+
+
+def test_rod_episodes_end_by_a_topple_or_at_the_move_limit():
+    from icm.chapters import simulated_icub as chapter
+
+    check = icm.envs.compare_twins("rods", n_steps=60, seed=0, action_seed=2, max_moves=5)
+    ends = chapter.rod_episode_ends(check)
+    assert ends["topples"] == check["terminations"] > 0 and ends["limits"] > 0
+    assert ends["moves"] + ends["begun"] - 1 == check["steps"]
+    assert ends["ended"] in (ends["begun"] - 1, ends["begun"])
+
+
+_TINY_RUNS = []
+
+
+def _two_tiny_runs():
+    """The same small goal-oriented run on the physics and on the twin (made once)."""
+    if not _TINY_RUNS:
+        run = dict(n_seeds=2, n_trials=4, seed=4, progress=False)
+        _TINY_RUNS.extend([icm.experiments.run_goal_oriented(physics=True, **run),
+                           icm.experiments.run_goal_oriented(**run)])
+    return _TINY_RUNS
+
+
+def test_interest_stays_under_the_largest_prediction_error():
+    import dataclasses
+
+    from icm.chapters import simulated_icub as chapter
+
+    assert chapter.interest_ceiling() == pytest.approx(np.sqrt(2.0))
+    runs = _two_tiny_runs()
+    check = icm.envs.compare_twins("buttons", n_steps=8, seed=4, action_seed=5)
+    topple_map = rods.load_topple_map()
+    assert chapter.claims(check, check, topple_map, *runs)["interest_under_ceiling"]
+    for run in runs:
+        assert 0.0 < chapter.interest_band_top(run) <= run.interest.max() + 1e-12
+    # An interest past the ceiling (one seed at 1.5) breaks the claim.
+    raised = runs[1].interest.copy()
+    raised[0, 1, 0] = 1.5
+    over = dataclasses.replace(runs[1], interest=raised)
+    assert not chapter.claims(check, check, topple_map, runs[0], over)[
+        "interest_under_ceiling"]
+    refused(lambda: chapter.interest_band_top("run"), "result", "run", "type")
+
+
+def test_gravity_compensation_holds_the_arm_where_inverse_kinematics_aims_it():
+    from icm.chapters import simulated_icub as chapter
+
+    held = chapter.hold_above_red(seed=0, seconds=1.0)
+    assert np.linalg.norm(held["fingertip"] - held["aimed"]) < 1e-4  # 0.1 mm
+    assert np.array_equal(held["fingertip"], held["observation"]["fingertip"])
+    sagging = chapter.hold_above_red(seed=0, seconds=1.0, gravity_compensation=False)
+    assert held["fingertip"][2] - sagging["fingertip"][2] > 1e-3  # hangs lower, > 1 mm
+    assert np.array_equal(held["targets"], sagging["targets"])
+    refused(lambda: chapter.hold_above_red(gravity_compensation="no"),
+            "gravity_compensation", "no", "type")
+    refused(lambda: chapter.hold_above_red(seconds=0), "seconds", "0", "value")

@@ -1,11 +1,18 @@
 """The chapter "The simulated iCub" (book/simulated_icub.ipynb): whether the fast
 tabular twins give the physics' outcomes, its claims in words (`CLAIMS`) checked on its
-own runs when the book is built (`claims`)."""
+own runs when the book is built (`claims`), and the numbers it explains: how the steps
+of a comparison split into trials (`trial_steps`, `rod_episode_ends`), the ceiling of
+the goal-oriented learner's interest and the band of Figure 5 under it
+(`interest_ceiling`, `interest_band_top`), and how the arm holds a posture, with and
+without gravity compensation (`hold_above_red`)."""
 
+import math
+
+import mujoco
 import numpy as np
 
-from icm import _validate
-from icm.envs import rods
+from icm import _validate, envs, stats
+from icm.envs import buttons, icub, rods
 from icm.experiments.goal_oriented import GoalOrientedResult
 
 CLAIMS = {
@@ -16,12 +23,123 @@ CLAIMS = {
     "red_more_pairs": "more (cell, move) pairs topple the red rod than the blue one",
     "forearm_topples_red": "moving right along the far row into the cell beside the red "
                            "rod topples it",
+    "button_steps_make_trials": "the buttons' steps are whole trials of the presses and "
+                                "one step that starts the next trial, and the last step "
+                                "began one more trial",
+    "interest_under_ceiling": "the interest of both runs, and the band of their means, "
+                              "stay at or below the largest prediction error",
 }
 """The claims the chapter states in words (`claims`)."""
 FOREARM_PAIR = ((1, 2), rods.ACTIONS.index("right"))
 """The pair the chapter names: right, along the far row, into cell (2, 2), where the
 forearm passes over the red rod."""
 _RESULT_FIELDS = ("interest", "prediction_error", "mastery_trial", "practice", "button_share")
+
+
+def _check_comparison(name, check):
+    if not isinstance(check, dict) or not {"steps", "episodes", "ended", "acted",
+                                           "terminations", "mismatches"} <= set(check):
+        raise _validate.ArgumentTypeError(f"{name} must be what compare_twins returns, "
+                                          f"got {_validate.show(check)}")
+    return check
+
+
+def trial_steps(button_check, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL):
+    """How the steps of a comparison of the buttons (`icm.envs.compare_twins`) split
+    into trials.
+
+    dm_env's first step after an episode's end starts the next episode and ignores its
+    action: a trial of `presses_per_trial` presses takes one step more.
+
+    Args:
+      button_check: what `compare_twins("buttons", ...)` returned.
+      presses_per_trial: the console's presses per trial.
+
+    Returns:
+      A dict: "steps" (steps played), "steps_per_trial" (presses per trial + 1),
+      "whole_trials" (trials that ended), "presses" (steps that pressed a button),
+      "begun" (trials begun, the first included), "terminations".
+    """
+    check = _check_comparison("button_check", button_check)
+    presses_per_trial = _validate.integer("presses_per_trial", presses_per_trial, 1)
+    return {"steps": check["steps"], "steps_per_trial": presses_per_trial + 1,
+            "whole_trials": check["ended"], "presses": check["acted"],
+            "begun": check["episodes"], "terminations": check["terminations"]}
+
+
+def rod_episode_ends(rod_check):
+    """How the episodes of a comparison of the rods (`icm.envs.compare_twins`) ended.
+
+    Returns:
+      A dict: "steps", "moves" (steps that moved the hand), "begun" (episodes begun),
+      "ended" (episodes that ended), "topples" (ended with a topple: a termination) and
+      "limits" (ended at the move limit, a time limit).
+    """
+    check = _check_comparison("rod_check", rod_check)
+    return {"steps": check["steps"], "moves": check["acted"], "begun": check["episodes"],
+            "ended": check["ended"], "topples": check["terminations"],
+            "limits": check["ended"] - check["terminations"]}
+
+
+def interest_ceiling():
+    """The largest prediction error of the goal-oriented learner: the distance between
+    two effects of a press, largest between "red box open" and "green box open",
+    sqrt(2).
+
+    The interest of a task is its learning progress, the fall of its prediction error
+    per press (the least-squares slope of its last errors), or a new task's half share
+    of the others' mean. A slope of errors between 0 and this ceiling is at most the
+    ceiling (reached when one error falls from the ceiling to 0 in two presses), so no
+    interest passes it; `claims` checks that the chapter's runs stay under it.
+    """
+    return max(math.dist(a, b) for a in buttons.EFFECTS for b in buttons.EFFECTS)
+
+
+def interest_band_top(result):
+    """The highest point of Figure 5's bands for `result`: the upper end of the
+    percentile-bootstrap band of the mean interest (`icm.stats.bootstrap_band`, with
+    the figures' `PANEL_RESAMPLES`), over trials and tasks."""
+    _validate.instance("result", result, GoalOrientedResult,
+                       "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
+    return max(float(stats.bootstrap_band(result.interest[:, :, i],
+                                          resamples=stats.PANEL_RESAMPLES)[2].max())
+               for i in range(result.interest.shape[2]))
+
+
+def hold_above_red(seed=0, seconds=1.0, gravity_compensation=True):
+    """The chapter's continuous example: the arm's targets are set, once, to the
+    posture that puts the fingertip above the red button, and held for `seconds`.
+
+    Args:
+      seed: the task's seed (the lights' layout).
+      seconds: how long (simulated) the targets are held, in (0, 60].
+      gravity_compensation: False switches off the compensation of the arm's weight
+        (MuJoCo's `gravcomp` of every body, set to 0 in this task's own model).
+
+    Returns:
+      A dict: "targets" (the 7 joint targets, radians), "joints" (the joint angles at
+      the end), "fingertip" (its position at the end, metres), "aimed" (where the
+      targets put the fingertip: forward kinematics of the targets, metres),
+      "observation" (the last time step's observation).
+    """
+    gravity_compensation = _validate.boolean("gravity_compensation", gravity_compensation)
+    seconds = _validate.real("seconds", seconds, 0.0, 60.0, low_open=True)
+    continuous = envs.load_continuous("buttons", seed=seed, time_limit=seconds)
+    physics = continuous.physics
+    if not gravity_compensation:
+        physics.model.body_gravcomp[:] = 0.0
+    targets = continuous.task.motions(physics).above[continuous.task.red_button]
+    step = continuous.reset()
+    while not step.last():
+        step = continuous.step(targets)
+    arm = icub.Arm(physics)
+    scratch = mujoco.MjData(physics.model.ptr)
+    scratch.qpos[:] = physics.data.qpos
+    scratch.qpos[arm.qpos_index] = targets
+    mujoco.mj_kinematics(physics.model.ptr, scratch)
+    return {"targets": np.array(targets), "joints": arm.joint_positions(),
+            "fingertip": arm.fingertip(), "aimed": scratch.site_xpos[arm.site_id].copy(),
+            "observation": step.observation}
 
 
 def claims(button_check, rod_check, topple_map, physics_run, tabular_run):
@@ -38,13 +156,13 @@ def claims(button_check, rod_check, topple_map, physics_run, tabular_run):
       A dict of bools.
     """
     for name, check in (("button_check", button_check), ("rod_check", rod_check)):
-        if not isinstance(check, dict) or "mismatches" not in check:
-            raise _validate.ArgumentTypeError(f"{name} must be what compare_twins returns, "
-                                              f"got {_validate.show(check)}")
+        _check_comparison(name, check)
     for name, run in (("physics_run", physics_run), ("tabular_run", tabular_run)):
         _validate.instance(name, run, GoalOrientedResult,
                            "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
     counts = rods.topple_counts(topple_map)
+    trials = trial_steps(button_check)
+    ceiling = interest_ceiling()
     return {
         "buttons_agree": button_check["mismatches"] == 0,
         "rods_agree": rod_check["mismatches"] == 0,
@@ -52,4 +170,11 @@ def claims(button_check, rod_check, topple_map, physics_run, tabular_run):
                             for f in _RESULT_FIELDS),
         "red_more_pairs": counts["red"] > counts["blue"],
         "forearm_topples_red": topple_map["topples"].get(FOREARM_PAIR) == "red",
+        "button_steps_make_trials": (
+            trials["steps"] == trials["whole_trials"] * trials["steps_per_trial"]
+            and trials["presses"] == trials["whole_trials"] * (trials["steps_per_trial"] - 1)
+            and trials["begun"] == trials["whole_trials"] + 1),
+        "interest_under_ceiling": all(
+            float(run.interest.max()) <= ceiling and interest_band_top(run) <= ceiling
+            for run in (physics_run, tabular_run)),
     }

@@ -20,8 +20,11 @@ def compare_twins(name, n_steps=200, seed=0, action_seed=0, twin_seed=None, **kw
 
     Returns:
       A dict: "steps" (steps compared), "mismatches" (steps whose step type,
-      discount, reward or observation differ), "episodes" (episodes begun), and
-      "terminations" (episodes that ended with discount 0).
+      discount, reward or observation differ), "episodes" (episodes begun),
+      "terminations" (episodes that ended with discount 0), "ended" (episodes that
+      ended, by a termination or a time limit) and "acted" (steps whose action was
+      carried out: every step but those that began an episode, since dm_env's first
+      step after an episode's end starts the next one and ignores its action).
     """
     from icm import envs  # here: envs imports this module's package
 
@@ -35,7 +38,8 @@ def compare_twins(name, n_steps=200, seed=0, action_seed=0, twin_seed=None, **kw
                             seed=seed if twin_seed is None else twin_seed, **kwargs)
     actions = action_random.integers(physics_env.action_spec().num_values, size=n_steps)
     physics_env.reset(), tabular_env.reset()
-    counts = {"steps": 0, "mismatches": 0, "episodes": 1, "terminations": 0}
+    counts = {"steps": 0, "mismatches": 0, "episodes": 1, "terminations": 0, "ended": 0,
+              "acted": 0}
     for action in actions:
         a, b = physics_env.step(action), tabular_env.step(action)
         same = (a.step_type == b.step_type and a.discount == b.discount
@@ -45,5 +49,7 @@ def compare_twins(name, n_steps=200, seed=0, action_seed=0, twin_seed=None, **kw
         counts["steps"] += 1
         counts["mismatches"] += not same
         counts["episodes"] += int(a.first())
+        counts["acted"] += int(not a.first())
+        counts["ended"] += int(a.last())
         counts["terminations"] += int(a.last() and a.discount == 0.0)
     return counts

@@ -15,8 +15,8 @@ from icm.figures.forming_actions import (coverage_figure, coverage_maps_figure,
                                         record_learned_press, test_error_figure)
 from icm.figures.goal_oriented import figure5, figure5_grid, mastery_figure
 from icm.figures.icub import (animation, animation_html, cameras_figure, figure1,
-                              press_trace_figure, record_move, record_press,
-                              topple_map_figure)
+                              observation_table, press_trace_figure, record_move,
+                              record_press, topple_map_figure)
 from icm.figures.rod_toppling import (figure7, physics_comparison_figure,
                                       topple_share_figure)
 from icm.figures.robustness import robustness_map

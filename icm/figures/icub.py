@@ -236,6 +236,79 @@ def record_move(start_cell=(2, 0), action=0, camera=None, frame_every=2, height=
             "toppled": toppled}
 
 
+OBSERVATION_ENTRIES = {
+    "arm_joints": ("the arm's joint angles, in the order of the joints' table",
+                   "degrees", np.rad2deg, 1),
+    "fingertip": ("where the fingertip is: forward, to the robot's left, and up, from the "
+                  "floor under the robot's seat", "m", None, 3),
+    "button_depths": ("how far each button is pushed in, from button 0 on",
+                      "mm", lambda metres: 1000 * metres, 1),
+    "lights": ("each button's light, from button 0 on", "code", None, 0),
+    "lid_angles": ("how far each lid has opened: red, then green", "degrees",
+                   np.rad2deg, 1),
+    "rod_tilts": ("each rod's tilt from upright, in the scene's order of rods",
+                  "degrees", np.rad2deg, 1),
+    "rod_positions": ("the rods' centres, one rod after the other, each forward, left "
+                      "and up", "m", None, 3),
+}
+"""How `observation_table` shows each entry of the continuous tasks' observations: its
+meaning in words, its unit, the conversion from the observation's unit (radians,
+metres) and the decimals shown."""
+LIGHT_WORDS = {buttons.OFF: "off", buttons.RED: "red", buttons.GREEN: "green"}
+"""The lights' codes in an observation, in words."""
+
+
+def shown_values(values, decimals):
+    """`values` rounded to `decimals` as text, with no negative zero: a value that
+    rounds to zero reads "0.0", never "-0.0" (a button resting a few micrometres above
+    its stop has a depth of about -0.006 mm, which rounds to zero)."""
+    values = _validate.finite_array("values", values)
+    decimals = _validate.integer("decimals", decimals, 0, 12)
+    rounded = np.round(values, decimals) + 0.0  # -0.0 + 0.0 is 0.0
+    return [f"{v:.{decimals}f}" for v in np.ravel(rounded)]
+
+
+def observation_table(observation):
+    """A continuous task's observation as a Markdown table a reader can follow: each
+    entry with what it holds, its unit and its values, angles in degrees, depths in
+    millimetres, the lights' codes with their words, and no negative zeros.
+
+    Args:
+      observation: a dict {entry name: array of numbers}, as in the `observation` of a
+        time step of `icm.envs.load_continuous(name)`. Entries not in
+        `OBSERVATION_ENTRIES` are shown as they are, to 3 decimals.
+
+    Returns:
+      A Markdown string (display it with `IPython.display.Markdown`).
+
+    Raises:
+      TypeError, ValueError: for an observation that is not a non-empty dict of finite
+        numbers, or lights that are not codes of `LIGHT_WORDS`.
+    """
+    if not isinstance(observation, dict) or not observation or \
+            not all(isinstance(k, str) for k in observation):
+        raise _validate.ArgumentTypeError(f"observation must be a non-empty dict of named "
+                                          f"arrays (a time step's observation), got "
+                                          f"{_validate.show(observation)}")
+    lines = ["| entry | what it holds | unit | values |", "|---|---|---|---|"]
+    for name, value in observation.items():
+        value = _validate.finite_array(f"observation[{name!r}]", value)
+        meaning, unit, convert, decimals = OBSERVATION_ENTRIES.get(
+            name, ("", "as observed", None, 3))
+        if name == "lights":
+            codes = [int(c) for c in np.ravel(value)]
+            if any(c not in LIGHT_WORDS or c != v for c, v in zip(codes, np.ravel(value))):
+                raise ValueError(f"observation['lights'] must hold light codes "
+                                 f"{sorted(LIGHT_WORDS)}, got {_validate.show(value)}")
+            shown = ", ".join(f"{c} ({LIGHT_WORDS[c]})" for c in codes)
+            unit = ", ".join(f"{c} {word}" for c, word in LIGHT_WORDS.items())
+        else:
+            shown = ", ".join(shown_values(value if convert is None else convert(value),
+                                           decimals))
+        lines.append(f"| `{name}` | {meaning} | {unit} | {shown} |")
+    return "\n".join(lines)
+
+
 def press_trace_figure(record):
     """The pressed button's depth and the lids' angles against time during one press
     (`record`: as returned by `record_press`)."""

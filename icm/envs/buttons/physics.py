@@ -73,13 +73,17 @@ class ButtonsPhysics(icub.ArmPhysics):
         return len(self._indices()._button_qpos)
 
     def button_depths(self):
-        """How far each button is pushed in (metres, 0 at rest), shape (n_buttons,)."""
-        return -self.data.qpos[self._indices()._button_qpos]
+        """How far each button is pushed in (metres, 0 at rest), shape (n_buttons,).
+
+        The depth is 0.0 minus the joint's position, not its negation: a button at
+        rest (position 0.0) then reads 0.0, where -0.0 would print as "-0." in an
+        observation."""
+        return 0.0 - self.data.qpos[self._indices()._button_qpos]
 
     def button_depth(self, button):
         """How far button `button` (0-4, or 5 the noisy one) is pushed in, in metres."""
         button = _validate.integer("button", button, 0, self.n_buttons - 1)
-        return -float(self.named.data.qpos[_BUTTON_JOINTS[button]][0])
+        return 0.0 - float(self.named.data.qpos[_BUTTON_JOINTS[button]][0])
 
     def lid_angles(self):
         """The red and green lids' opening angles (radians), shape (2,)."""
