@@ -37,7 +37,7 @@ import tempfile
 import time
 
 from icm import _validate
-from icm.experiments import goal_babbling, goal_babbling_study, remedies_study
+from icm.experiments import goal_babbling, goal_babbling_study, remedies_study, replication
 from icm.experiments.sweep import append_unit, read_journal, run_units, start_journal
 
 
@@ -147,6 +147,28 @@ def _add(grids):
     if isinstance(grids[0], list):
         return [_add(list(cells)) for cells in zip(*grids)]
     return sum(grids)
+
+
+# --- the replication runs of "Forming actions" (remedies_study.FRESH_FILE) ----------
+
+def _replication_units(settings):
+    root = replication.REPLICATION_ROOTS["forming_actions"]
+    return [[label, root, i, 1] for label in remedies_study.CLAIMED
+            for i in range(settings["seeds"])]
+
+
+def _replication_unit(settings, unit):
+    label, root, first, n = unit
+    return remedies_study.run_condition(label, root, n_seeds=n, first_run=first, threads=1,
+                                        n_rollouts=settings["rollouts"],
+                                        n_trials=settings["trials"])
+
+
+def _replication_assemble(settings, units, results):
+    root = replication.REPLICATION_ROOTS["forming_actions"]
+    runs = {label: [r for u, r in sorted(zip(units, results), key=lambda p: p[0][2])
+                    if u[0] == label] for label in remedies_study.CLAIMED}
+    return {"root": root, "n_seeds": settings["seeds"], "runs": runs}
 
 
 # --- the goal-babbling study (icm.experiments.goal_babbling_study) -----------------
@@ -330,6 +352,17 @@ register(Study(
     check=_remedies_check))
 
 register(Study(
+    name="remedies-replication",
+    description="the conditions the chapter 'Forming actions' claims about, on its fresh "
+                "root 9001, one seed a unit (icm.experiments.remedies_study.FRESH_FILE; "
+                "assets/remedies_fresh_runs.json)",
+    seeds=(remedies_study.REPLICATION_SEEDS, "per condition, on the fresh root 9001"),
+    options={"rollouts": (goal_babbling.DEFAULT_N_ROLLOUTS, 1, "rollouts per seed"),
+             "trials": FORMED_TRIALS},
+    units=_replication_units, run_unit=_replication_unit,
+    assemble=_replication_assemble))
+
+register(Study(
     name="goal-babbling",
     description="the variants of the goal-babbling learner "
                 "(icm.experiments.goal_babbling_study; assets/goal_babbling_study.json)",
@@ -480,7 +513,7 @@ def command_of(name, settings):
 
 def seeds_of(name, settings):
     """What seeds a study's units use, in words."""
-    if name in ("remedies", "goal-babbling"):
+    if name in ("remedies", "goal-babbling", "remedies-replication"):
         return ("unit [label, root, first, n]: seeds first..first+n-1 of root seed "
                 "'root' (icm.experiments._seeding.run_seeds: child i of "
                 "numpy.random.SeedSequence(root)); the goal-oriented learner on the formed "
