@@ -31,7 +31,9 @@ number is never a word of strength (a share of 100% is `tests/test_book.py`'s).
 
 A share of seeds is a sample: its 100% is not "every seed". The universal patterns
 need a check of kind "all", over every case of a finite set that is not a sample of
-seeds (every point of a map, every learner, every button); about seeds, say "in at
+seeds (every point of a map, every learner, every button), or of kind "rule" (a rule
+of the code, which a named test checks: its claim name is "tests/file.py::test_name");
+about seeds, say "in at
 least X% of the seeds" (the lower bound of the share's interval, kind "bound"). An
 "all" entry names its set (a third element: "points", "learners", ...), and the
 checker refuses "seeds", "runs" and "trials" there.
@@ -62,7 +64,7 @@ KINDS = {
 SAMPLES = ("seeds", "runs", "trials")
 """What an "all" check may not be over: a sample, whose 100% is not "every"."""
 
-_UNIVERSAL = {"all"}
+_UNIVERSAL = {"all", "rule"}
 PATTERNS = {
     "in every seed": (r"\b(?:in|on|for|of) every (?:one of the )?(?:seeds?|runs?)\b"
                       r"|\bevery seed\b|\ball (?:the )?seeds\b", set()),
@@ -84,7 +86,8 @@ PATTERNS = {
 """Each pattern of strength: (regular expression, the kinds of check that can carry it).
 Nothing carries "in every seed": a sample's 100% is not every seed (say "in at least X%
 of the seeds", kind "bound"). "every", "always", "never", "at every point" and "in all
-N cases" need a check over every case of a finite set ("all"); "only because" a
+N cases" need a check over every case of a finite set ("all"), or a rule of the code
+that a test checks over all its cases ("rule": red's place never changes); "only because" a
 measured cause; "because" and "so ... no" a measured cause or a rule of the code;
 "clear", "clearly" and "fastest" a corrected comparison; "exactly" an exact equality;
 "most" a majority in each case, a share's lower bound above one half, or a corrected

@@ -356,7 +356,7 @@ register(Study(
     description="the conditions the chapter 'Forming actions' claims about, on its fresh "
                 "root 9001, one seed a unit (icm.experiments.remedies_study.FRESH_FILE; "
                 "assets/remedies_fresh_runs.json)",
-    seeds=(remedies_study.REPLICATION_SEEDS, "per condition, on the fresh root 9001"),
+    seeds=(remedies_study.POWERED_SEEDS, "per condition, on the fresh root 9001"),
     options={"rollouts": (goal_babbling.DEFAULT_N_ROLLOUTS, 1, "rollouts per seed"),
              "trials": FORMED_TRIALS},
     units=_replication_units, run_unit=_replication_unit,
