@@ -81,7 +81,7 @@ PATTERNS = {
     "clearly": (r"\bclearly\b", {"corrected"}),
     "exactly": (r"\bexactly\b", {"exact"}),
     "fastest": (r"\bfastest\b", {"corrected"}),
-    "most": (r"\bmost\b", {"corrected", "majority", "bound"}),
+    "most": (r"\bmost\b", {"corrected", "majority", "bound", "rule"}),
 }
 """Each pattern of strength: (regular expression, the kinds of check that can carry it).
 Nothing carries "in every seed": a sample's 100% is not every seed (say "in at least X%
@@ -90,8 +90,8 @@ N cases" need a check over every case of a finite set ("all"), or a rule of the 
 that a test checks over all its cases ("rule": red's place never changes); "only because" a
 measured cause; "because" and "so ... no" a measured cause or a rule of the code;
 "clear", "clearly" and "fastest" a corrected comparison; "exactly" an exact equality;
-"most" a majority in each case, a share's lower bound above one half, or a corrected
-comparison."""
+"most" a majority in each case, a share's lower bound above one half, a corrected
+comparison, or a rule of the code ("the most recent press")."""
 ANYWHERE = ("in every seed", "in all N", "only because")
 """The patterns read in every sentence, not only in those that quote a result."""
 WORD_KINDS = {word: kinds for word, (_, kinds) in PATTERNS.items()}
