@@ -395,6 +395,30 @@ def run_fresh_seeds(root=None, n_seeds=REPLICATION_SEEDS, n_jobs=-1):
     return {"root": root, "n_seeds": n_seeds, "runs": runs}
 
 
+def replication_units(settings):
+    """The units of the study "remedies-replication" (`icm.experiments.studies`): one
+    seed of one condition of `CLAIMED` on the chapter's fresh root, [label, root, i, 1]
+    for i below settings["seeds"]."""
+    root = replication.REPLICATION_ROOTS["forming_actions"]
+    return [[label, root, i, 1] for label in CLAIMED for i in range(settings["seeds"])]
+
+
+def replication_unit(settings, unit):
+    """One unit of `replication_units`: `run_condition` of its seed."""
+    label, root, first, n = unit
+    return run_condition(label, root, n_seeds=n, first_run=first, threads=1,
+                         n_rollouts=settings["rollouts"], n_trials=settings["trials"])
+
+
+def assemble_replication(settings, units, results):
+    """The file `FRESH_FILE` from the units' results: {"root", "n_seeds", "runs":
+    {label: [entry of each seed, in order]}}."""
+    runs = {label: [r for u, r in sorted(zip(units, results), key=lambda p: p[0][2])
+                    if u[0] == label] for label in CLAIMED}
+    return {"root": replication.REPLICATION_ROOTS["forming_actions"],
+            "n_seeds": settings["seeds"], "runs": runs}
+
+
 def load_fresh_runs():
     """The runs `FRESH_FILE` keeps, as `fresh_runs` returns them (a study of the one
     fresh root, each condition's seeds joined into one entry): what `replicate` and

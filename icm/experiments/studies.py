@@ -37,7 +37,7 @@ import tempfile
 import time
 
 from icm import _validate
-from icm.experiments import goal_babbling, goal_babbling_study, remedies_study, replication
+from icm.experiments import goal_babbling, goal_babbling_study, remedies_study
 from icm.experiments.sweep import append_unit, read_journal, run_units, start_journal
 
 
@@ -147,28 +147,6 @@ def _add(grids):
     if isinstance(grids[0], list):
         return [_add(list(cells)) for cells in zip(*grids)]
     return sum(grids)
-
-
-# --- the replication runs of "Forming actions" (remedies_study.FRESH_FILE) ----------
-
-def _replication_units(settings):
-    root = replication.REPLICATION_ROOTS["forming_actions"]
-    return [[label, root, i, 1] for label in remedies_study.CLAIMED
-            for i in range(settings["seeds"])]
-
-
-def _replication_unit(settings, unit):
-    label, root, first, n = unit
-    return remedies_study.run_condition(label, root, n_seeds=n, first_run=first, threads=1,
-                                        n_rollouts=settings["rollouts"],
-                                        n_trials=settings["trials"])
-
-
-def _replication_assemble(settings, units, results):
-    root = replication.REPLICATION_ROOTS["forming_actions"]
-    runs = {label: [r for u, r in sorted(zip(units, results), key=lambda p: p[0][2])
-                    if u[0] == label] for label in remedies_study.CLAIMED}
-    return {"root": root, "n_seeds": settings["seeds"], "runs": runs}
 
 
 # --- the goal-babbling study (icm.experiments.goal_babbling_study) -----------------
@@ -359,8 +337,8 @@ register(Study(
     seeds=(remedies_study.POWERED_SEEDS, "per condition, on the fresh root 9001"),
     options={"rollouts": (goal_babbling.DEFAULT_N_ROLLOUTS, 1, "rollouts per seed"),
              "trials": FORMED_TRIALS},
-    units=_replication_units, run_unit=_replication_unit,
-    assemble=_replication_assemble))
+    units=remedies_study.replication_units, run_unit=remedies_study.replication_unit,
+    assemble=remedies_study.assemble_replication))
 
 register(Study(
     name="goal-babbling",
