@@ -370,3 +370,25 @@ def test_the_paid_learner_settles_on_its_box_with_either_selection_rule():
         assert summary["green_late_practice_share"] > 3 * summary["red_late_practice_share"]
     assert runs["epsilon_greedy"]["green_late_practice_share"] < \
         runs["softmax"]["green_late_practice_share"] - 0.05
+
+
+def test_the_paid_learner_learns_red_from_its_first_red_press_on_seeds_of_its_own():
+    # Issue 44: "only because red is easy: a single chance press teaches the predictor
+    # everything" was a causal claim with no check. The chapter now says what it
+    # measures (icm.chapters.actor_critic.PAID_CLAIMS); here on seeds of their own.
+    import dataclasses
+
+    from icm import chapters
+    paid = run_actor_critic(n_seeds=200, n_trials=100, seed=7, reward="extrinsic",
+                            rewarded_box="green", progress=False)
+    assert all(chapters.actor_critic.paid_claims(paid).values())
+    found = chapters.actor_critic.red_from_first_press(paid)
+    assert found["low"] >= 0.9 and found["first_median"] <= 10
+    assert found["single"] <= found["from_first"] <= found["learned"] <= 200
+    # A run whose red error fell to zero only a trial after its first red press fails.
+    later = paid.zero_trial.copy()
+    later[:, 0] = np.where(later[:, 0] >= 1, np.minimum(later[:, 0] + 1, 100), -1)
+    late = dataclasses.replace(paid, zero_trial=later)
+    assert not chapters.actor_critic.paid_claims(late)["red_from_first_red_press"]
+    with pytest.raises(TypeError, match="result"):
+        chapters.actor_critic.red_from_first_press("run")

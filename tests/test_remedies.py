@@ -497,8 +497,65 @@ def test_a_verdict_the_replication_contradicts_is_not_called_clear(study):
     contradicted = chapters.forming_actions.verdicts(study, replications=failed)
     for name in stored["verdicts"]:
         verdict = contradicted[f"{name}_verdict"]
-        assert not verdict.startswith("clearly") or verdict.endswith(
-            "not replicated on a fresh root"), (name, verdict)
+        power = chapters.forming_actions.replication_words(
+            {**failed["verdicts"][name], "n_seeds": stored["n_seeds"]})
+        assert not verdict.startswith("clearly") or verdict.endswith(power), (name, verdict)
+        assert power.startswith(f"not replicated on {stored['n_seeds']} fresh seeds, "
+                                f"which detect an effect of this size ")
+
+
+def test_a_replication_states_its_seeds_and_power_beside_its_verdict(study):
+    # Issue 44: "not replicated" with no word that 8 seeds have little power. Each
+    # clear verdict names its replication's seeds and power, the power computed with
+    # the test the replication uses (stats.paired_power) and stored with it.
+    stored = replication.load_replications()["forming_actions"]
+    words = chapters.forming_actions.verdicts(study)
+    for name, outcome in stored["verdicts"].items():
+        assert 0 <= outcome["power"] <= 1
+        verdict = words[f"{name}_verdict"]
+        assert f"replicated on {stored['n_seeds']} fresh seeds" in verdict, verdict
+        shown = "over 99%" if outcome["power"] > 0.99 else \
+            chapters.forming_actions.percent(outcome["power"])
+        assert shown in verdict, (verdict, outcome["power"])
+    words = chapters.forming_actions.replication_words
+    assert words({"replicated": False, "n_seeds": 8, "power": 0.5}) == (
+        "not replicated on 8 fresh seeds, which detect an effect of this size 50% of the "
+        "time")
+    assert words({"replicated": True, "n_seeds": 40, "power": 0.999}) == (
+        "replicated on 40 fresh seeds (power over 99%)")
+    # The power stored is the library's (2000 simulations, seed 0): one rechecked.
+    name = min(stored["verdicts"], key=lambda n: stored["verdicts"][n]["power"])
+    assert remedies_study.replication_power(name, study, stored["n_seeds"]) == \
+        stored["verdicts"][name]["power"]
+    sentence = chapters.forming_actions.replication_power_sentence(study, stored,
+                                                                  simulations=100)
+    weak = [n for n, o in stored["verdicts"].items() if o["power"] < 0.9]
+    assert ("weak evidence" in sentence) == bool(weak)
+
+
+def test_the_numbers_beside_the_verdicts_are_the_held_out_seeds(study):
+    # Issue 44: the shares quoted beside held-out verdicts were 80-seed means. The
+    # chapter quotes summary(roots=VERDICT_ROOTS), which differs from the pooled one.
+    held = chapters.forming_actions.summary(study, remedies_study.VERDICT_ROOTS)
+    pooled = chapters.forming_actions.summary(study)
+    assert held["growing up"]["n_seeds"] == 2 * study["n_seeds"]
+    assert held["growing up"]["all_pressed_share"] != pooled["growing up"][
+        "all_pressed_share"]
+    sentence = chapters.forming_actions.shown_sooner_sentence(
+        study, remedies_study.VERDICT_ROOTS)
+    assert sentence.endswith(f"medians over the {2 * study['n_seeds']} held-out seeds, "
+                             f"not tested)")
+    assert chapters.forming_actions.seeds_words(study) == f"all {4 * study['n_seeds']} seeds"
+
+
+def test_red_first_is_claimed_as_its_intervals_lower_bound(study):
+    # Issue 44: "mastered red first in 100% of the study's seeds" (40 seeds) where the
+    # chapter's own 80 give 97.5%. The claim is the Wilson interval's lower bound.
+    found = chapters.forming_actions.red_first_share(study)
+    assert found["n"] == 4 * study["n_seeds"]
+    assert found["low"] < found["share"] <= found["high"] <= 1
+    assert found["low"] < 1  # never "every seed"
+    assert (found["low"], found["high"]) == stats.share_interval(found["k"], found["n"])
 
 
 # --- the teacher's test error, split ----------------------------------------------------------

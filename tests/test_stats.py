@@ -117,3 +117,40 @@ def test_paired_gaps_keep_the_seeds_where_both_events_happened():
         stats.paired_gaps(np.array([1, 2]), np.array([1, 2, 3]))
     with pytest.raises(ValueError, match="baseline must be one-dimensional"):
         stats.paired_gaps(np.array([1, 2]), np.array([[1, 2]]))
+
+
+def test_paired_power_is_the_exact_tests_on_known_cases():
+    from math import comb
+
+    from icm.stats import paired_power, seeds_for_power
+    # Equal positive differences: the exact one-sided test cannot go below 1/16 on 4
+    # seeds, so it never rejects at 5% (a t approximation on the standardised effect
+    # would say near 1), and always does on 5 (1/32).
+    assert paired_power([1.0, 1.0, 1.0], 4, "greater") == 0.0
+    assert paired_power([1.0, 1.0, 1.0], 5, "greater") == 1.0
+    assert seeds_for_power([1.0, 1.0], "greater") == 5
+    # Differences of +1 and -1, three in four positive: on 8 seeds the test rejects
+    # when 7 or 8 are positive (P(>= 7 of 8 | fair) = 9/256 < 5%, P(>= 6) = 37/256),
+    # so the power is P(Binomial(8, 3/4) >= 7) = 0.367.
+    exact = sum(comb(8, k) * 0.75 ** k * 0.25 ** (8 - k) for k in (7, 8))
+    simulated = paired_power([1.0, 1.0, 1.0, -1.0], 8, "greater", simulations=4000)
+    assert abs(simulated - exact) < 3 * (exact * (1 - exact) / 4000) ** 0.5
+    # The other direction, and ties (zeros flip to themselves): power falls with them.
+    assert paired_power([-1.0, -1.0, -1.0, 1.0], 8, "less", simulations=4000) == simulated
+    assert paired_power([1.0, 0.0, 1.0, 0.0], 8, "greater") < paired_power(
+        [1.0, 1.0, 1.0, 1.0], 8, "greater")
+    # Same arguments, same power; more seeds, more power.
+    differences = np.random.default_rng(3).normal(0.5, 1.0, 30)
+    power = lambda n: paired_power(differences, n, "greater", simulations=200)
+    assert power(10) == power(10) and power(16) > power(6)
+    assert seeds_for_power([1.0, -1.0], "greater", simulations=100, most=12) is None
+
+
+def test_paired_power_refuses_bad_input():
+    from icm.stats import paired_power
+    with pytest.raises(ValueError, match="n_seeds"):
+        paired_power([1.0], 0, "less")
+    with pytest.raises(ValueError, match="alternative"):
+        paired_power([1.0], 5, "two-sided")
+    with pytest.raises(ValueError, match="differences"):
+        paired_power([], 5, "less")

@@ -153,7 +153,8 @@ def test_every_registered_study_runs_tiny(tmp_path):
     sizes = {"remedies": {"seeds": 4, "rollouts": 12, "trials": 3, "reach_movements": 5},
              "goal-babbling": {"seeds": 2, "rollouts": 12, "trials": 3},
              "robustness": {"seeds": 2, "length": 3},
-             "curiosity": {"seeds": 2, "trials": 3, "episodes": 3}}
+             "curiosity": {"seeds": 2, "trials": 3, "episodes": 3},
+             "remedies-replication": {"seeds": 1, "rollouts": 12, "trials": 3}}
     assert set(sizes) == set(studies.STUDIES)
     for name, size in sizes.items():
         data = studies.run_study(name, tmp_path / f"{name}.json", backend="joblib",
@@ -169,6 +170,12 @@ def test_every_registered_study_runs_tiny(tmp_path):
     batched = remedies_study.run_condition("growing up", 300, n_seeds=1, n_rollouts=12,
                                            n_trials=3)
     assert remedies["runs"]["growing up"]["300"] == json.loads(json.dumps(batched))
+    # The replication runs' file is the one remedies_study.load_fresh_runs reads.
+    fresh = json.loads((tmp_path / "remedies-replication.json").read_text())
+    assert fresh["root"] == 9001 and fresh["n_seeds"] == 1
+    assert list(fresh["runs"]) == list(remedies_study.CLAIMED)
+    assert fresh["runs"]["growing up"] == [json.loads(json.dumps(
+        remedies_study.run_condition("growing up", 9001, 1, n_rollouts=12, n_trials=3)))]
     babbling = json.loads((tmp_path / "goal-babbling.json").read_text())
     assert babbling["n_rollouts"] == 12 and babbling["n_trials"] == 3
     assert list(babbling["runs"]["learning progress"]) == ["100", "200", "300", "400"]

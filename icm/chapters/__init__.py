@@ -2,8 +2,8 @@
 numbers: its claims in words, their checks, its Markdown tables and the numbers its
 text glues, computed from the results `icm.experiments` returns."""
 
-from icm.chapters import (actor_critic, curiosity, forming_actions, goal_oriented_interest,
+from icm.chapters import (actor_critic, button_experiment, curiosity, forming_actions, goal_oriented_interest,
                           robustness, rod_toppling, simulated_icub)
 
-__all__ = ["actor_critic", "curiosity", "forming_actions", "goal_oriented_interest",
-           "robustness", "rod_toppling", "simulated_icub"]
+__all__ = ["actor_critic", "button_experiment", "curiosity", "forming_actions",
+           "goal_oriented_interest", "robustness", "rod_toppling", "simulated_icub"]

@@ -10,3 +10,71 @@ CLAIMS = {
                                          "the red button was first pressed",
 }
 """The claims about Figure 6 that the book states in words (`ActorCriticResult.claims`)."""
+
+
+def red_from_first_press(result):
+    """How the learner of `result` (an `ActorCriticResult`, e.g. paid for green) learns
+    red: among the seeds whose red error reaches zero for good, in how many it does so
+    from the first trial in which a press opened the red box, with that share's 95%
+    Wilson interval; how many of those trials held a single such press; the median of
+    that trial; and the learner's mean probability of pressing green then and at the
+    end. A dict {"learned", "n_seeds", "from_first", "share", "low", "high", "single",
+    "first_median", "green_probability_then", "green_probability_end"}."""
+    import numpy as np
+
+    from icm.experiments.actor_critic import ActorCriticResult
+    from icm.stats import share_interval
+    from icm import _validate
+
+    _validate.instance("result", result, ActorCriticResult)
+    zero = result.zero_trial[:, 0]
+    red_presses = result.practice[:, :, 0]  # presses that opened the red box, per trial
+    pressed = red_presses > 0
+    first = np.where(pressed.any(axis=1), np.argmax(pressed, axis=1) + 1, -1)
+    learned = zero >= 1
+    if not learned.any():
+        raise ValueError("result: no seed learns red, so nothing to count")
+    from_first = learned & (zero == first)
+    k, n = int(from_first.sum()), int(learned.sum())
+    low, high = share_interval(k, n)
+    seeds = np.flatnonzero(from_first)
+    green = result.press_probability[:, :, 1]
+    return {"learned": n, "n_seeds": result.n_seeds, "from_first": k, "share": k / n,
+            "low": low, "high": high,
+            "single": int((red_presses[seeds, first[seeds] - 1] == 1).sum()),
+            "first_median": float(np.median(first[learned])),
+            "green_probability_then": float(green[seeds, first[seeds] - 1].mean()),
+            "green_probability_end": float(green[:, -1].mean())}
+
+
+PAID_CLAIMS = {
+    "red_from_first_red_press": "paid for green, the learner's red error is zero for good "
+                                "from the first trial with a press that opened the red box, "
+                                "in at least 90% of the seeds that learn red (the lower end "
+                                "of the share's 95% interval)",
+    "red_press_early": "that trial comes early: its median is within the first 10 trials, "
+                       "while the learner still presses green less often than at the end",
+}
+"""What the chapter says of how the learner paid for green learns red (checked on the
+book's run by `paid_claims`, and by the tests on their own seeds)."""
+
+
+def paid_claims(result):
+    """{claim name: whether it holds} for each of `PAID_CLAIMS`, on `result` (the
+    learner paid for green)."""
+    found = red_from_first_press(result)
+    return {"red_from_first_red_press": found["low"] >= 0.9,
+            "red_press_early": found["first_median"] <= 10
+            and found["green_probability_then"] < found["green_probability_end"]}
+
+
+STRONG_WORDS = {
+    "one press of the red button teaches the predictor what it does in every layout":
+        ("tests/test_learners.py::test_action_weight_decides_whether_red_generalises_"
+         "across_layouts", "rule"),
+    "(an action is a button's place: red's never changes)": (
+        "tests/test_envs.py::test_red_never_moves_and_green_is_never_on_red", "rule"),
+}
+"""The chapter's sentences with a word of strength beside a result, and the checks that
+carry them (book/_ext/claim_words.py): {a fragment of the sentence: (claim name, or the
+test that checks a rule of the code, kind)}."""

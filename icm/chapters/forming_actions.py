@@ -8,13 +8,14 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import buttons
-from icm.experiments import goal_babbling, replication
-from icm.experiments.remedies_study import (REMEDY_KEYS, TEACHING, chapter_verdicts,
+from icm.experiments import goal_babbling, remedies_study, replication
+from icm.experiments.remedies_study import (REMEDY_KEYS, TEACHING, VERDICT_ROOTS,
+                                            chapter_verdicts,
                                             check_study, comparisons, load_study,
                                             load_test_error_split, pooled, seed_values,
                                             shown_buttons)
 from icm.experiments.results import percent
-from icm.stats import PANEL_RESAMPLES, at_bound, bootstrap_band
+from icm.stats import PANEL_RESAMPLES, at_bound, bootstrap_band, share_interval
 
 
 def summary(study=None, roots=None):
@@ -128,18 +129,36 @@ def _bounds(label, measure):
     return None
 
 
-def verdict_words(mean, clear, lower_is_better=False, bound=None, replicated=None):
+def replication_words(replication):
+    """The words of a replication beside its verdict: "replicated on 40 fresh seeds
+    (power 97%)", or "not replicated on 40 fresh seeds, which detect an effect of this
+    size 93% of the time", from a stored replication (`replication.replicated` with
+    "n_seeds" and "power", as `remedies_study.run_replications` keeps it). A
+    replication kept without its power says only its seeds."""
+    n, power = replication["n_seeds"], replication.get("power")
+    # A simulated power of 1 is an estimate, not a certainty.
+    shown = None if power is None else ("over 99%" if power > 0.99 else percent(power))
+    if replication["replicated"]:
+        return (f"replicated on {n} fresh seeds"
+                + ("" if power is None else f" (power {shown})"))
+    return (f"not replicated on {n} fresh seeds"
+            + ("" if power is None else f", which detect an effect of this size "
+                                        f"{shown} of the time"))
+
+
+def verdict_words(mean, clear, lower_is_better=False, bound=None, replication=None):
     """The words of one verdict: `VERDICTS`' words for a clear or unclear difference of
     mean `mean`; then, when an arm sits at a bound (`bound`, e.g. "learning progress
-    at the ceiling"), that in brackets; and ", not replicated on a fresh root" for a
-    clear verdict whose replication (`replicated` False) did not hold it."""
+    at the ceiling"), that in brackets; and, for a clear verdict with a stored
+    replication (`replication`: {"replicated", "n_seeds", "power"}), whether it
+    replicated, on how many seeds and with what power (`replication_words`)."""
     if clear and mean != 0:
         verdict = "better" if (mean < 0) == lower_is_better else "worse"
     else:
         verdict = "no different"
     words = VERDICTS[verdict] + (f" ({bound})" if bound else "")
-    if verdict != "no different" and replicated is False:
-        words += ", not replicated on a fresh root"
+    if verdict != "no different" and replication is not None:
+        words += ", " + replication_words(replication)
     return words
 
 
@@ -150,9 +169,9 @@ def verdicts(study=None, babbling=None, replications=None):
     with its 95% bootstrap band ("{key}_{measure}", "..._low", "..._high"), its raw
     and Holm-corrected p-values ("..._p", "..._p_holm", `chapter_verdicts`) and the
     words of `verdict_words` ("..._verdict"): clear only when Holm says so, the arm at
-    the ceiling or floor named, and "not replicated" where the stored replication
-    (`replications`, default `replication.load_replications()`) did not hold a clear
-    verdict. Also "n_family" (the comparisons corrected together) and "n_verdict_seeds".
+    the ceiling or floor named, and whether the stored replication (`replications`,
+    default `replication.load_replications()`) held a clear verdict, with its seeds
+    and power. Also "n_family" (the comparisons corrected together) and "n_verdict_seeds".
     A dict {name: value}."""
     study = load_study() if study is None else check_study(study)
     corrected = chapter_verdicts(study, babbling)
@@ -173,9 +192,10 @@ def verdicts(study=None, babbling=None, replications=None):
             at = {who: at_bound(values, *bounds) for who, values in
                   (("learning progress", c["baseline"]), (c["label"], c["arm"]))}
             bound = "; ".join(f"{who} at the {where}" for who, where in at.items() if where)
+        kept = stored.get(name)
         out[f"{name}_verdict"] = verdict_words(
             float(mean[0]), corrected[name]["clear"], c["measure"] == "test_error", bound,
-            stored.get(name, {}).get("replicated"))
+            None if kept is None else {"n_seeds": replications["n_seeds"], **kept})
         out["n_verdict_seeds"] = len(differences)
     return out
 
@@ -216,12 +236,13 @@ def teacher_test_error_table(split=None):
     return "\n".join(lines)
 
 
-def first_press_comparison(study, label, baseline="learning progress"):
+def first_press_comparison(study, label, baseline="learning progress", roots=None):
     """A sentence comparing, button by button, when the robot first pressed each button
-    itself in condition `label` and in `baseline` (medians over every seed of the
-    study, as in `summary`), e.g. "button 0 at rollout 132 (153 with learning
-    progress alone), ...". The buttons the teacher shows in `label` are left out."""
-    rows = summary(study)
+    itself in condition `label` and in `baseline` (medians over the seeds of `roots`,
+    default every seed of the study, as in `summary`), e.g. "button 0 at rollout 132
+    (153 with learning progress alone), ...". The buttons the teacher shows in `label`
+    are left out."""
+    rows = summary(study, roots)
     label = _validate.one_of("label", label, tuple(rows))
     baseline = _validate.one_of("baseline", baseline, tuple(rows))
     shown = shown_buttons(label)
@@ -245,18 +266,106 @@ def shown_first_presses(study=None, baseline="learning progress", roots=None):
             for label in TEACHING if label in rows for b in shown_buttons(label)]
 
 
+def seeds_words(study=None, roots=None):
+    """Which seeds a number is over, in words: "all 80 seeds" (`roots` None), "the 40
+    held-out seeds" (`VERDICT_ROOTS`), or "the 40 seeds of roots 100, 200"."""
+    study = load_study() if study is None else check_study(study)
+    label = next(iter(study["runs"]))
+    n = len(pooled(study, label, roots)["test_error"])
+    if roots is None:
+        return f"all {n} seeds"
+    if [str(r) for r in roots] == [str(r) for r in VERDICT_ROOTS]:
+        return f"the {n} held-out seeds"
+    return f"the {n} seeds of roots {', '.join(map(str, roots))}"
+
+
 def shown_sooner_sentence(study=None, roots=None):
     """A sentence saying whether, with a teacher, the robot first pressed each shown
-    button itself sooner than learning progress alone (`shown_first_presses`): "sooner
-    in every case", or the cases where it was not."""
+    button itself sooner than learning progress alone (`shown_first_presses`, medians
+    over the seeds of `roots`, default all, which the sentence names): "sooner ... in
+    all 8 cases", or the cases where it was not. A comparison of medians, not tested:
+    the sentence says so."""
     cases = shown_first_presses(study, roots=roots)
     never = float("inf")
     late = [c for c in cases if (never if c["median"] is None else c["median"])
             >= (never if c["baseline"] is None else c["baseline"])]
+    seeds = "medians over " + seeds_words(study, roots)
     if not late:
         return (f"sooner than learning progress alone in all {len(cases)} cases (each "
-                f"button shown, in each condition with a teacher)")
+                f"button shown, in each condition with a teacher; {seeds}, not tested)")
     word = lambda m: "never" if m is None else f"at rollout {m:.0f}"
     return ("not sooner in " + "; ".join(
         f"{c['label']}, button {c['button']} ({word(c['median'])}, against "
-        f"{word(c['baseline'])})" for c in late) + f", of {len(cases)} cases")
+        f"{word(c['baseline'])})" for c in late) + f", of {len(cases)} cases ({seeds})")
+
+
+def red_first_share(study=None, label="learning progress"):
+    """In how many of condition `label`'s seeds (every root of the study, default
+    `load_study()`) the paper's learner, run on the presses the robot formed, mastered
+    red first, with the share's 95% Wilson interval: {"k", "n", "share", "low",
+    "high"}. A share of seeds is a sample: what it says of the learner is its
+    interval's lower bound ("in at least 91% of seeds"), not the sample's share."""
+    study = load_study() if study is None else check_study(study)
+    red_first = pooled(study, label)["red_first"]
+    k, n = int(red_first.sum()), len(red_first)
+    low, high = share_interval(k, n)
+    return {"k": k, "n": n, "share": k / n, "low": low, "high": high}
+
+
+MEASURE_WORDS = {"all_pressed": "all five presses formed",
+                 "others_formed": "presses formed of the buttons not shown",
+                 "others_pressed_early": "buttons pressed early",
+                 "test_error": "test error"}
+"""The measures of `remedies_study.PAIRED_MEASURES` in the words of a sentence."""
+
+
+def replication_power_sentence(study=None, replications=None, simulations=500):
+    """A sentence on the power of the stored replications (`replications`, default the
+    chapter's entry of `replication.load_replications()`, each with its "power"): the
+    lowest when every one reaches 0.9; otherwise which fall short, by how much, that
+    their "not replicated" is weak evidence, and what a rerun at
+    `remedies_study.POWERED_SEEDS` seeds would give (`replication_power` with
+    `simulations`) and cost (`remedies_study.unit_cpu_seconds` a run)."""
+    study = load_study() if study is None else check_study(study)
+    if replications is None:
+        replications = replication.load_replications()["forming_actions"]
+    n, stored = replications["n_seeds"], replications["verdicts"]
+    powers = {name: r["power"] for name, r in stored.items()}
+    weak = sorted((name for name, p in powers.items() if p < 0.9), key=powers.get)
+    if not weak:
+        return (f"with {n} seeds, the lowest power of these replications is "
+                f"{percent(min(powers.values()))}")
+    found = comparisons(study)
+    named = [f"{found[w]['label']} ({MEASURE_WORDS[found[w]['measure']]})" for w in weak]
+    named = ", ".join(named[:-1]) + " and " + named[-1] if len(named) > 1 else named[0]
+    strong = [p for name, p in powers.items() if name not in weak]
+    target = remedies_study.POWERED_SEEDS
+    forecast = [remedies_study.replication_power(w, study, target, simulations)
+                for w in weak]
+    runs = target * len(remedies_study.CLAIMED)
+    cpu = runs * remedies_study.unit_cpu_seconds()
+    return ((f"with {n} seeds, the other verdicts have a power of at least "
+             f"{percent(min(strong))}, but " if strong else f"with {n} seeds, ")
+            + f"{named} only {percent(powers[weak[0]])} to {percent(powers[weak[-1]])}: "
+            f"their \"not replicated\" is weak evidence against them, not evidence that "
+            f"they are absent. {target} seeds of each condition would give them a power of "
+            f"{percent(min(forecast))} or more, for about {cpu:,.0f} CPU-seconds ({runs} "
+            f"runs of one seed; `python -m icm study remedies-replication --seeds "
+            f"{target}`); that rerun is not in this edition of the book")
+
+
+STRONG_WORDS = {
+    "we call a difference clear only when it survives Holm's correction":
+        ("clear_is_holm", "corrected"),
+    "Each clear verdict was rerun on a root seed no study uses":
+        ("clear_is_holm", "corrected"),
+    "cm), and not only because the": ("shown1_lower_without_demonstrations", "causal"),
+    "{glue:text}`rem_shown_sooner`":
+        ("shown_sooner_held_out", "all", "cases: each shown button in each condition "
+                                          "with a teacher, medians of the held-out seeds"),
+}
+"""The chapter's sentences with a word of strength beside a result, and the checks that
+carry them (book/_ext/claim_words.py): {a fragment of the sentence: (claim name the
+chapter checks when built, kind[, the set an "all" claim is over])}. The shown buttons'
+"in all 8 cases" (a glued phrase) is over the 8 cases, each a comparison of medians of
+the held-out seeds, which the sentence says."""

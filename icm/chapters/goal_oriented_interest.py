@@ -10,3 +10,54 @@ CLAIMS = {
     "green_stays_longer": "the interest in green is spent later than the interest in red",
 }
 """The claims of the paper about Figure 5 that the book states (`claims`)."""
+
+_LEARNERS = "tests/test_learners.py::"
+_GOAL = "tests/test_goal_oriented.py::"
+
+STRONG_WORDS = {
+    "a task is most interesting just after the robot starts getting it right": (
+        _LEARNERS + "test_progress_after_one_surprise_then_correct_predictions", "rule"),
+    "Green, the most interesting task, is expected from button": (
+        _LEARNERS + "test_greedy_agent_presses_the_button_whose_predicted_task_is_most_"
+                    "interesting", "rule"),
+    "The unlit ones were never pressed, so every press the predictor remembers": (
+        _LEARNERS + "test_ties_go_to_the_most_recent_experience", "rule"),
+    "buttons then aim at red, the most interesting task": (
+        _LEARNERS + "test_ties_are_broken_at_random_and_epsilon_one_is_uniform", "rule"),
+    "confidence band around every mean": (
+        "tests/test_stats.py::test_the_bootstrap_band_is_95_percent_by_default",
+        "rule"),
+    "presses (every button, every layout) and stays right": (
+        "tests/test_experiments.py::test_mastery_trial_is_where_the_error_reaches_zero_"
+        "for_good", "rule"),
+    "Each sentence in bold is tested on this run whenever the page is built": (
+        "red_first_mostly", "majority"),
+    "\"no green\" for every unlit button included": (
+        "tests/test_experiments.py::test_mastery_trial_is_where_the_error_reaches_zero_"
+        "for_good", "rule"),
+    "which records every press of the run above": (
+        _LEARNERS + "test_agent_turns_predictions_into_tasks_and_scores_errors", "rule"),
+    "one red press teaches \"button": (
+        _LEARNERS + "test_action_weight_decides_whether_red_generalises_across_layouts",
+        "rule"),
+    "read as printed, it opens red at most": (
+        "tests/test_experiments.py::test_read_as_printed_green_is_mastered_sooner_and_"
+        "red_practised_less", "rule"),
+    "the buttons mostly tie at zero": (
+        "tests/test_experiments.py::test_the_literal_reading_has_almost_no_interest_in_red",
+        "rule"),
+    "of equally near presses, the predictor takes the most recent": (
+        _LEARNERS + "test_ties_go_to_the_most_recent_experience", "rule"),
+    "most of all just after the first right guesses": (
+        _LEARNERS + "test_progress_after_one_surprise_then_correct_predictions", "rule"),
+    "but opens red at most": (
+        "tests/test_experiments.py::test_read_as_printed_green_is_mastered_sooner_and_"
+        "red_practised_less", "rule"),
+    "Red is easy because the predictor looks for the same button first": (
+        "plain_red_first_less", "causal"),
+}
+"""The chapter's sentences with a word of strength beside a result, and the checks that
+carry them (book/_ext/claim_words.py): {a fragment of the sentence: (a claim the
+chapter checks when built, or the test that checks a rule of the code, kind)}. "Red is
+easy because ..." is causal: the chapter removes the cause (a plain Hamming distance)
+and checks that red's lead goes with it."""

@@ -75,3 +75,50 @@ INITIAL_Q_CLAIMS = {
 }
 """The claims about the value of an untried move that the book states in words
 (`initial_q_claims`)."""
+
+
+_RODS = "tests/test_rod_toppling.py::"
+
+STRONG_WORDS = {
+    "guesses, for every (cell, move), whether each rod will fall": (
+        _RODS + "test_linear_predictor_table_holds_every_prediction", "rule"),
+    "**the value of a move never tried**": (
+        _RODS + "test_the_value_of_untried_moves_decides_the_story", "rule"),
+    "found in the run's data rather than picked by hand": (
+        _RODS + "test_moments_are_found_from_the_data", "rule"),
+    "Not every run tells the paper's story": (
+        _RODS + "test_the_run_figure7_shows_is_chosen_by_a_rule_and_described_in_its_order",
+        "rule"),
+    "every topple's error is a factor": (_RODS + "test_linear_predictor_update_by_hand",
+                                         "rule"),
+    "The seeds move almost in step at first": (
+        _RODS + "test_linear_predictor_update_by_hand", "rule"),
+    "on every pair it has toppled the rod from so far": (
+        _RODS + "test_predicted_well_is_where_the_rod_error_falls_below_a_tenth_for_good",
+        "rule"),
+    "Read strictly, on every pair that topples the rod": (
+        _RODS + "test_issue_claim_red_is_predicted_well_on_every_pair_before_blue", "rule"),
+    "on *every* pair that topples the rod in the map": (
+        _RODS + "test_predicted_well_is_where_the_rod_error_falls_below_a_tenth_for_good",
+        "rule"),
+    "since every pair must first be found": (
+        _RODS + "test_issue_claim_red_is_predicted_well_on_every_pair_before_blue", "rule"),
+    "The robot tries every move early": (
+        _RODS + "test_the_value_of_untried_moves_decides_the_story", "rule"),
+    "**They end exactly as on the tabular twin**": (
+        _RODS + "test_the_physics_run_makes_the_same_episodes_as_the_tabular_twin",
+        "exact"),
+    "with every topple of the same pair": (_RODS + "test_linear_predictor_update_by_hand",
+                                           "rule"),
+    "or every pair ({glue:text}`red_first:.0%`)": (
+        _RODS + "test_issue_claim_red_is_predicted_well_on_every_pair_before_blue", "rule"),
+    "the same seed ends every episode as on the tabular twin": (
+        _RODS + "test_the_physics_run_makes_the_same_episodes_as_the_tabular_twin",
+        "rule"),
+    "(the strict reading, `all`: every pair that topples it)": (
+        _RODS + "test_predicted_well_is_where_the_rod_error_falls_below_a_tenth_for_good",
+        "rule"),
+}
+"""The chapter's sentences with a word of strength beside a result, and the checks that
+carry them (book/_ext/claim_words.py): {a fragment of the sentence: (a claim the
+chapter checks when built, or the test that checks a rule of the code, kind)}."""

@@ -21,7 +21,7 @@ from icm import _validate
 from icm.envs import buttons
 from icm.envs._assets import ASSETS, asset_path
 from icm.experiments import goal_babbling, goal_babbling_study, replication
-from icm.stats import corrected_verdicts
+from icm.stats import POWER_SIMULATIONS, corrected_verdicts, paired_power
 
 STUDY_FILE = "remedies_study.json"
 """The file in assets/ that holds the study."""
@@ -320,19 +320,45 @@ def chapter_verdicts(study=None, babbling=None):
 
 
 REPLICATION_SEEDS = 8
-"""Seeds of a replication (`replicate`): the clear verdicts of the study are the
-teacher's lower test errors, -0.35, -0.49 and -0.54 cm on the held-out seeds with
-per-seed spreads (standard deviations) of about 0.31, 0.31 and 0.30 cm, standardised
-effects of 1.1 to 1.8. With 8 seeds, a one-sided paired test at 5% detects the
-smallest of them with a probability of about 0.93 (Student's t approximation: a
-noncentrality of 1.15 * sqrt(8) = 3.25 against a critical value of 1.89), the others
-above 0.99; each replication runs 16 seed-runs, about 90 CPU-seconds. At 80 seeds per
-condition, growing up's two clear verdicts (test error -0.20 cm, standardised 0.72;
-others pressed early -0.83, standardised 0.57, on the 40 held-out seeds) are smaller:
-8 seeds detect them with a probability of only about 0.55 and 0.40 (noncentralities
-2.0 and 1.6), and 17 and 27 seeds would be needed for 0.9. Their "not replicated"
-(assets/replications.json) is therefore weak evidence against them; a replication at
-27 seeds costs about 6 CPU-minutes per verdict, more than the test suite can afford."""
+"""Seeds of a replication (`replicate`) as assets/replications.json and `FRESH_FILE`
+keep it, per condition, on the fresh root. Its power under the effect the held-out
+seeds measured (`replication_power`: the one-sided sign-flip test the replication
+uses, on differences drawn from the measured ones, ties kept) is about 0.97 to 1 for
+the teacher's lower test errors, but only about 0.55 and 0.33 for growing up's two
+verdicts (test error, buttons pressed early) and 0.04 for the early presses with the
+end buttons shown: with its many tied counts, 8 seeds can almost never reject. Those
+three did not replicate, which says little. `POWERED_SEEDS` is the size that reaches a
+power of 0.9 for every verdict."""
+POWERED_SEEDS = 40
+"""Seeds per condition at which every clear verdict's replication has a power of at
+least 0.9 (about 19, 30 and 34 are needed for the three weak ones of
+`REPLICATION_SEEDS`, `stats.seeds_for_power`): five conditions (`CLAIMED`), 200 runs
+of one seed, about 1,000 CPU-seconds (`python -m icm study remedies-replication --seeds
+40 --jobs 1 --out FILE`, `icm.experiments.studies`, which resumes from its journal;
+then copy FILE and its run log over `FRESH_FILE`, set `REPLICATION_SEEDS` to 40 and
+run `python -m icm.experiments.replication forming_actions`)."""
+
+
+def unit_cpu_seconds():
+    """The median CPU-seconds of one run of one seed of one condition, over the units
+    of the study's last run (`RUN_LOG`): what a replication's runs cost."""
+    runs = [json.loads(line) for line in asset_path(RUN_LOG).read_text().splitlines()
+            if line.strip()]
+    return float(np.median([c for c in runs[-1]["unit_cpu_seconds"] if c > 0]))
+
+
+def replication_power(name, study=None, n_seeds=REPLICATION_SEEDS, simulations=None):
+    """The power of a replication of comparison `name` (a key of `comparisons`) on
+    `n_seeds` fresh seeds, under the effect the held-out seeds measured
+    (`icm.stats.paired_power`, one-sided in the direction the study found;
+    `simulations` default `stats.POWER_SIMULATIONS`)."""
+    study = load_study() if study is None else check_study(study)
+    found = comparisons(study)
+    name = _validate.one_of("name", name, tuple(found))
+    differences = found[name]["arm"] - found[name]["baseline"]
+    direction = "less" if differences.mean() < 0 else "greater"
+    return paired_power(differences, n_seeds, direction,
+                        simulations=simulations or POWER_SIMULATIONS)
 
 
 CLAIMED = ("learning progress", "growing up") + TEACHING
@@ -367,6 +393,30 @@ def run_fresh_seeds(root=None, n_seeds=REPLICATION_SEEDS, n_jobs=-1):
     for (label, _), entry in zip(units, entries):
         runs[label].append(entry)
     return {"root": root, "n_seeds": n_seeds, "runs": runs}
+
+
+def replication_units(settings):
+    """The units of the study "remedies-replication" (`icm.experiments.studies`): one
+    seed of one condition of `CLAIMED` on the chapter's fresh root, [label, root, i, 1]
+    for i below settings["seeds"]."""
+    root = replication.REPLICATION_ROOTS["forming_actions"]
+    return [[label, root, i, 1] for label in CLAIMED for i in range(settings["seeds"])]
+
+
+def replication_unit(settings, unit):
+    """One unit of `replication_units`: `run_condition` of its seed."""
+    label, root, first, n = unit
+    return run_condition(label, root, n_seeds=n, first_run=first, threads=1,
+                         n_rollouts=settings["rollouts"], n_trials=settings["trials"])
+
+
+def assemble_replication(settings, units, results):
+    """The file `FRESH_FILE` from the units' results: {"root", "n_seeds", "runs":
+    {label: [entry of each seed, in order]}}."""
+    runs = {label: [r for u, r in sorted(zip(units, results), key=lambda p: p[0][2])
+                    if u[0] == label] for label in CLAIMED}
+    return {"root": replication.REPLICATION_ROOTS["forming_actions"],
+            "n_seeds": settings["seeds"], "runs": runs}
 
 
 def load_fresh_runs():
@@ -429,14 +479,18 @@ def replicate(names, study=None, root=None, n_seeds=REPLICATION_SEEDS, fresh=Non
 
 def run_replications(study=None, babbling=None, fresh=None):
     """The replications of every verdict `chapter_verdicts` calls clear among the
-    remedies' comparisons (`replicate`), as assets/replications.json keeps them:
-    {"root", "n_seeds", "verdicts": {name: ...}}, from the fresh runs `fresh` (default
+    remedies' comparisons (`replicate`), each with its power (`replication_power`,
+    "power"), as assets/replications.json keeps them: {"root", "n_seeds", "verdicts":
+    {name: ...}}, from the fresh runs `fresh` (default
     those `FRESH_FILE` keeps, `load_fresh_runs`)."""
     corrected = chapter_verdicts(study, babbling)
     clear = [name for name in comparisons(study) if corrected[name]["clear"]]
     fresh = load_fresh_runs() if fresh is None else fresh
+    outcomes = replicate(clear, study, fresh=fresh)
+    for name, outcome in outcomes.items():
+        outcome["power"] = replication_power(name, study)
     return {"root": replication.REPLICATION_ROOTS["forming_actions"],
-            "n_seeds": REPLICATION_SEEDS, "verdicts": replicate(clear, study, fresh=fresh)}
+            "n_seeds": REPLICATION_SEEDS, "verdicts": outcomes}
 
 
 TEST_ERROR_FILE = "remedies_test_error.json"

@@ -45,17 +45,19 @@ def main():
     """Runs every chapter's replications (or those of the chapters named as arguments,
     e.g. `python -m icm.experiments.replication curiosity`) and writes
     assets/replications.json, keeping the other chapters' entries. For "Forming
-    actions", first runs its fresh seeds and writes them
-    (`remedies_study.FRESH_FILE`), from which its replications are computed."""
+    actions", its replications are computed from its fresh seeds' runs
+    (`remedies_study.FRESH_FILE`, written by `python -m icm study
+    remedies-replication`), which it runs first only when that file is missing."""
     import sys
 
     from icm.experiments import curiosity, remedies_study
 
     def forming_actions():
-        fresh = remedies_study.run_fresh_seeds()
         path = ASSETS / remedies_study.FRESH_FILE
-        path.write_text(json.dumps(fresh, separators=(",", ":")) + "\n")
-        print(f"wrote {path}")
+        if not path.exists():
+            fresh = remedies_study.run_fresh_seeds()
+            path.write_text(json.dumps(fresh, separators=(",", ":")) + "\n")
+            print(f"wrote {path}")
         return remedies_study.run_replications()
 
     runs = {"forming_actions": forming_actions, "curiosity": curiosity.run_replications}

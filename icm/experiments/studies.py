@@ -330,6 +330,17 @@ register(Study(
     check=_remedies_check))
 
 register(Study(
+    name="remedies-replication",
+    description="the conditions the chapter 'Forming actions' claims about, on its fresh "
+                "root 9001, one seed a unit (icm.experiments.remedies_study.FRESH_FILE; "
+                "assets/remedies_fresh_runs.json)",
+    seeds=(remedies_study.POWERED_SEEDS, "per condition, on the fresh root 9001"),
+    options={"rollouts": (goal_babbling.DEFAULT_N_ROLLOUTS, 1, "rollouts per seed"),
+             "trials": FORMED_TRIALS},
+    units=remedies_study.replication_units, run_unit=remedies_study.replication_unit,
+    assemble=remedies_study.assemble_replication))
+
+register(Study(
     name="goal-babbling",
     description="the variants of the goal-babbling learner "
                 "(icm.experiments.goal_babbling_study; assets/goal_babbling_study.json)",
@@ -480,7 +491,7 @@ def command_of(name, settings):
 
 def seeds_of(name, settings):
     """What seeds a study's units use, in words."""
-    if name in ("remedies", "goal-babbling"):
+    if name in ("remedies", "goal-babbling", "remedies-replication"):
         return ("unit [label, root, first, n]: seeds first..first+n-1 of root seed "
                 "'root' (icm.experiments._seeding.run_seeds: child i of "
                 "numpy.random.SeedSequence(root)); the goal-oriented learner on the formed "
