@@ -192,7 +192,7 @@ def test_the_instructors_page_lists_every_exercise_with_its_time_and_the_objecti
                 assert f"{{exref}}`{label}`" in guide, label
     for heading in ("## What runs where", "## Course plans", "**Four weeks**",
                     "**Eight weeks**", "## Slides", "## The questions for a learning platform",
-                    "### On Gradescope", "otter grade"):
+                    "### On Gradescope", "icm.course grade", "--roster"):
         assert heading in page, heading
 
 
