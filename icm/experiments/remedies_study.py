@@ -319,7 +319,7 @@ def chapter_verdicts(study=None, babbling=None):
     return corrected_verdicts(chapter_family(study, babbling))
 
 
-REPLICATION_SEEDS = 8
+REPLICATION_SEEDS = 40
 """Seeds of a replication (`replicate`) as assets/replications.json and `FRESH_FILE`
 keep it, per condition, on the fresh root. Its power under the effect the held-out
 seeds measured (`replication_power`: the one-sided sign-flip test the replication
