@@ -729,3 +729,16 @@ def test_the_claims_about_all_points_hold_on_a_second_root():
                         "presses_not_needed", "rods_epsilon_up_to_default")
     assert {name: claims[name] for name in about_all_points} == dict.fromkeys(
         about_all_points, True)
+
+
+def test_a_map_cell_reads_100_only_when_every_seed_held(small):
+    from icm.figures.robustness import cell_percent
+    assert [cell_percent(s) for s in (1.0, 0.995, 0.97, 0.004, 0.0)] == [
+        "100", "99.5", "97", "0.4", "0"]
+    # The map writes each point's share so, and "100" only where every seed held.
+    fig = robustness_map(small)
+    texts = [t.get_text().split("\n")[0] for ax in fig.axes for t in ax.texts]
+    table = small.pair_table("red_first", ("action_weight", "presses_per_trial"))
+    for share in table["share"].ravel():
+        assert cell_percent(share) in texts
+        assert (cell_percent(share) == "100") == (share == 1)
