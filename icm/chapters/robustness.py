@@ -409,6 +409,7 @@ def chapter_numbers(goal, critic, rods_result):
     numbers.update(
         rods_q_lowest=min(held), rods_q_highest=max(held), rods_q_none=qs[0],
         rods_epsilon_default=epsilon.default, rods_epsilon_largest=epsilon.values[-1],
+        rods_epsilon_lowest=epsilon.values[0],
         rods_epsilon_largest_verdict=rods_result.verdict("red_first",
                                                          epsilon=epsilon.values[-1]),
         rods_blue_positive_q_min=float(rods_result.points().query("initial_q > 0")
