@@ -82,6 +82,7 @@ SLOW = ("tests/test_remedies.py::test_the_study_file_is_what_the_library_compute
         "tests/test_remedies_replication.py::test_the_kept_fresh_runs_are_what_the_library_computes",
         "tests/test_curiosity.py::test_every_clear_paired_verdict_of_the_chapter_is_replicated",
         "tests/test_robustness.py::test_the_replication_is_what_the_library_computes",
+        "tests/test_robustness.py::test_the_claims_about_all_points_hold_on_a_second_root",
         "tests/test_goal_babbling.py::test_the_study_file_is_what_the_library_computes",
         "tests/test_goal_babbling.py::test_the_claims_kept_runs_are_what_the_library_computes",
         "tests/test_goal_babbling_runs.py::test_the_chapters_runs_are_what_the_library_computes",

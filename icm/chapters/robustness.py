@@ -8,9 +8,101 @@ words (`CHAPTER_CLAIMS`, `BOLD_CLAIMS`) and their check on the book's maps
 
 from icm import _validate
 from icm.experiments.results import in_seeds
-from icm.experiments.robustness import (NOT_MEASURED, STUDIES, RobustnessResult, check_study,
-                                        show_value)
-from icm.experiments.robustness_readings import ReadingsResult
+from icm.experiments.robustness import (CLAIM_SHARE, NOT_MEASURED, STUDIES, RobustnessResult,
+                                        check_study, show_value)
+from icm.stats import share_interval
+from icm.experiments.robustness_readings import (ReadingsResult, fewest_moves_to_topple,
+                                                 value_after_a_quiet_move)
+
+
+MAP_SEEDS = {"goal_oriented": 200, "actor_critic": 1000, "rod_toppling": 200}
+"""Seeds at every point of each learner's map in the chapter "What the result depends
+on" (and in its replication, `run_replication`).
+
+The actor-critic's map has 1,000. The chapter says that red is predicted well first at
+every point of it, which holds only if each of its 28 points clears the 90% bar, and its
+shares there lie between about 94% and 99%. A true share of 95% clears the bar on 200
+seeds only about 70% of the time (`chance_to_hold`: 189 of the 200 must show it), so
+with 200 seeds some point came out unclear on one root in a few (2026-12-05, roots 0 to
+6 and 9003: one point unclear on root 9003, at 91.5%); with 1,000 seeds (919 needed)
+nearly always (the same eight roots at 1,000 seeds: every point held on each, the
+lowest share 94.4%, the lowest lower end of an interval 92.8%). Its map costs about
+6 CPU-seconds at 1,000 seeds. The other two maps keep 200 seeds, and their claims are
+worded at the strength 200 seeds give: the rods' "red toppled first" is said to fail at
+no point, not to hold at every point, since its weakest shares lie near 93% (2,000 seeds
+on root 77: 93.3% at the four points with an initial Q of 0), which 200 seeds clear
+about a quarter of the time (the same eight roots: unclear at 0 to 12 of its 20 points,
+failing at none)."""
+
+
+def seeds_needed(n_seeds, threshold=CLAIM_SHARE):
+    """The fewest of `n_seeds` seeds in which a claim must hold for it to *hold* at a
+    point: the whole 95% interval of its share at or above `threshold`
+    (`icm.stats.share_interval`); None if not even all of them do.
+
+    Args:
+      n_seeds: seeds at the point (integer >= 1).
+      threshold: the share the claim needs, in (0, 1).
+    """
+    n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
+    threshold = _validate.real("threshold", threshold, 0.0, 1.0, low_open=True,
+                               high_open=True)
+    for held in range(n_seeds + 1):
+        if share_interval(held, n_seeds)[0] >= threshold:
+            return held
+    return None
+
+
+def chance_to_hold(share, n_seeds, threshold=CLAIM_SHARE):
+    """The chance that a claim whose true share of seeds is `share` *holds* at a point
+    measured on `n_seeds` fresh seeds: that at least `seeds_needed(n_seeds, threshold)`
+    of them show it (a binomial tail, scipy.stats.binom).
+
+    Args:
+      share: the true share, in [0, 1].
+      n_seeds: seeds at the point (integer >= 1).
+      threshold: the share the claim needs, in (0, 1).
+    """
+    from scipy.stats import binom
+
+    share = _validate.real("share", share, 0.0, 1.0)
+    needed = seeds_needed(n_seeds, threshold)
+    if needed is None:
+        return 0.0
+    return float(binom.sf(needed - 1, n_seeds, share))
+
+
+FIRST_EPISODE_CLAIMS = {
+    "quiet_move_loses": "in the first episode, a tried move that toppled nothing is worth "
+                        "less than its starting value when that value is above zero, and "
+                        "still zero when it is zero",
+    "red_nearer": "the nearest red pair is fewer moves from the start than the nearest "
+                  "blue pair",
+}
+"""What the chapter says of the rods' first episode (`first_episode`)."""
+
+
+def first_episode(initial_q_values):
+    """What the chapter says of the rods' first episode, for the initial values of Q its
+    map sweeps: ({claim name of `FIRST_EPISODE_CLAIMS`: whether it holds}, numbers: the
+    value of a quiet move after one try at the book's initial Q, "quiet_move_before" and
+    "quiet_move_after", and the fewest moves that topple each rod, "red_moves" and
+    "blue_moves").
+
+    Args:
+      initial_q_values: the initial values of Q the map sweeps (a list of numbers >= 0).
+    """
+    if not isinstance(initial_q_values, (list, tuple)) or not initial_q_values:
+        raise _validate.ArgumentTypeError(f"initial_q_values must be a non-empty list of "
+                                          f"numbers, got {_validate.show(initial_q_values)}")
+    after = {q: value_after_a_quiet_move(q) for q in initial_q_values}
+    book = STUDIES["rod_toppling"].setting("initial_q").default
+    red, blue = fewest_moves_to_topple("red"), fewest_moves_to_topple("blue")
+    claims = {"quiet_move_loses": all((a < q) if q > 0 else (a == 0) for q, a in after.items()),
+              "red_nearer": red < blue}
+    numbers = {"quiet_move_before": book, "quiet_move_after": value_after_a_quiet_move(book),
+               "red_moves": red, "blue_moves": blue}
+    return claims, numbers
 
 
 def studies_table(studies=None):
@@ -148,6 +240,8 @@ CHAPTER_CLAIMS = {
                              "by their shares and verdicts, not as a claim)",
     "presses_not_needed": "red first and the interest's order hold at every number of "
                           "presses tried",
+    "rods_epsilon_up_to_default": "the Q-learner predicts red well first at each epsilon "
+                                  "from 0 to its default",
 }
 """The claims of the chapter "What the result depends on" about its maps
 (`chapter_claims`)."""
@@ -164,6 +258,18 @@ strength (book/_ext/claim_words.py), each with the claim of `CHAPTER_CLAIMS` tha
 checks it and the kind of that check: "all", every point's verdict "holds" (a claim
 that must hold at every point of a map is the conjunction of the points' own tests,
 which needs no correction for their number: it fails if any one fails)."""
+
+STRONG_WORDS = {
+    **{text: (name, kind, "points") for text, (name, kind) in BOLD_CLAIMS.items()},
+    "Red toppled first fails at no point of the map": ("rods_toppled_first_everywhere",
+                                                        "all", "points"),
+    "it holds at every point with an initial Q": ("rods_blue_needs_drive", "all", "points"),
+}
+"""The chapter's sentences that say a word of strength about its maps, in the form the
+reading of all prose takes (book/_ext/claim_words.py: {a fragment of the sentence: (claim
+name, kind, the set an "all" claim is over)}): each claim about all the points of a map
+is over the map's points (a finite set, each point decided by its own interval), never
+over seeds. `BOLD_CLAIMS` holds the bold ones in the older form."""
 
 
 def _every(result, claim, verdict_, **where):
@@ -240,6 +346,8 @@ def chapter_claims(goal, critic, rods_result):
         == "fails" and qs[0] == 0 and epsilons[0] == 0,
         "presses_not_needed": all(goal.verdict(c, presses_per_trial=p) == "holds"
                                   for c in ("red_first", "interest_later") for p in presses),
+        "rods_epsilon_up_to_default": epsilons[0] == 0 and all(
+            e in epsilon_held for e in epsilons if e <= default_epsilon),
     }
 
 
@@ -269,8 +377,8 @@ def chapter_numbers(goal, critic, rods_result):
         default_weight=weight.default, goal_lowest_weight=threshold,
         goal_highest_failing_weight=max(w for w in weight.values if w < threshold),
         goal_red_first_above_min=float(above.red_first.min()),
-        goal_later_progress_min=float(above.query("reading == 'progress'")
-                                      .interest_later.min()),
+        goal_later_progress_low=float(above.query("reading == 'progress'")
+                                      .interest_later_low.min()),
         lowest_weight=weight.values[0],
         goal_later_lowest_weight=goal.share("interest_later",
                                             action_weight=weight.values[0])[0],
@@ -286,6 +394,7 @@ def chapter_numbers(goal, critic, rods_result):
     weakest = critic.study.setting("action_weight").values[0]
     fewest = critic.study.setting("presses_per_trial").values[0]
     numbers.update(critic_weakest=weakest, critic_fewest=fewest)
+    clauses["critic_red_first_weakest"] = weakest_point(critic, "red_first")
     for name, point in (("printed", {"variant": "printed_td"}),
                         ("printed_weakest", {"variant": "printed_td", "action_weight": weakest}),
                         ("printed_fewest", {"variant": "printed_td",
@@ -300,6 +409,7 @@ def chapter_numbers(goal, critic, rods_result):
     numbers.update(
         rods_q_lowest=min(held), rods_q_highest=max(held), rods_q_none=qs[0],
         rods_epsilon_default=epsilon.default, rods_epsilon_largest=epsilon.values[-1],
+        rods_epsilon_lowest=epsilon.values[0],
         rods_epsilon_largest_verdict=rods_result.verdict("red_first",
                                                          epsilon=epsilon.values[-1]),
         rods_blue_positive_q_min=float(rods_result.points().query("initial_q > 0")
@@ -309,16 +419,42 @@ def chapter_numbers(goal, critic, rods_result):
         rods_red_first_by_epsilon=rods_result.shares_along("red_first", "epsilon"),
         rods_blue_q_none_by_epsilon=rods_result.shares_along("blue_found", "epsilon",
                                                              initial_q=qs[0]))
-    toppled = rods_result.points()["red_toppled_first_verdict"]
-    holds = int((toppled == "holds").sum())
-    clauses["rods_toppled_first_points"] = (
-        f"it holds at every one of the {len(toppled)} points" if holds == len(toppled) else
-        f"it holds at {holds} of the {len(toppled)} points and is unclear at the others")
-    # The fewest seeds, in words ("in every seed" rather than "in at least 100.0%").
-    for name in ("goal_red_first_above_min", "critic_red_first_min",
-                 "rods_red_toppled_first_min", "rods_blue_positive_q_min"):
-        clauses[name.replace("_min", "_in")] = in_seeds(numbers[name])
+    clauses["rods_toppled_first_points"] = verdict_counts(rods_result, "red_toppled_first")
+    lowest = rods_result.points().sort_values("red_toppled_first", kind="stable").iloc[0]
+    clauses["rods_toppled_first_weakest"] = (
+        f"{weakest_point(rods_result, 'red_toppled_first')}: {lowest.red_toppled_first:.1%} "
+        f"of the seeds ({lowest.red_toppled_first_low:.1%} to "
+        f"{lowest.red_toppled_first_high:.1%}; {lowest.red_toppled_first_verdict})")
+    # The fewest seeds at a set of points, in words: the lowest lower end of their 95%
+    # intervals ("in at least 97.2% of the seeds"), the share the data vouch for at each
+    # point (a sample's 100% is not "every seed").
+    points = {"goal": goal.points(), "critic": critic.points(),
+              "rods": rods_result.points()}
+    for name, table, claim in (
+            ("goal_red_first_above_in", points["goal"].query("action_weight >= @threshold"),
+             "red_first"),
+            ("critic_red_first_in", points["critic"], "red_first"),
+            ("rods_red_toppled_first_in", points["rods"], "red_toppled_first"),
+            ("rods_blue_positive_q_in", points["rods"].query("initial_q > 0"), "blue_found")):
+        clauses[name] = in_seeds(float(table[claim + "_low"].min()))
     return numbers, clauses
+
+
+def weakest_point(result, claim):
+    """In words, the point of a map where `claim` held in the fewest seeds, e.g.
+    "action_weight = 10, presses_per_trial = 1, variant = printed_td"."""
+    points = result.points()
+    lowest = points.loc[points[result.study.claim(claim).name].idxmin()]
+    return ", ".join(f"{s.name} = {show_value(lowest[s.name])}" for s in result.study.settings)
+
+
+def verdict_counts(result, claim):
+    """In words, at how many of a map's points `claim` holds, is unclear and fails, e.g.
+    "it holds at 14 of the 20 points, is unclear at 6 and fails at none"."""
+    verdicts = result.points()[result.study.claim(claim).name + "_verdict"]
+    counts = {v: int((verdicts == v).sum()) for v in ("holds", "unclear", "fails")}
+    return (f"it holds at {counts['holds']} of the {len(verdicts)} points, is unclear at "
+            f"{counts['unclear'] or 'none'} and fails at {counts['fails'] or 'none'}")
 
 
 def readings_numbers(found):
@@ -359,23 +495,24 @@ def readings_numbers(found):
     return numbers, clauses
 
 
-REPLICATION_SEEDS = 200
-"""Seeds at every point of the replication's maps: as many as the chapter's, so that
-each point's interval is as narrow as the one it replicates."""
-
-
-def run_replication(n_seeds=REPLICATION_SEEDS, progress=False):
+def run_replication(progress=False):
     """The chapter's claims (`chapter_claims`) rechecked on its three maps run again on a
     root seed that no study, chapter or other test uses
-    (`icm.experiments.replication.REPLICATION_ROOTS["robustness"]`), `n_seeds` at every
-    point: {"root", "n_seeds", "claims": {name: whether it held again}, "critic_lowest":
-    the actor-critic's lowest share of red predicted well first over its map, with its
-    interval, verdict and point} (the point behind the chapter's bold "every point"
-    claim of the actor-critic, the claim most exposed to one point's chance)."""
+    (`icm.experiments.replication.REPLICATION_ROOTS["robustness"]`), with as many seeds
+    at every point as the chapter's maps (`MAP_SEEDS`).
+
+    Returns:
+      {"root", "n_seeds": {study: seeds at every point}, "claims": {name: whether it
+      held again}, "critic_lowest": the actor-critic's lowest share of red predicted
+      well first over its map, with its interval, verdict and point (the point behind
+      the chapter's bold "every point" claim of the actor-critic), "rods_toppled_first":
+      {verdict: points} of "red toppled first" on the rods' map (the chapter says it
+      fails at no point, and how many points it holds at)}.
+    """
     from icm.experiments import replication, robustness
 
     root = replication.REPLICATION_ROOTS["robustness"]
-    maps = {name: robustness.run_robustness(name, n_seeds=n_seeds, seed=root,
+    maps = {name: robustness.run_robustness(name, n_seeds=MAP_SEEDS[name], seed=root,
                                             progress=progress)
             for name in ("goal_oriented", "actor_critic", "rod_toppling")}
     claims = chapter_claims(maps["goal_oriented"], maps["actor_critic"],
@@ -383,40 +520,51 @@ def run_replication(n_seeds=REPLICATION_SEEDS, progress=False):
     points = maps["actor_critic"].points()
     lowest = points.loc[points["red_first"].idxmin()]
     settings = [s.name for s in maps["actor_critic"].study.settings]
-    return {"root": root, "n_seeds": n_seeds,
+    toppled = maps["rod_toppling"].points()["red_toppled_first_verdict"]
+    return {"root": root, "n_seeds": dict(MAP_SEEDS),
             "claims": {name: bool(held) for name, held in claims.items()},
             "critic_lowest": {"share": float(lowest["red_first"]),
                               "low": float(lowest["red_first_low"]),
                               "high": float(lowest["red_first_high"]),
                               "verdict": str(lowest["red_first_verdict"]),
                               "point": {name: show_value(lowest[name])
-                                        for name in settings}}}
+                                        for name in settings}},
+            "rods_toppled_first": {v: int((toppled == v).sum())
+                                   for v in ("holds", "unclear", "fails")}}
 
 
 def replication_sentences(stored):
     """What the chapter says of its replication (`run_replication`, as
     assets/replications.json keeps it under "robustness"): {"summary": how many of the
     claims held again and which did not, "critic_everywhere": the sentence beside the
-    bold claim that red is predicted well first at every point}."""
+    bold claim that red is predicted well first at every point, "rods_toppled": how
+    many of the rods' points "red toppled first" held, was unclear or failed at}."""
     claims = stored["claims"]
     failed = [CHAPTER_CLAIMS[name] for name, held in claims.items() if not held]
-    summary = (f"On a fresh root seed ({stored['root']}, {stored['n_seeds']} seeds at "
-               f"every point), {len(claims) - len(failed)} of the {len(claims)} claims "
-               f"held again")
+    summary = (f"On a fresh root seed ({stored['root']}, with as many seeds at each point "
+               f"as here), {len(claims) - len(failed)} of the {len(claims)} claims held "
+               f"again")
     summary += (": all of them." if not failed else
                 "; not replicated: " + "; ".join(f'"{f}"' for f in failed) + ".")
     low = stored["critic_lowest"]
     where = ", ".join(f"{name} = {value}" for name, value in low["point"].items())
+    seeds = stored["n_seeds"]["actor_critic"]
     if claims["critic_red_everywhere"]:
-        critic = (f"On a fresh root seed it held again: red was predicted well first "
-                  f"in at least {low['share']:.1%} of the seeds, at {where}.")
+        critic = (f"On a fresh root seed ({stored['root']}, {seeds:,} seeds at each point) "
+                  f"it held again; its weakest point there was {where}, with red predicted "
+                  f"well first in {low['share']:.1%} of the seeds ({low['low']:.1%} to "
+                  f"{low['high']:.1%}).")
     else:
-        critic = (f"Not replicated on a fresh root seed: there, at {where}, red was "
-                  f"predicted well first in {low['share']:.1%} of the seeds "
-                  f"({low['low']:.1%} to {low['high']:.1%}; verdict: {low['verdict']}, "
-                  f"not holds). A claim about every point is as weak as its weakest "
-                  f"point.")
-    return {"summary": summary, "critic_everywhere": critic}
+        critic = (f"Not replicated on a fresh root seed ({stored['root']}, {seeds:,} seeds "
+                  f"at each point): there, at {where}, red was predicted well first in "
+                  f"{low['share']:.1%} of the seeds ({low['low']:.1%} to {low['high']:.1%}; "
+                  f"verdict: {low['verdict']}, not holds). A claim about all the points of "
+                  f"a map is as weak as its weakest point.")
+    counts = stored["rods_toppled_first"]
+    rods = (f"on the fresh root seed ({stored['root']}), it holds at {counts['holds']}, is "
+            f"unclear at {counts['unclear'] or 'none'} and fails at "
+            f"{counts['fails'] or 'none'}")
+    return {"summary": summary, "critic_everywhere": critic, "rods_toppled": rods}
 
 
 def main():

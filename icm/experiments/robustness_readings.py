@@ -2,17 +2,22 @@
 one at a time (`run_readings`): for each, every other reading its `Setting` declares
 (`icm._settings.Setting.other_readings`: an unpublished choice's other choices, or the
 other values it lists), run on the same seeds as the book's reading, with the same
-claims as the maps (`icm.experiments.robustness.STUDIES`), kept in a `ReadingsResult`.
+claims as the maps (`icm.experiments.robustness.STUDIES`), kept in a `ReadingsResult`; and what the rods' first episode is made of, which the
+chapter reads from the learner and the topple map (`fewest_moves_to_topple`,
+`value_after_a_quiet_move`).
 """
 
+import collections
 import dataclasses
 
 import numpy as np
 
 from icm import _validate
+from icm.envs import rods
 from icm.experiments._progress import progress_bar
 from icm.experiments.robustness import (NOT_MEASURED, STUDY_WORLDS, WORLD_SETTINGS, Study,
                                         check_study, show_value)
+from icm.learners.q_learning import QLearner, QLearnerSettings
 from icm.stats import share_interval, verdict
 
 
@@ -158,7 +163,7 @@ class ReadingsResult:
         n = len(self.readings)
         if not changed:
             return (f"None of the {n} other readings changes the verdict of a claim: "
-                    f"every claim holds, fails or stays unclear as with the book's")
+                    f"each claim holds, fails or stays unclear as with the book's")
         parts = []
         for r in changed:
             what = ", ".join(f"\"{self.study.claim(c).text}\" {self.verdict(c, r)} "
@@ -205,3 +210,47 @@ def run_readings(study, n_seeds=200, seed=0, progress=True):
         held[key] = {c.name: np.array([row[c.name] for row in rows], dtype=bool)
                      for c in study.claims}
     return ReadingsResult(study, {"n_seeds": n_seeds, "seed": seed}, found, runs, held)
+
+
+def fewest_moves_to_topple(rod):
+    """The fewest moves from the start cell that topple `rod` ("red" or "blue") on the
+    stored topple map: the moves through cells that topple nothing, then the move that
+    topples it (a breadth-first search)."""
+    rod = _validate.one_of("rod", rod, rods.ROD_NAMES)
+    topples = rods.load_topple_map()["topples"]
+    start = rods.DEFAULT_START_CELL
+    moves = {start: 0}
+    queue = collections.deque([start])
+    while queue:
+        cell = queue.popleft()
+        for action in range(len(rods.ACTIONS)):
+            toppled = topples.get((cell, action))
+            if toppled == rod:
+                return moves[cell] + 1
+            if toppled is None:
+                after = rods.next_cell(cell, action)
+                if after not in moves:
+                    moves[after] = moves[cell] + 1
+                    queue.append(after)
+    raise ValueError(f"no move of the stored topple map topples the {rod} rod")
+
+
+def value_after_a_quiet_move(initial_q):
+    """What the chapter's Q-learner values a move at after trying it once in its first
+    episode, when the move toppled nothing: the teaching class `QLearner` (the book's
+    settings, `initial_q` as given) moves right from the start cell with the rods
+    standing, and the move's Q is read back.
+
+    Args:
+      initial_q: the value of a move never tried (a finite number >= 0).
+    """
+    settings = QLearnerSettings().replace(initial_q=initial_q)
+    learner = QLearner.from_settings(rods.N_CELLS, len(rods.ACTIONS),
+                                     n_outputs=len(rods.ROD_NAMES), settings=settings,
+                                     seed=0)
+    start = rods.DEFAULT_START_CELL
+    right = rods.ACTIONS.index("right")
+    state, after = (rods.cell_number(c) for c in
+                    (start, rods.next_cell(start, right)))
+    learner.learn(state, right, [0.0] * len(rods.ROD_NAMES), after)
+    return float(learner.q[state, right])

@@ -7,6 +7,7 @@ import matplotlib.colors
 import matplotlib.patches
 import numpy as np
 
+from icm.experiments.results import percent
 from icm.experiments.robustness import RobustnessResult
 from icm.figures._common import Figure, check_result, check_title
 
@@ -20,6 +21,13 @@ COLUMNS = 2
 """Claims side by side at most (the rest go into further rows)."""
 
 
+def cell_percent(share):
+    """A cell's share in percent, without the sign: whole percents, with a decimal where
+    whole percents would show 100 or 0 for a share that is neither (199 seeds of 200:
+    "99.5", not "100", which a reader takes for every seed)."""
+    return percent(share).rstrip("%")
+
+
 def _label(value):
     return f"{value:g}" if isinstance(value, float) else str(value)
 
@@ -28,7 +36,7 @@ def robustness_map(result, title=None):
     """Draws, for every pair of a study's settings (rows) and every claim (columns),
     the share of seeds in which the claim held at each grid point.
 
-    Each cell shows the share in percent and a mark: ✓ where the claim holds (the whole
+    Each cell shows the share in percent (`cell_percent`) and a mark: ✓ where the claim holds (the whole
     95% interval of the share is at or above the claim's threshold), ✗ where it fails
     (all below), ? where the interval straddles the threshold. The colour is the
     share, white at the threshold. The outlined cell is the library's default.
@@ -120,7 +128,7 @@ def _draw_pair(ax, result, claim, pair, norm, y_label=True):
         ax.tick_params(labelleft=False)
     for (i, j), share in np.ndenumerate(table["share"]):
         strong = abs(norm(share) - 0.5) > 0.35
-        ax.text(j, i, f"{100 * share:.0f}\n{MARKS[table['verdict'][i, j]]}", ha="center",
+        ax.text(j, i, f"{cell_percent(share)}\n{MARKS[table['verdict'][i, j]]}", ha="center",
                 va="center", fontsize=10, linespacing=1.0,
                 color="white" if strong else "black")
     ja, ib = a.values.index(a.default), b.values.index(b.default)
