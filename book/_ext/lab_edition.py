@@ -1,8 +1,8 @@
 """Writes the notebooks `make lab` opens, and opens them in JupyterLab: each chapter
 as its page reads, with the book's numbers in its prose.
 
-    python book/_ext/lab_edition.py [--instructor] [--path-output DIR] [--write-only]
-                                    [JUPYTER_OPTION ...]
+    python book/_ext/lab_edition.py [--instructor] [--path-output DIR] [--folder DIR]
+                                    [--write-only] [JUPYTER_OPTION ...]
 
 `make lab` runs it for a student, `make lab-instructor` with `--instructor`. Why it
 is needed: a chapter's prose quotes its numbers through myst-nb's glue roles
@@ -85,7 +85,11 @@ QUIZ_EXPLANATION = "icm-quiz-explanation"
 """The class of a quiz's explanation (`{div} icm-quiz-explanation`), which the page's
 script shows once the reader has answered (book/_static/icm-quiz.js)."""
 QUIZ_DROPDOWN_TITLE = "Check your answer"
-ROLE = re.compile(r"\{(?P<name>glue(?::[a-z]+)?|doc|cite:[a-z]+)\}`(?P<content>[^`]*)`")
+ROLE = re.compile(r"\{(?P<name>[a-z][a-z0-9:_-]*)\}`(?P<content>[^`]*)`")
+RENDERED_AS_WRITTEN = ("math", "sub", "sup", "abbr", "kbd", "u", "del", "strike",
+                       "smallcaps")
+"""Roles jupyterlab-myst renders as the page does, left as they are (the others that
+this does not write for Jupyter stop it)."""
 DIRECTIVE = re.compile(
     r"^(?P<indent>[ \t]*)(?P<fence>`{3,}|:{3,})\{(?P<name>glue(?::[a-z]+)?|div)\}"
     r"[ \t]*(?P<argument>.*?)[ \t]*$")
@@ -126,10 +130,10 @@ def _text(data, content, where):
     """`{glue:text}`key:format``, as the page shows it (myst-nb's PasteTextRole)."""
     from myst_nb.core.variables import format_plain_text
 
-    key, _, spec = content.rpartition(":") if ":" in content else (content, "", "s")
-    if "::" in key:
+    if "::" in content:
         raise LabEditionError(f"{where}: glue from another notebook ({content!r}) is not "
                               f"written for Jupyter (the book uses none)")
+    key, _, spec = content.rpartition(":") if ":" in content else (content, "", "s")
     return format_plain_text(_glued(data, key, "text/plain", where), spec)
 
 
@@ -199,9 +203,11 @@ def _roles(line, data, titles, labels, where):
             return _doc(content, titles, where)
         if name in ("cite:p", "cite:t"):
             return _cite(name, content, labels, where)
+        if name in RENDERED_AS_WRITTEN:
+            return match.group(0)
         raise LabEditionError(f"{where}: the role {{{name}}} is not written for Jupyter "
                               f"(lab_edition.py writes glue:text, glue:md, doc, cite:p "
-                              f"and cite:t)")
+                              f"and cite:t, and leaves {', '.join(RENDERED_AS_WRITTEN)})")
 
     return ROLE.sub(replace, line)
 
@@ -497,15 +503,15 @@ EDITION_WORDS = {"students": "the students' edition, without the solutions",
                  "instructor": "the instructor's edition, with the solutions"}
 
 
-def prepare(path_output, edition, root=ROOT):
-    """Executes (what the cache lacks), writes the edition's notebooks; returns its
-    folder. Prints what it wrote and kept."""
+def prepare(path_output, edition, folder=None, root=ROOT):
+    """Executes (what the cache lacks), writes the edition's notebooks into `folder`
+    (default: `edition_folder`); returns the folder. Prints what it wrote and kept."""
     executed = executed_chapters(path_output, root)
     titles, labels, numbers = chapter_titles(root), citation_labels(root), chapter_numbers(root)
     notebooks = {path.name: lab_notebook(nb, edition, titles, labels,
                                          numbers.get(path.stem), path.name)
                  for path, nb in executed.items()}
-    folder = edition_folder(path_output, edition)
+    folder = pathlib.Path(folder) if folder else edition_folder(path_output, edition)
     written, kept = write_edition(folder, notebooks, edition)
     print(f"lab: {len(written)} chapters written for Jupyter into {folder} "
           f"({EDITION_WORDS[edition]})")
@@ -530,7 +536,7 @@ def jupyter_command(folder, options=(), euid=None):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(
-        description=__doc__.split("\n\n")[0],
+        description=__doc__.split("\n\n")[0], allow_abbrev=False,
         epilog="Other options are passed to jupyter lab (e.g. --port 8890 --no-browser).")
     parser.add_argument("--instructor", action="store_true",
                         help="the notebooks with the exercises' solutions (default: a "
@@ -539,12 +545,16 @@ def main(argv=None):
                         help="the book's output folder, whose _build holds the execution "
                              "cache; the notebooks go into its _build/lab (default: the "
                              "project)")
+    parser.add_argument("--folder", type=pathlib.Path,
+                        help="where the notebooks go (default: <path-output>/_build/lab/"
+                             "students, or instructor)")
     parser.add_argument("--write-only", action="store_true",
                         help="write the notebooks, do not start JupyterLab")
     args, options = parser.parse_known_args(argv)
     edition = "instructor" if args.instructor else "students"
     try:
-        folder = prepare(args.path_output.resolve(), edition)
+        folder = prepare(args.path_output.resolve(), edition,
+                         args.folder.resolve() if args.folder else None)
     except (LabEditionError, student_edition.StripError) as error:
         print(f"lab: {error}", file=sys.stderr)
         return 1
