@@ -241,7 +241,7 @@ def lab_server(built_book, tmp_path_factory):
             [sys.executable, str(ROOT / "book" / "_ext" / "lab_edition.py"),
              "--path-output", str(built_book.parents[1]), "--folder", str(folder),
              "--no-browser", f"--port={port}", "--ServerApp.port_retries=0",
-             "--ServerApp.token=", "--ServerApp.password=", "--ip=127.0.0.1"],
+             "--IdentityProvider.token=", "--ip=127.0.0.1"],
             cwd=ROOT, env=environment, stdout=output, stderr=subprocess.STDOUT)
     url = f"http://127.0.0.1:{port}"
     try:

@@ -94,8 +94,6 @@ DIRECTIVE = re.compile(
     r"^(?P<indent>[ \t]*)(?P<fence>`{3,}|:{3,})\{(?P<name>glue(?::[a-z]+)?|div)\}"
     r"[ \t]*(?P<argument>.*?)[ \t]*$")
 OPTION = re.compile(r"^[ \t]*:(?P<key>[a-z_-]+):[ \t]*(?P<value>.*?)[ \t]*$")
-FIGURE_OPTIONS = ("name", "alt", "width", "align")
-"""The options of `{glue:figure}` that MyST's `figure` takes too (others are dropped)."""
 
 
 class LabEditionError(ValueError):
@@ -212,7 +210,7 @@ def _roles(line, data, titles, labels, where):
     return ROLE.sub(replace, line)
 
 
-def _block(lines, start, indent, fence):
+def _block(lines, start, indent, fence, where):
     """(options, content lines, index after the closing fence) of the directive whose
     opening fence is lines[start]."""
     options, index = {}, start + 1
@@ -226,7 +224,7 @@ def _block(lines, start, indent, fence):
         content.append(lines[index])
         index += 1
     if index == len(lines):
-        raise LabEditionError(f"unclosed directive at line {start + 1}")
+        raise LabEditionError(f"{where}: the directive of line {start + 1} is not closed")
     while content and not content[0].strip():
         content.pop(0)
     return options, content, index + 1
@@ -279,7 +277,7 @@ def resolve_markdown(source, data, titles, labels, next_figure=None, where="cell
                 out.append(_roles(lines[index], data, titles, labels, where))
             index += 1
             continue
-        options, content, index = _block(lines, index, indent, fence)
+        options, content, index = _block(lines, index, indent, fence, where)
         if name == "glue:md":
             out.extend(indent + line if line else line
                        for line in _markdown(data, argument, where).split("\n"))
