@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: book book-students pdf test test-quick lab bench clean check-system repository assignments slides
+.PHONY: book book-students pdf test test-quick lab lab-instructor bench clean check-system repository assignments slides
 
 # Before anything slow: what the system must provide besides Python packages
 # (icm/_system.py: Python 3.11+, Mesa's EGL on Linux), with the command that installs it.
@@ -62,8 +62,17 @@ test: check-system $(STAMP)  ## every test, the whole book built with warnings a
 test-quick: $(STAMP)  ## the unit tests, often: no book, no browser, no fresh launch, none of minutes
 	$(PYTEST) -m "not book and not browser and not launch and not slow"
 
-lab: $(STAMP)  ## open the notebooks in JupyterLab
-	$(BIN)/jupyter lab book/
+# The chapters as their pages read, in JupyterLab (book/_ext/lab_edition.py): executed as
+# `make book` executes them (the same cache: after a make book nothing runs again), their
+# numbers written into the prose, in _build/lab/students without the exercises'
+# solutions (lab-instructor: _build/lab/instructor, with them); never book/ itself. As
+# root, with --allow-root. LAB_ARGS go to jupyter lab, e.g. LAB_ARGS="--ip=0.0.0.0
+# --port 8890 --no-browser" in a container.
+lab: check-system $(STAMP)  ## open the chapters in JupyterLab, with their numbers, without the solutions
+	$(BIN)/python book/_ext/lab_edition.py $(LAB_ARGS)
+
+lab-instructor: check-system $(STAMP)  ## the same, with the exercises' solutions
+	$(BIN)/python book/_ext/lab_edition.py --instructor $(LAB_ARGS)
 
 bench: $(STAMP)  ## print benchmark figures
 	$(BIN)/python benchmarks/bench.py
