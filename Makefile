@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: book book-students pdf test test-quick lab lab-instructor bench clean check-system repository assignments slides
+.PHONY: book book-students pdf test test-quick lab lab-instructor bench clean clean-lab check-system repository assignments slides
 
 # Before anything slow: what the system must provide besides Python packages
 # (icm/_system.py: Python 3.11+, Mesa's EGL on Linux), with the command that installs it.
@@ -81,5 +81,12 @@ repository:  ## make repository URL=https://github.com/OWNER/NAME: the address, 
 	@test -n "$(URL)" || { echo "usage: make repository URL=https://github.com/OWNER/NAME"; exit 1; }
 	$(PYTHON) book/_ext/set_repository.py $(URL)
 
+# Everything under _build but the JupyterLab chapters (_build/lab), where a student's
+# own work may be: `make clean-lab` removes those too.
 clean:
-	rm -rf _build
+	@mkdir -p _build
+	find _build -mindepth 1 -maxdepth 1 ! -name lab -exec rm -rf {} +
+	@if [ -d _build/lab ]; then echo "kept _build/lab (the chapters of make lab, with any work of yours); make clean-lab removes it"; fi
+
+clean-lab:  ## remove the chapters make lab wrote, and any work in them
+	rm -rf _build/lab
