@@ -595,8 +595,8 @@ def check_curiosity_signal(signal, experiment=True, n_seeds=EXERCISE_SEEDS,
        every history, without changing the history, the same twice, not a constant;
     2. the question of the exercise, in the one place where noise can trap a signal:
        with interest per button (a region of the motor space) on the console with the
-       noisy button (`NOISE_TRAP`), the signal must not spend clearly more of its
-       presses on the noisy button than learning progress does on the same seeds
+       noisy button (`NOISE_TRAP`), the signal must not spend more of its presses on
+       the noisy button than learning progress does on the same seeds, beyond a margin
        (`noise_trap`, `DRAWN_MARGIN`). A signal that pays for errors themselves (the
        last error, their mean) fails here.
 
@@ -652,9 +652,9 @@ def check_curiosity_signal(signal, experiment=True, n_seeds=EXERCISE_SEEDS,
     if trap["drawn"]:
         return _core.CheckResult(
             "your curiosity signal", _core.FAILED, names, trap_case, shown,
-            f"no clearly larger share of presses on the noisy button than learning "
-            f"progress's {percent(progress)} (at most {DRAWN_MARGIN:.0%} more, the band's "
-            f"low end)",
+            f"no larger share of presses on the noisy button than learning progress's "
+            f"{percent(progress)}, beyond a margin of {DRAWN_MARGIN:.0%} (the low end of "
+            f"the band of the difference)",
             f"{percent(yours)} of the presses, {mean:+.1%} per seed on average "
             f"({low:+.1%} to {high:+.1%})",
             "your signal is drawn to the noise: per button, the noisy button's "
