@@ -314,14 +314,16 @@ def test_rod_summary_reports_the_wobbly_rod(rewards):
 # --- the figures ---------------------------------------------------------------------------
 
 def test_the_rods_learned_shares_come_with_their_intervals(rewards):
-    intervals = rewards.well_intervals("learning_progress", True)
+    intervals = chapters.curiosity.well_intervals(rewards, "learning_progress", True)
     assert set(intervals) == {"red", "blue"}
     for rod, (count, n, low, high) in intervals.items():
         assert n == 100 and low <= count / n <= high
         assert count / n == pytest.approx(rewards.numbers("learning_progress", True)
                                           [f"{rod}_well"][0])
     with pytest.raises(ValueError, match="reward, wobbly_rod"):
-        rewards.well_intervals("curious", True)
+        chapters.curiosity.well_intervals(rewards, "curious", True)
+    refused(lambda: chapters.curiosity.well_intervals(None, "novelty"), "comparison", "None",
+            "type")
 
 
 def test_the_mastery_figure_draws_the_worlds_asked_for(comparison):
@@ -388,9 +390,10 @@ def test_red_first_in_words(comparison):
     fewest = min(count for count, _, _, _ in intervals.values())
     low = min(low for _, _, low, _ in intervals.values())
     text = chapters.curiosity.red_first_words(comparison)
-    assert text == (f"in {fewest} of the 100 seeds under each learner: in at least "
+    count = f"{fewest} of the 100" if fewest == 100 else f"at least {fewest} of the 100"
+    assert text == (f"in {count} seeds: in at least "
                     f"{math.floor(1000 * low + 1e-9) / 10:.1f}% of seeds (the lower end "
-                    f"of a 95% interval)")
+                    f"of a {icm.stats.LEVEL:.0%} interval)")
     # A sample's 100% never reads as 100%: the bound of 100 seeds of 100 is 96.3%.
     assert "96.3%" in text or fewest < 100
     for word in ("every", "always", "never"):
@@ -403,11 +406,11 @@ def test_red_first_in_words(comparison):
 
 
 def test_the_noise_delays_green_for_each_learner_on_average(comparison):
-    delayed = comparison.noise_delays()
+    delayed = chapters.curiosity.noise_delays(comparison)
     assert len(delayed) == 8
     plain_only = curiosity.SignalComparison(comparison.settings, {
         key: result for key, result in comparison.results.items() if not key[2]})
-    assert plain_only.noise_delays() == []
+    assert chapters.curiosity.noise_delays(plain_only) == []
 
 
 # --- the chapter's paired comparisons: corrected, and replicated ----------------------------

@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from icm import _validate
-from icm.exercises import (_core, actor_critic, buttons, goal_choice, interest, motion,
-                           quiz, robustness, rods)
+from icm.exercises import (_core, actor_critic, buttons, curiosity_signal, goal_choice,
+                           interest, motion, quiz, robustness, rods)
 from icm.learners.interest import LearningProgressInterest, least_squares_slope
 
 
@@ -333,7 +333,7 @@ CHECKS = {
         (choose_half_epsilon, "epsilon 1: uniform"),
         (choose_global_generator, "the generator it is given"),
     ]),
-    "curiosity_signal": (lambda f: interest.check_curiosity_signal(f, experiment=False),
+    "curiosity_signal": (lambda f: curiosity_signal.check_curiosity_signal(f, experiment=False),
                          signal_recent_error, [
         (signal_raw_slope, "errors going up"),
         (signal_last_error, "empty history"),
@@ -537,9 +537,9 @@ def test_a_goal_choice_rule_must_draw_from_the_generator_it_is_given():
 
 def test_the_curiosity_check_refuses_a_constant_and_takes_a_signal_that_varies():
     for constant in (0.0, 1.0, 0.25):
-        result = interest.check_curiosity_signal(lambda history: constant, experiment=False)
-        assert result.case.name == interest.CONSTANT and "constant" in result.hint
-    novelty = interest.check_curiosity_signal(lambda history: 1.0 / (1 + len(history)),
+        result = curiosity_signal.check_curiosity_signal(lambda history: constant, experiment=False)
+        assert result.case.name == curiosity_signal.CONSTANT and "constant" in result.hint
+    novelty = curiosity_signal.check_curiosity_signal(lambda history: 1.0 / (1 + len(history)),
                                               experiment=False)
     assert novelty.passed
 
@@ -743,26 +743,26 @@ def test_check_task_interest_runs_your_figure5_beside_the_librarys():
 def test_check_curiosity_signal_runs_the_learner_with_the_noisy_button():
     # (Was signal_recent_error, the mean of the last errors: a noise-loving signal,
     # which the check now refuses; issue 43.)
-    result = interest.check_curiosity_signal(SOLUTIONS["my_interest"], n_seeds=6,
+    result = curiosity_signal.check_curiosity_signal(SOLUTIONS["my_interest"], n_seeds=6,
                                              n_trials=30)
     assert result.passed and result.figure is not None
     assert "noisy button" in result.notes[0] and "interest per button" in result.notes[0]
-    assert result.cases[-1] == interest.NOISE_TRAP
+    assert result.cases[-1] == curiosity_signal.NOISE_TRAP
     assert '<img src="data:image/png;base64,' in result._repr_html_()
 
 
 def test_the_noise_case_refuses_a_noise_loving_signal_and_says_why():
-    result = interest.check_curiosity_signal(signal_loves_noise, experiment=False)
-    assert not result.passed and result.case.name == interest.NOISE_TRAP
+    result = curiosity_signal.check_curiosity_signal(signal_loves_noise, experiment=False)
+    assert not result.passed and result.case.name == curiosity_signal.NOISE_TRAP
     assert "drawn to the noise" in result.hint and "going down" in result.hint
     assert "learning progress" in result.expected and "per seed" in result.given
-    trap = interest.noise_trap(signal_loves_noise)
+    trap = curiosity_signal.noise_trap(signal_loves_noise)
     mean, low, high = trap["difference"]
-    assert trap["drawn"] and low > interest.DRAWN_MARGIN and low <= mean <= high
+    assert trap["drawn"] and low > curiosity_signal.DRAWN_MARGIN and low <= mean <= high
     # The paper's own signal, written by a student, is not refused: it differs from
     # the library's learning progress only by chance.
-    assert interest.noise_trap(SOLUTIONS["my_interest"])["drawn"] is False
-    assert interest.check_curiosity_signal(SOLUTIONS["my_interest"], experiment=False)
+    assert curiosity_signal.noise_trap(SOLUTIONS["my_interest"])["drawn"] is False
+    assert curiosity_signal.check_curiosity_signal(SOLUTIONS["my_interest"], experiment=False)
 
 
 def test_the_noise_case_runs_where_noise_can_trap():
@@ -771,9 +771,9 @@ def test_the_noise_case_runs_where_noise_can_trap():
     from icm.exercises._runs import run_goal_oriented_with
 
     share = lambda run: run.button_share[:, :, 5].mean()
-    per_task = run_goal_oriented_with(lambda: interest.SignalInterest(signal_loves_noise),
+    per_task = run_goal_oriented_with(lambda: curiosity_signal.SignalInterest(signal_loves_noise),
                                       noisy_button=True)
-    per_button = interest.noise_trap(signal_loves_noise)["yours"]
+    per_button = curiosity_signal.noise_trap(signal_loves_noise)["yours"]
     assert per_task.settings["interest_per"] == "task"
     assert per_button.settings["interest_per"] == "region"
     assert share(per_task) < 0.25 < share(per_button)
@@ -790,18 +790,18 @@ def test_the_noise_case_fails_a_signal_that_breaks_on_a_history_the_learner_make
         return float("nan") if len(history) == 7 else 1.0 / (1 + len(history))
 
     for signal, given in ((breaks_at_seven, "seven"), (nan_at_seven, "nan")):
-        result = interest.check_curiosity_signal(signal, experiment=False)
-        assert not result.passed and result.case.name == interest.NOISE_TRAP
+        result = curiosity_signal.check_curiosity_signal(signal, experiment=False)
+        assert not result.passed and result.case.name == curiosity_signal.NOISE_TRAP
         assert given in repr(result.given).lower()
 
 
 def test_a_hidden_test_runs_the_noise_case_on_seeds_of_its_own():
     rng = np.random.default_rng(5)
-    hidden = interest.hidden_signal_cases(rng)
-    assert interest._trap_root(None) == 0 != interest._trap_root(hidden)
-    result = interest.check_curiosity_signal(signal_loves_noise, experiment=False,
+    hidden = curiosity_signal.hidden_signal_cases(rng)
+    assert curiosity_signal._trap_root(None) == 0 != curiosity_signal._trap_root(hidden)
+    result = curiosity_signal.check_curiosity_signal(signal_loves_noise, experiment=False,
                                              cases=hidden)
-    assert not result.passed and result.case.name == interest.NOISE_TRAP
+    assert not result.passed and result.case.name == curiosity_signal.NOISE_TRAP
 
 
 def test_goal_oriented_runs_with_a_students_module_per_region_are_the_librarys():

@@ -7,8 +7,9 @@ pays), and its bold claims with a word of strength (`BOLD_CLAIMS`).
 
 import numpy as np
 
-from icm import _validate
-from icm.experiments.curiosity import SignalComparison
+from icm import _validate, stats
+from icm.experiments.curiosity import RewardComparison, SignalComparison
+from icm.experiments.rod_toppling import RODS
 
 
 SIGNAL_CLAIMS = {
@@ -103,9 +104,10 @@ def red_first_words(comparison):
     """The chapter's words for how often red is mastered before green in the world
     without the noisy button, from `SignalComparison.red_first_intervals`: the
     weakest learner's count and the lowest lower end of the learners' 95% intervals,
-    e.g. "in 100 of the 100 seeds under each learner: in at least 96.3% of seeds (the
-    lower end of a 95% interval)". The share is rounded down to one decimal, so that
-    the sentence stays true (and a bound below 1 never reads as 100.0%).
+    e.g. "in 100 of the 100 seeds: in at least 96.3% of seeds (the lower end of a 95%
+    interval)" (the sentence around it says "under each learner"). The share is rounded
+    down to one decimal, so that the sentence stays true (and a bound below 1 never
+    reads as 100.0%).
 
     Args:
       comparison: a `SignalComparison`.
@@ -121,5 +123,38 @@ def red_first_words(comparison):
     n = min(n for _, n, _, _ in intervals.values())
     low = min(low for _, _, low, _ in intervals.values())
     shown = np.floor(1000 * low + 1e-9) / 10
-    return (f"in {fewest} of the {n} seeds under each learner: in at least {shown:.1f}% "
-            f"of seeds (the lower end of a 95% interval)")
+    count = f"{fewest} of the {n}" if fewest == n else f"at least {fewest} of the {n}"
+    return (f"in {count} seeds: in at least {shown:.1f}% of seeds (the lower end of a "
+            f"{stats.LEVEL:.0%} interval)")
+
+
+def noise_delays(comparison):
+    """The learners (signal, interest_per), among those a `SignalComparison` ran in both
+    worlds, whose mean mastery trial of green (over the seeds that master it) is later
+    with the noisy button than without: a list, in the comparison's order (the claim
+    "noise_delays_green" asks for all of them)."""
+    _validate.instance("comparison", comparison, SignalComparison,
+                       "a SignalComparison (from icm.experiments.curiosity."
+                       "run_signal_comparison)")
+    both = [(s, d) for (s, d, noisy) in comparison.results
+            if not noisy and (s, d, True) in comparison.results]
+    return [(s, d) for s, d in both
+            if comparison.numbers(s, d, True)["green_mastery"][0]
+            > comparison.numbers(s, d)["green_mastery"][0]]
+
+
+def well_intervals(comparison, reward, wobbly_rod=False):
+    """For one run of a `RewardComparison`, per rod of
+    `icm.experiments.rod_toppling.RODS`: (seeds in which the rod comes to be predicted
+    well, seeds, and the 95% interval of that share, `icm.stats.share_interval`), as
+    {rod: (count, n, low, high)}."""
+    _validate.instance("comparison", comparison, RewardComparison,
+                       "a RewardComparison (from icm.experiments.curiosity."
+                       "run_reward_comparison)")
+    comparison.numbers(reward, wobbly_rod)  # checks the key
+    well = comparison.results[(reward, wobbly_rod)].predicted_well
+    out = {}
+    for i, rod in enumerate(RODS):
+        count, n = int((well[:, i] >= 1).sum()), well.shape[0]
+        out[rod] = (count, n, *stats.share_interval(count, n))
+    return out

@@ -214,7 +214,8 @@ class SignalComparison:
             "region_novelty_equal": all(abs(share[0] - CHANCE_SHARE) < EQUAL_SHARE_TOLERANCE
                                         for share in n("novelty", "region", True)
                                         ["button_share"]),
-            "noise_delays_green": len(self.noise_delays()) == len(plain),
+            "noise_delays_green": all(n(*sd, True)["green_mastery"][0]
+                                      > n(*sd)["green_mastery"][0] for sd in plain),
         }
 
     def red_first_intervals(self):
@@ -230,16 +231,6 @@ class SignalComparison:
             count, n = int(comes_first(red, green).sum()), len(red)
             out[(signal, per)] = (count, n, *share_interval(count, n))
         return out
-
-    def noise_delays(self):
-        """The learners (signal, interest_per), among those run in both worlds, whose
-        mean mastery trial of green (over the seeds that master it) is later with the
-        noisy button than without: a list, in the comparison's order."""
-        both = [(s, d) for (s, d, noisy) in self.results if not noisy
-                and (s, d, True) in self.results]
-        return [(s, d) for s, d in both
-                if self.numbers(s, d, True)["green_mastery"][0]
-                > self.numbers(s, d)["green_mastery"][0]]
 
     PAIRED = {"novelty_region_vs_random_green": (("novelty", "region"), ("random", "task"),
                                                  "green"),
@@ -518,26 +509,14 @@ class RewardComparison:
         return {
             "error_trapped": error["wobbly_share_late"][1] > TRAPPED_SHARE
             and error["red_well"][0] < n("prediction_error", False)["red_well"][0],
-            "progress_learns_anyway": all(
-                low >= LEARNED_SHARE for _, _, low, _ in
-                self.well_intervals("learning_progress", True).values()),
+            "progress_learns_anyway": all(  # each rod's interval's lower end
+                share_interval(int((well >= 1).sum()), len(well))[0] >= LEARNED_SHARE
+                for well in self.results[("learning_progress", True)].predicted_well.T),
             "progress_not_immune": progress["wobbly_share_late"][1] > TRAPPED_SHARE,
             "novelty_random_not_trapped_but_slow": all(
                 m["wobbly_share_late"][2] < TRAPPED_SHARE and m["red_well"][0] < 0.5
                 for m in slow),
         }
-
-    def well_intervals(self, reward, wobbly_rod=False):
-        """For one run, per rod of `icm.experiments.rod_toppling.RODS`: (seeds in which
-        the rod comes to be predicted well, seeds, and the 95% interval of that share,
-        `icm.stats.share_interval`), as {rod: (count, n, low, high)}."""
-        key = _comparison_key(self.results, "(reward, wobbly_rod)", (reward, wobbly_rod))
-        well = self.results[key].predicted_well
-        out = {}
-        for i, rod in enumerate(_rod_toppling.RODS):
-            count, n = int((well[:, i] >= 1).sum()), well.shape[0]
-            out[rod] = (count, n, *share_interval(count, n))
-        return out
 
     def seed_summaries(self):
         """One dict per seed: each run's share of episodes ending at the wobbly rod

@@ -125,9 +125,8 @@ def _noisy_share(result):
 
 
 def _chance_line(ax):
-    ax.axhline(_curiosity.CHANCE_SHARE, color="black", linestyle=":", linewidth=1)
-    ax.annotate("chance, 1 in 6", (1, _curiosity.CHANCE_SHARE), xytext=(3, -11),
-                textcoords="offset points", fontsize=7)
+    ax.axhline(_curiosity.CHANCE_SHARE, color="black", linestyle=":", linewidth=1.2,
+               label="chance, 1 in 6", zorder=3)
 
 
 def noisy_share_figure(comparison):
