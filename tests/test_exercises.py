@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from icm import _validate
-from icm.exercises import (_core, actor_critic, buttons, goal_choice, interest, motion,
-                           quiz, robustness, rods)
+from icm.exercises import (_core, actor_critic, buttons, curiosity_signal, goal_choice,
+                           interest, motion, quiz, robustness, rods)
 from icm.learners.interest import LearningProgressInterest, least_squares_slope
 
 
@@ -264,6 +264,15 @@ def signal_constant(history):
     return 0.0
 
 
+def signal_loves_noise(history):
+    return history[-1] if history else 1.0  # the last error: a coin's stays high
+
+
+def signal_mean_error(history):
+    recent = history[-5:]
+    return sum(recent) / len(recent) if recent else 1.0  # prediction error, written out
+
+
 # --- the checks, their references and their wrong answers ------------------------------
 
 CHECKS = {
@@ -324,13 +333,15 @@ CHECKS = {
         (choose_half_epsilon, "epsilon 1: uniform"),
         (choose_global_generator, "the generator it is given"),
     ]),
-    "curiosity_signal": (lambda f: interest.check_curiosity_signal(f, experiment=False),
+    "curiosity_signal": (lambda f: curiosity_signal.check_curiosity_signal(f, experiment=False),
                          signal_recent_error, [
         (signal_raw_slope, "errors going up"),
         (signal_last_error, "empty history"),
         (signal_sorts_in_place, "two elements"),  # the first history it changes
         (signal_random, "empty history"),
         (signal_constant, "the same interest for every history"),
+        (signal_loves_noise, "the noisy button, interest per button"),
+        (signal_mean_error, "the noisy button, interest per button"),
     ]),
 }
 
@@ -526,9 +537,9 @@ def test_a_goal_choice_rule_must_draw_from_the_generator_it_is_given():
 
 def test_the_curiosity_check_refuses_a_constant_and_takes_a_signal_that_varies():
     for constant in (0.0, 1.0, 0.25):
-        result = interest.check_curiosity_signal(lambda history: constant, experiment=False)
-        assert result.case.name == interest.CONSTANT and "constant" in result.hint
-    novelty = interest.check_curiosity_signal(lambda history: 1.0 / (1 + len(history)),
+        result = curiosity_signal.check_curiosity_signal(lambda history: constant, experiment=False)
+        assert result.case.name == curiosity_signal.CONSTANT and "constant" in result.hint
+    novelty = curiosity_signal.check_curiosity_signal(lambda history: 1.0 / (1 + len(history)),
                                               experiment=False)
     assert novelty.passed
 
@@ -730,9 +741,85 @@ def test_check_task_interest_runs_your_figure5_beside_the_librarys():
 
 
 def test_check_curiosity_signal_runs_the_learner_with_the_noisy_button():
-    result = interest.check_curiosity_signal(signal_recent_error, n_seeds=3, n_trials=10)
+    # (Was signal_recent_error, the mean of the last errors: a noise-loving signal,
+    # which the check now refuses; issue 43.)
+    result = curiosity_signal.check_curiosity_signal(SOLUTIONS["my_interest"], n_seeds=6,
+                                             n_trials=30)
     assert result.passed and result.figure is not None
-    assert "noisy button" in result.notes[0]
+    assert "noisy button" in result.notes[0] and "interest per button" in result.notes[0]
+    assert result.cases[-1] == curiosity_signal.NOISE_TRAP
+    assert '<img src="data:image/png;base64,' in result._repr_html_()
+
+
+def test_the_noise_case_refuses_a_noise_loving_signal_and_says_why():
+    result = curiosity_signal.check_curiosity_signal(signal_loves_noise, experiment=False)
+    assert not result.passed and result.case.name == curiosity_signal.NOISE_TRAP
+    assert "drawn to the noise" in result.hint and "going down" in result.hint
+    assert "learning progress" in result.expected and "per seed" in result.given
+    trap = curiosity_signal.noise_trap(signal_loves_noise)
+    mean, low, high = trap["difference"]
+    assert trap["drawn"] and low > curiosity_signal.DRAWN_MARGIN and low <= mean <= high
+    # The paper's own signal, written by a student, is not refused: it differs from
+    # the library's learning progress only by chance.
+    assert curiosity_signal.noise_trap(SOLUTIONS["my_interest"])["drawn"] is False
+    assert curiosity_signal.check_curiosity_signal(SOLUTIONS["my_interest"], experiment=False)
+
+
+def test_the_noise_case_runs_where_noise_can_trap():
+    # Per task (the old check) the noise-loving signal passes: the noisy button has no
+    # history of its own there. Per button it does not.
+    from icm.exercises._runs import run_goal_oriented_with
+
+    share = lambda run: run.button_share[:, :, 5].mean()
+    per_task = run_goal_oriented_with(lambda: curiosity_signal.SignalInterest(signal_loves_noise),
+                                      noisy_button=True)
+    per_button = curiosity_signal.noise_trap(signal_loves_noise)["yours"]
+    assert per_task.settings["interest_per"] == "task"
+    assert per_button.settings["interest_per"] == "region"
+    assert share(per_task) < 0.25 < share(per_button)
+
+
+def test_the_noise_case_fails_a_signal_that_breaks_on_a_history_the_learner_makes():
+    # Passes the cases (none has 7 errors), then meets a history of 7 in the run.
+    def breaks_at_seven(history):
+        if len(history) == 7:
+            raise IndexError("seven")
+        return 1.0 / (1 + len(history))
+
+    def nan_at_seven(history):
+        return float("nan") if len(history) == 7 else 1.0 / (1 + len(history))
+
+    for signal, given in ((breaks_at_seven, "seven"), (nan_at_seven, "nan")):
+        result = curiosity_signal.check_curiosity_signal(signal, experiment=False)
+        assert not result.passed and result.case.name == curiosity_signal.NOISE_TRAP
+        assert given in repr(result.given).lower()
+
+
+def test_a_hidden_test_runs_the_noise_case_on_seeds_of_its_own():
+    rng = np.random.default_rng(5)
+    hidden = curiosity_signal.hidden_signal_cases(rng)
+    assert curiosity_signal._trap_root(None) == 0 != curiosity_signal._trap_root(hidden)
+    result = curiosity_signal.check_curiosity_signal(signal_loves_noise, experiment=False,
+                                             cases=hidden)
+    assert not result.passed and result.case.name == curiosity_signal.NOISE_TRAP
+
+
+def test_goal_oriented_runs_with_a_students_module_per_region_are_the_librarys():
+    from icm.exercises._runs import run_goal_oriented_with
+    from icm.experiments import run_goal_oriented
+    from icm.learners.interest import make_interest
+
+    for signal in ("prediction_error", "learning_progress"):
+        mine = run_goal_oriented_with(lambda: make_interest(signal), 4, 20,
+                                      noisy_button=True, interest_per="region")
+        library = run_goal_oriented(n_seeds=4, n_trials=20, noisy_button=True,
+                                    interest=signal, interest_per="region", seed=0,
+                                    progress=False)
+        np.testing.assert_array_equal(mine.mastery_trial, library.mastery_trial)
+        np.testing.assert_allclose(mine.button_share, library.button_share)
+        np.testing.assert_allclose(mine.interest, library.interest, atol=1e-12)
+    with pytest.raises(ValueError, match="interest_per"):
+        run_goal_oriented_with(lambda: make_interest(), 2, 2, interest_per="button")
 
 
 def test_check_goal_choice_draws_the_shares_for_given_interests():

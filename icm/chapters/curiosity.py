@@ -7,12 +7,15 @@ pays), and its bold claims with a word of strength (`BOLD_CLAIMS`).
 
 import numpy as np
 
-from icm import _validate
+from icm import _validate, stats
+from icm.experiments.curiosity import RewardComparison, SignalComparison
+from icm.experiments.rod_toppling import RODS
 
 
 SIGNAL_CLAIMS = {
-    "red_first_everywhere": "red is mastered before green in most seeds under every signal "
-                            "and place of interest, pressing at random included",
+    "red_first_share": "under each signal and place of interest, pressing at random "
+                       "included, red is mastered before green in at least 90% of the seeds "
+                       "(the lower end of the share's 95% interval)",
     "random_not_slower": "pressing at random masters red and green no later than learning "
                          "progress (its means within learning progress's bands or below)",
     "novelty_region_fastest": "novelty per region has the lowest mean mastery trial of "
@@ -24,8 +27,10 @@ SIGNAL_CLAIMS = {
     "region_progress_drawn_not_trapped": "with interest per region, learning progress is "
                                          "not trapped, though it presses the noisy button "
                                          "more than chance",
-    "region_novelty_equal": "novelty per region presses every button equally",
-    "noise_costs_every_learner": "with the noisy button, every learner masters green later",
+    "region_novelty_equal": "novelty per region spreads its presses evenly: each button's "
+                            "mean share is within the tolerance of chance",
+    "noise_delays_green": "with the noisy button, green's mean mastery trial is later for "
+                          "each of the eight learners (signal and place of interest)",
 }
 """The claims of the chapter "Which curiosity?" about the buttons
 (`SignalComparison.claims`)."""
@@ -35,7 +40,8 @@ REWARD_CLAIMS = {
     "error_trapped": "prediction error is trapped by the wobbly rod, and predicts red well "
                      "in fewer seeds than without it",
     "progress_learns_anyway": "learning progress predicts red and blue well in at least "
-                              "90% of the seeds with the wobbly rod",
+                              "90% of the seeds with the wobbly rod (the lower end of "
+                              "each share's 95% interval)",
     "progress_not_immune": "learning progress ends most of its late episodes at the "
                            "wobbly rod",
     "novelty_random_not_trapped_but_slow": "novelty and the random walk are not trapped, "
@@ -47,14 +53,11 @@ REWARD_CLAIMS = {
 
 BOLD_CLAIMS = {
     "Novelty pays the coin exactly what it pays the sure outcome": ("novelty_blind", "exact"),
-    "Novelty per region presses every button about equally": ("region_novelty_equal", "all"),
-    "The noise costs every learner a little.": ("noise_costs_every_learner", "all"),
 }
 """The bold claims of the chapter "Which curiosity?" that use a word of strength
 ("every", "exactly", ...; book/_ext/claim_words.py), each with the claim that checks
 it (`COIN_CLAIMS`, `SIGNAL_CLAIMS`) and the kind of that check: "exact" (an array
-equality), "all" (every button's share within the tolerance of chance; every
-learner's mean later)."""
+equality)."""
 
 
 COIN_CLAIMS = {
@@ -95,3 +98,63 @@ def coin_claims(paid):
         "novelty_blind": bool(np.array_equal(paid[("novelty", "coin")],
                                              paid[("novelty", "sure")])),
     }
+
+
+def red_first_words(comparison):
+    """The chapter's words for how often red is mastered before green in the world
+    without the noisy button, from `SignalComparison.red_first_intervals`: the
+    weakest learner's count and the lowest lower end of the learners' 95% intervals,
+    e.g. "in 100 of the 100 seeds: in at least 96.3% of seeds (the lower end of a 95%
+    interval)" (the sentence around it says "under each learner"). The share is rounded
+    down to one decimal, so that the sentence stays true (and a bound below 1 never
+    reads as 100.0%).
+
+    Args:
+      comparison: a `SignalComparison`.
+    """
+    _validate.instance("comparison", comparison, SignalComparison,
+                       "a SignalComparison (from icm.experiments.curiosity."
+                       "run_signal_comparison)")
+    intervals = comparison.red_first_intervals()
+    if not intervals:
+        raise ValueError("comparison must hold runs without the noisy button "
+                         "(noisy=(False, ...))")
+    fewest = min(count for count, _, _, _ in intervals.values())
+    n = min(n for _, n, _, _ in intervals.values())
+    low = min(low for _, _, low, _ in intervals.values())
+    shown = np.floor(1000 * low + 1e-9) / 10
+    count = f"{fewest} of the {n}" if fewest == n else f"at least {fewest} of the {n}"
+    return (f"in {count} seeds: in at least {shown:.1f}% of seeds (the lower end of a "
+            f"{stats.LEVEL:.0%} interval)")
+
+
+def noise_delays(comparison):
+    """The learners (signal, interest_per), among those a `SignalComparison` ran in both
+    worlds, whose mean mastery trial of green (over the seeds that master it) is later
+    with the noisy button than without: a list, in the comparison's order (the claim
+    "noise_delays_green" asks for all of them)."""
+    _validate.instance("comparison", comparison, SignalComparison,
+                       "a SignalComparison (from icm.experiments.curiosity."
+                       "run_signal_comparison)")
+    both = [(s, d) for (s, d, noisy) in comparison.results
+            if not noisy and (s, d, True) in comparison.results]
+    return [(s, d) for s, d in both
+            if comparison.numbers(s, d, True)["green_mastery"][0]
+            > comparison.numbers(s, d)["green_mastery"][0]]
+
+
+def well_intervals(comparison, reward, wobbly_rod=False):
+    """For one run of a `RewardComparison`, per rod of
+    `icm.experiments.rod_toppling.RODS`: (seeds in which the rod comes to be predicted
+    well, seeds, and the 95% interval of that share, `icm.stats.share_interval`), as
+    {rod: (count, n, low, high)}."""
+    _validate.instance("comparison", comparison, RewardComparison,
+                       "a RewardComparison (from icm.experiments.curiosity."
+                       "run_reward_comparison)")
+    comparison.numbers(reward, wobbly_rod)  # checks the key
+    well = comparison.results[(reward, wobbly_rod)].predicted_well
+    out = {}
+    for i, rod in enumerate(RODS):
+        count, n = int((well[:, i] >= 1).sum()), well.shape[0]
+        out[rod] = (count, n, *stats.share_interval(count, n))
+    return out

@@ -14,8 +14,8 @@ from icm.exercises._core import CheckResult
 from icm.exercises.actor_critic import check_softmax, check_td_update
 from icm.exercises.buttons import check_nearest_neighbour, check_press_outcome
 from icm.exercises.goal_choice import check_goal_choice
-from icm.exercises.interest import (check_curiosity_signal, check_least_squares_slope,
-                                    check_task_interest)
+from icm.exercises.curiosity_signal import check_curiosity_signal
+from icm.exercises.interest import check_least_squares_slope, check_task_interest
 from icm.exercises.motion import check_minimum_jerk
 from icm.exercises.quiz import Choices, option_for
 from icm.exercises.robustness import check_red_first

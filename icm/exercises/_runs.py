@@ -8,7 +8,7 @@ from icm import _validate
 from icm.envs import buttons
 from icm.experiments import goal_oriented as go_experiment
 from icm.experiments._seeding import run_seeds
-from icm.learners.goal_oriented import DEFAULT_EPSILON, GoalOrientedAgent
+from icm.learners.goal_oriented import DEFAULT_EPSILON, INTEREST_PER, GoalOrientedAgent
 from icm.learners.predictors import NearestNeighbourPredictor
 
 EXERCISE_SEEDS = 20
@@ -23,11 +23,11 @@ class _AgentsAsRows:
     `icm.experiments.goal_oriented.play` drives: each row's agent chooses, learns and is
     read through its own methods, in row order, so that its numbers are its own."""
 
-    def __init__(self, agents, red_button, n_actions):
+    def __init__(self, agents, red_button, n_actions, interest_per="task"):
         self.agents, self.n_actions = agents, n_actions
         self.lights = [tuple(layout.tolist()) for layout in buttons.layouts(red_button)]
         self.effects = np.array(buttons.EFFECTS)
-        self.interest_per = "task"
+        self.interest_per = interest_per
         self.interest, self.predictor = self, self  # values() and effect, as the batch's
         rest = go_experiment.TASK_KEYS["nothing"][0]
         self._tasks = [(rest, effect) for effect in buttons.EFFECTS]
@@ -48,8 +48,10 @@ class _AgentsAsRows:
             agent.learn(self._observation(layout), action, after)
 
     def values(self):
-        """[row, effect]: each agent's interest in the task of each effect."""
-        return np.array([[agent.interest.interest(task) for task in self._tasks]
+        """[row, effect]: each agent's interest in the task of each effect; per region,
+        [row, action]: its interest in each button's region."""
+        keys = self._tasks if self.interest_per == "task" else range(self.n_actions)
+        return np.array([[agent.interest.interest(key) for key in keys]
                          for agent in self.agents])
 
     @property
@@ -62,7 +64,7 @@ class _AgentsAsRows:
 
 
 def run_goal_oriented_with(make_interest, n_seeds=EXERCISE_SEEDS, n_trials=EXERCISE_TRIALS,
-                           noisy_button=False, seed=0):
+                           noisy_button=False, seed=0, interest_per="task"):
     """`icm.experiments.run_goal_oriented` with another interest module: each seed is a
     `GoalOrientedAgent` built with `make_interest()`, on a row of a
     `ButtonConsoleBatch`, seeded as `run_goal_oriented` seeds its rows and played by its
@@ -76,6 +78,8 @@ def run_goal_oriented_with(make_interest, n_seeds=EXERCISE_SEEDS, n_trials=EXERC
       n_trials: trials per run (>= 1).
       noisy_button: add the noisy button (action 5).
       seed: the root seed, an integer >= 0.
+      interest_per: where interest lives, "task" (the paper's) or "region" (each
+        button its own region; see `icm.learners.goal_oriented.INTEREST_PER`).
 
     Returns:
       A `GoalOrientedResult`.
@@ -85,6 +89,7 @@ def run_goal_oriented_with(make_interest, n_seeds=EXERCISE_SEEDS, n_trials=EXERC
     n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
     noisy_button = _validate.boolean("noisy_button", noisy_button)
     seed = _validate.seed("seed", seed)
+    interest_per = _validate.one_of("interest_per", interest_per, INTEREST_PER)
     red = buttons.DEFAULT_RED_BUTTON
     presses = buttons.DEFAULT_PRESSES_PER_TRIAL
     n_actions = buttons.n_actions(noisy_button)
@@ -92,8 +97,9 @@ def run_goal_oriented_with(make_interest, n_seeds=EXERCISE_SEEDS, n_trials=EXERC
     env = buttons.ButtonConsoleBatch([env_seed for env_seed, _ in seeds], red, noisy_button)
     agents = _AgentsAsRows([GoalOrientedAgent(n_actions, NearestNeighbourPredictor(),
                                               make_interest(), DEFAULT_EPSILON,
-                                              seed=agent_seed)
-                            for _, agent_seed in seeds], red, n_actions)
+                                              interest_per, seed=agent_seed)
+                            for _, agent_seed in seeds], red, n_actions, interest_per)
     settings = dict(n_seeds=n_seeds, n_trials=n_trials, presses_per_trial=presses,
-                    noisy_button=noisy_button, seed=seed, interest="yours")
+                    noisy_button=noisy_button, seed=seed, interest="yours",
+                    interest_per=interest_per)
     return go_experiment.play(env, agents, n_trials, presses, settings=settings)

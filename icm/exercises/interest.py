@@ -1,15 +1,15 @@
-"""Checks of the interest exercises: the least-squares slope, the paper's interest of a
-task (the slope of its last k errors, the progress reading, the two rules for a task
-seen once), and a curiosity signal of the student's own design, each then run in the
-goal-oriented learner beside the library's ("your interest, your Figure 5")."""
+"""Checks of the interest exercises: the least-squares slope and the paper's interest of
+a task (the slope of its last k errors, the progress reading, the two rules for a task
+seen once), each then run in the goal-oriented learner beside the library's ("your
+interest, your Figure 5"). A curiosity signal of the student's own design is checked
+in `icm.exercises.curiosity_signal`."""
 
-import math
 import operator
 
 import numpy as np
 
 from icm import _validate
-from icm.exercises import _core, _own
+from icm.exercises import _core
 from icm.exercises._core import Case
 from icm.exercises._own import Forbidden
 from icm.exercises._runs import EXERCISE_SEEDS, EXERCISE_TRIALS, run_goal_oriented_with
@@ -19,10 +19,10 @@ from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW, slop
 
 SLOPE_PARAMETERS = ("values",)
 INTEREST_PARAMETERS = ("history", "others", "window", "new_task_factor")
-SIGNAL_PARAMETERS = ("history",)
 INTEREST_FORBIDDEN = Forbidden(("icm.learners.interest",))
-"""What a slope, an interest or a curiosity signal must not call: the library's
-interest module (the slope, the four signals, their batched table)."""
+"""What a slope, an interest or a curiosity signal (`icm.exercises.curiosity_signal`)
+must not call: the library's interest module (the slope, the four signals, their
+batched table)."""
 
 
 def public_slope_cases():
@@ -341,214 +341,4 @@ def check_task_interest(task_interest, experiment=True, n_seeds=EXERCISE_SEEDS,
             f"Your Figure 5, {n_seeds} seeds of {n_trials} trials: red mastered first in "
             f"{percent(yours.red_first_fraction())} of the seeds (the library's interest, the "
             f"same seeds: {percent(library.red_first_fraction())}).")
-    return result
-
-
-def public_signal_cases():
-    """The cases the check runs when given none (the ones the book shows the
-    student), the paper's edge cases first: a list of `Case`.
-
-    Returns:
-      A list of `icm.exercises._core.Case`.
-    """
-    coin = np.random.default_rng(3).integers(0, 2, 20).astype(float).tolist()
-    return [
-        Case("empty history: a task never witnessed", ([],),
-             "a task never witnessed must still get a number (often 0, or a bonus for "
-             "novelty): do not index history[-1] before checking it is not empty."),
-        Case("one element", ([1.0],), "a single error: no slope yet; return a finite number >= 0."),
-        Case("two elements, the error went down", ([1.0, 0.0],),
-             "return a finite number >= 0."),
-        Case("errors going up", ([0.0, 0.2, 0.4, 0.6, 0.8, 1.0],),
-             "interest must not be negative: the actor picks the largest, and a "
-             "negative value would make a task worse than one never seen. Clip at 0."),
-        Case("ties: flat errors", ([0.5] * 6,),
-             "return a finite number >= 0 (a slope of flat errors can come out as -1e-17: "
-             "clip at 0)."),
-        Case("errors going down", ([1.0, 0.8, 0.6, 0.4, 0.2, 0.0],),
-             "return a finite number >= 0."),
-        Case("a coin flip: errors 0 or 1 at random (the noisy button)", (coin,),
-             "return a finite number >= 0 on any history."),
-        Case("a long history", ([0.9 ** k for k in range(60)],),
-             "return a finite number >= 0."),
-    ]
-
-
-def _signal_contract(history):
-    """What every interest signal must give: a finite number >= 0."""
-    return "a finite number >= 0"
-
-
-def _meets_contract(expected, given):
-    return _validate.is_real(given) and math.isfinite(float(given)) and float(given) >= 0.0
-
-
-CONSTANT = "the same interest for every history"
-"""The name of the check's last case: a signal must not be a constant."""
-
-
-def signal_verdict(signal, cases):
-    """What any interest signal must be, on `cases` (one history each): a finite number
-    >= 0 on every history, the history left unchanged, the same number twice for the
-    same history, not the same number for every history, computed without calling
-    the library's signals.
-
-    Args:
-      signal: the student's function of (history).
-      cases: a list of `Case`.
-
-    Returns:
-      A `CheckResult`.
-    """
-    result = _core.run_cases("your curiosity signal", "signal", signal, SIGNAL_PARAMETERS,
-                             cases, _signal_contract, compare=_meets_contract,
-                             forbidden=INTEREST_FORBIDDEN)
-    if not result.passed:
-        return result
-    names = result.cases + [CONSTANT]
-    values = []
-    for case in cases:
-        history = list(case.args[0])
-        first, borrowed = _own.call_own(signal, (history,), INTEREST_FORBIDDEN)
-        if history != list(case.args[0]):
-            return _core.CheckResult(
-                "your curiosity signal", _core.FAILED, names, case,
-                _core.show_arguments(SIGNAL_PARAMETERS, case.args),
-                "the history unchanged", history,
-                "your signal changed the history it was given (append, pop, sort in "
-                "place?): the learner keeps that list; work on a copy.")
-        try:
-            second, borrowed = _own.call_own(signal, (list(case.args[0]),),
-                                             INTEREST_FORBIDDEN)
-            same = _core.close(float(first), float(second))
-        except Exception as error:
-            second, same = error, False
-        if not same:
-            return _core.CheckResult(
-                "your curiosity signal", _core.FAILED, names, case,
-                _core.show_arguments(SIGNAL_PARAMETERS, case.args), first, second,
-                "your signal gave two different numbers for the same history: an interest "
-                "must depend on the history only (no random numbers, no state kept "
-                "between calls).")
-        values.append(float(first))
-    if all(_core.close(values[0], value) for value in values):
-        case = Case(CONSTANT, ("every history above",), "")
-        return _core.CheckResult(
-            "your curiosity signal", _core.FAILED, names, case, "history=every history above",
-            "different interests for histories that differ",
-            f"{_core.show(values[0])} for every history",
-            "A constant interest makes every task exactly as interesting as every other: "
-            "the learner then presses at random, and there is no curiosity left. Make your "
-            "signal depend on the history (its errors, their trend, how many there are).")
-    return _core.CheckResult("your curiosity signal", _core.PASSED, names)
-
-
-def hidden_signal_cases(rng):
-    """Histories of the shapes of the public ones, drawn from `rng`.
-
-    Args:
-      rng: a `numpy.random.Generator`.
-
-    Returns:
-      A list of `Case`.
-    """
-    n = int(rng.integers(4, 12))
-    rising = np.sort(rng.random(n)).round(3)
-    hint = "return a finite number >= 0 on any history."
-    return [
-        Case("empty history (hidden)", ([],), hint),
-        Case("one element (hidden)", (rng.random(1).round(3).tolist(),), hint),
-        Case("two elements (hidden)", (rng.random(2).round(3).tolist(),), hint),
-        Case("errors going up (hidden)", (rising.tolist(),),
-             "interest must not be negative: clip at 0."),
-        Case("ties: flat errors (hidden)", ([round(float(rng.random()), 3)] * n,), hint),
-        Case("errors going down (hidden)", (rising[::-1].tolist(),), hint),
-        Case("a coin flip (hidden)", (rng.integers(0, 2, 3 * n).astype(float).tolist(),), hint),
-        Case("a long history (hidden)", ((rng.random() ** np.arange(10 * n)).round(6).tolist(),),
-             hint),
-    ]
-
-
-class SignalInterest:
-    """An interest module whose interest of a task is a student's function of that
-    task's error history alone, `signal(history)` (0 history entries for a task never
-    witnessed)."""
-
-    def __init__(self, signal):
-        self.function = _validate.function("signal", signal, allow_none=False)
-        self.histories = {}
-
-    def record(self, task, error):
-        """Appends an error to the task's history.
-
-        Args:
-          task: the task witnessed.
-          error: the prediction error.
-        """
-        self.histories.setdefault(task, []).append(float(error))
-
-    def interest(self, task):
-        """The student's signal on the task's history.
-
-        Args:
-          task: a task.
-
-        Returns:
-          Its interest, a float.
-        """
-        return float(self.function(list(self.histories.get(task, []))))
-
-
-def check_curiosity_signal(signal, experiment=True, n_seeds=EXERCISE_SEEDS,
-                           n_trials=EXERCISE_TRIALS, cases=None):
-    """Checks a curiosity signal of the student's own design, `signal(history)`, the
-    interest of a task from its error history: there is no single right answer, so
-    the check tries it on the paper's edge cases and asks what any interest must be
-    (a finite number >= 0, on every history, without changing the history, the same
-    twice), then, if it is, runs the goal-oriented learner with it on the console with
-    the noisy button beside learning progress and the plain prediction error, on the
-    same seeds.
-
-    Args:
-      signal: the student's function of (history).
-      experiment: whether to run the learner after the cases pass.
-      n_seeds, n_trials: the experiment's size.
-      cases: the cases to try, a list of `Case` (default: the check's own, the ones
-        the book shows; the grader passes its hidden ones).
-
-    Returns:
-      A `CheckResult`.
-
-    Raises:
-      ArgumentTypeError: for an argument that is not a function of one argument, or a
-        bad `experiment`.
-    """
-    experiment = _validate.boolean("experiment", experiment)
-    cases = public_signal_cases() if cases is None else cases
-    result = signal_verdict(signal, cases)
-    if not result.passed:
-        return result
-    if experiment:
-        from icm.experiments import run_goal_oriented
-        from icm.figures import figure5_grid
-
-        yours = run_goal_oriented_with(lambda: SignalInterest(signal), n_seeds, n_trials,
-                                       noisy_button=True)
-        progress = run_goal_oriented(n_seeds=n_seeds, n_trials=n_trials, noisy_button=True,
-                                     seed=0, progress=False)
-        error = run_goal_oriented(n_seeds=n_seeds, n_trials=n_trials, noisy_button=True,
-                                  interest="prediction_error", seed=0, progress=False)
-        result.figure = figure5_grid({"your signal, noisy button": yours,
-                                      "learning progress, noisy button": progress})
-        result.figure.icm_alt = ("Figure 5 on the console with the noisy button: your signal "
-                                 "beside learning progress")
-        share = lambda run: float(run.button_share[:, :, 5].mean())
-        result.notes.append(
-            f"With the noisy button, {n_seeds} seeds of {n_trials} trials: your signal "
-            f"spent {percent(share(yours))} of the presses on the noisy button and mastered "
-            f"red first in {percent(yours.red_first_fraction())} of the seeds; learning "
-            f"progress {percent(share(progress))} and "
-            f"{percent(progress.red_first_fraction())}; the prediction error "
-            f"{percent(share(error))} and {percent(error.red_first_fraction())}. "
-            f"A press at random would spend {1 / 6:.0%} there.")
     return result

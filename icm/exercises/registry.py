@@ -12,8 +12,8 @@ import zlib
 import numpy as np
 
 from icm import _validate
-from icm.exercises import (actor_critic, buttons, goal_choice, interest, motion, robustness,
-                           rods)
+from icm.exercises import (actor_critic, buttons, curiosity_signal, goal_choice, interest,
+                           motion, robustness, rods)
 from icm.exercises._own import call_own
 
 PUBLIC_POINTS = 2
@@ -162,9 +162,11 @@ EXERCISES = {exercise.label: exercise for exercise in (
              rods.hidden_confidence_cases, rods.public_confidence_cases, rods.CONFIDENCE_FORBIDDEN),
     Exercise("ex-red-first", "red_first", robustness.check_red_first, robustness.hidden_cases,
              robustness.public_cases, robustness.FORBIDDEN),
+    # Each test also runs the noise case (interest per button), about half a second.
     Exercise("ex-curiosity-signal", "my_interest",
-             _no_experiment(interest.check_curiosity_signal), interest.hidden_signal_cases,
-             interest.public_signal_cases, interest.INTEREST_FORBIDDEN),
+             _no_experiment(curiosity_signal.check_curiosity_signal),
+             curiosity_signal.hidden_signal_cases, curiosity_signal.public_signal_cases,
+             interest.INTEREST_FORBIDDEN),
     # 3000 draws of the rule per case: the slowest check.
     Exercise("ex-goal-choice", "choose_region", goal_choice.check_goal_choice,
              goal_choice.hidden_cases, goal_choice.public_cases, goal_choice.FORBIDDEN,

@@ -22,9 +22,10 @@ from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments import rod_toppling as _rod_toppling
 from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments._progress import progress_bar
-from icm.experiments.results import in_seeds, percent
+from icm.experiments.results import percent
 from icm.learners import goal_oriented, interest, predictors, q_learning
-from icm.stats import bootstrap_band, corrected_verdicts, paired_gaps
+from icm.stats import (bootstrap_band, comes_first, corrected_verdicts, paired_gaps,
+                       share_interval)
 
 CHANCE_SHARE = 1.0 / 6.0
 """The share of presses a learner pressing at random gives each of the six buttons."""
@@ -37,7 +38,12 @@ EQUAL_SHARE_TOLERANCE = 0.01
 learner presses every button equally."""
 LEARNED_SHARE = 0.9
 """The share of seeds in which a rod must be predicted well for the chapter to say that
-a learner learns it (`REWARD_CLAIMS`)."""
+a learner learns it (`REWARD_CLAIMS`): the lower end of the share's 95% interval
+(`icm.stats.share_interval`) must be at least this."""
+RED_FIRST_SHARE = 0.9
+"""The share of seeds in which red must be mastered before green, under each learner,
+for the chapter to say that easy comes before hard whatever the signal: the lower end
+of the share's 95% interval (`icm.stats.share_interval`) must be at least this."""
 
 
 def _band(values):
@@ -193,7 +199,8 @@ class SignalComparison:
         balanced = [n("novelty", "task")[f"{t}_presses"][0] for t in TASKS_AND_NOTHING]
         per_region = {s: n(s, "region", True)["noisy_share"] for s in signals}
         return {
-            "red_first_everywhere": all(n(*sd)["red_first"] > 0.5 for sd in plain),
+            "red_first_share": all(low >= RED_FIRST_SHARE
+                                   for _, _, low, _ in self.red_first_intervals().values()),
             "random_not_slower": all(random[f"{t}_mastery"][0] <= progress[f"{t}_mastery"][2]
                                      for t in ("red", "green")),
             "novelty_region_fastest": self.fastest() == ("novelty", "region"),
@@ -207,9 +214,23 @@ class SignalComparison:
             "region_novelty_equal": all(abs(share[0] - CHANCE_SHARE) < EQUAL_SHARE_TOLERANCE
                                         for share in n("novelty", "region", True)
                                         ["button_share"]),
-            "noise_costs_every_learner": all(
-                n(*sd, True)["green_mastery"][0] > n(*sd)["green_mastery"][0] for sd in plain),
+            "noise_delays_green": all(n(*sd, True)["green_mastery"][0]
+                                      > n(*sd)["green_mastery"][0] for sd in plain),
         }
+
+    def red_first_intervals(self):
+        """For each learner (signal, place of interest) of the world without the noisy
+        button: (seeds in which red is mastered strictly before green, seeds, and the
+        95% interval of that share, `icm.stats.share_interval`), as
+        {(signal, interest_per): (count, n, low, high)}."""
+        out = {}
+        for (signal, per, noisy), result in self.results.items():
+            if noisy:
+                continue
+            red, green = result.mastery_trial[:, 0], result.mastery_trial[:, 1]
+            count, n = int(comes_first(red, green).sum()), len(red)
+            out[(signal, per)] = (count, n, *share_interval(count, n))
+        return out
 
     PAIRED = {"novelty_region_vs_random_green": (("novelty", "region"), ("random", "task"),
                                                  "green"),
@@ -262,13 +283,6 @@ class SignalComparison:
             out[name] = (f"{v['mean']:+.1f} trials ({v['low']:+.1f} to {v['high']:+.1f}): "
                          f"{words}")
         return out
-
-    def describe_red_first(self):
-        """In words, the fewest seeds in which red is mastered first, over the runs
-        without the noisy button: "in every seed" or "in at least 99.0% of the seeds"."""
-        lowest = min(self.numbers(s, d)["red_first"]
-                     for (s, d, noisy) in self.results if not noisy)
-        return in_seeds(lowest)
 
     def fastest(self):
         """(signal, interest_per) of the world without the noisy button that masters
@@ -495,8 +509,9 @@ class RewardComparison:
         return {
             "error_trapped": error["wobbly_share_late"][1] > TRAPPED_SHARE
             and error["red_well"][0] < n("prediction_error", False)["red_well"][0],
-            "progress_learns_anyway": progress["red_well"][0] >= LEARNED_SHARE
-            and progress["blue_well"][0] >= LEARNED_SHARE,
+            "progress_learns_anyway": all(  # each rod's interval's lower end
+                share_interval(int((well >= 1).sum()), len(well))[0] >= LEARNED_SHARE
+                for well in self.results[("learning_progress", True)].predicted_well.T),
             "progress_not_immune": progress["wobbly_share_late"][1] > TRAPPED_SHARE,
             "novelty_random_not_trapped_but_slow": all(
                 m["wobbly_share_late"][2] < TRAPPED_SHARE and m["red_well"][0] < 0.5

@@ -60,18 +60,23 @@ def _label(name):
     return name.replace("_", " ")
 
 
-def signal_mastery_figure(comparison):
+def signal_mastery_figure(comparison, noisy=None):
     """When the predictor masters red and green, per signal and place of interest:
-    the mean mastery trial over the seeds that master the task, with its 95% band,
-    without (left) and with (right) the noisy button. A hollow marker: fewer than
-    `MASTERED_SHARE` of the seeds master the task (the share is written beside it).
+    the mean mastery trial over the seeds that master the task, with its 95% band, one
+    panel per world (without the noisy button on the left). A hollow marker: fewer
+    than `MASTERED_SHARE` of the seeds master the task (the share is written beside
+    it).
 
     Args:
       comparison: a `SignalComparison`.
+      noisy: the worlds to draw, a sequence of False (five buttons) and True (with the
+        noisy button), among those the comparison ran; None for all of them.
     """
     check_result("comparison", comparison, SignalComparison,
                  "icm.experiments.run_signal_comparison")
     worlds = comparison.settings["noisy"]
+    if noisy is not None:
+        worlds = _curiosity.check_choices("noisy", noisy, tuple(worlds))
     fig, axes = new_figure(width=5.2 * len(worlds), height=4.2, ncols=len(worlds),
                            sharex=True, sharey=True, squeeze=False)
     right_end = 0.0
@@ -109,10 +114,26 @@ def signal_mastery_figure(comparison):
     return fig
 
 
+DESIGN_STYLES = {"task": {"colour": "#1b6ca8", "linestyle": "-", "marker": "o"},
+                 "region": {"colour": "#d95f02", "linestyle": "--", "marker": "s"}}
+"""How `noisy_share_figure` draws each place of interest, the same in every panel."""
+
+
+def _noisy_share(result):
+    """[seed, trial]: the share of each trial's presses on the noisy button."""
+    return result.button_share[:, :, buttons.NOISY_BUTTON]
+
+
+def _chance_line(ax):
+    ax.axhline(_curiosity.CHANCE_SHARE, color="black", linestyle=":", linewidth=1.2,
+               label="chance, 1 in 6", zorder=3)
+
+
 def noisy_share_figure(comparison):
-    """The share of each trial's presses on the noisy button, per signal (mean over
-    seeds, 95% band), with interest per task (left) and per region (right); the dashed
-    line is chance, 1/6.
+    """The share of each trial's presses on the noisy button, one panel per signal,
+    each with interest per task and per region (mean over seeds, 95% band); the dotted
+    line is chance, 1/6. Small multiples, so that per task (where the four signals
+    overlap near chance) and per region can be told apart in each.
 
     Args:
       comparison: a `SignalComparison` with runs with the noisy button.
@@ -121,19 +142,65 @@ def noisy_share_figure(comparison):
                  "icm.experiments.run_signal_comparison")
     if True not in comparison.settings["noisy"]:
         raise ValueError("comparison must hold runs with the noisy button (noisy=(..., True))")
-    designs = comparison.settings["designs"]
-    fig, axes = new_figure(width=5.0 * len(designs), height=3.6, ncols=len(designs),
-                           sharey=True, squeeze=False)
-    for ax, design in zip(axes[0], designs):
-        for signal in comparison.settings["signals"]:
-            result = comparison.results[(signal, design, True)]
-            plot_mean_band(ax, result.button_share[:, :, buttons.NOISY_BUTTON],
-                           SIGNAL_COLOURS[signal], _label(signal), **_signal_style(signal))
-        ax.axhline(_curiosity.CHANCE_SHARE, color="black", linestyle="--", linewidth=1)
-        ax.set(xlabel="trial", xlim=(1, comparison.settings["n_trials"]), ylim=(0, 1))
-        ax.set_title(f"interest per {design}", fontsize=10)
-    axes[0][0].set_ylabel("share of presses\non the noisy button")
+    signals, designs = comparison.settings["signals"], comparison.settings["designs"]
+    ncols = min(2, len(signals))
+    nrows = -(-len(signals) // ncols)
+    fig, axes = new_figure(width=4.2 * ncols, height=2.9 * nrows, ncols=ncols, nrows=nrows,
+                           sharex=True, sharey=True, squeeze=False)
+    for k, ax in enumerate(axes.flat):
+        if k >= len(signals):
+            ax.axis("off")
+            continue
+        signal = signals[k]
+        for design in designs:
+            style = DESIGN_STYLES[design]
+            plot_mean_band(ax, _noisy_share(comparison.results[(signal, design, True)]),
+                           style["colour"], f"interest per {design}",
+                           linestyle=style["linestyle"], marker=style["marker"])
+        _chance_line(ax)
+        ax.set(xlim=(1, comparison.settings["n_trials"]), ylim=(0, 1))
+        ax.set_title(_label(signal), fontsize=10)
+        if k % ncols == 0:
+            ax.set_ylabel("share of presses\non the noisy button")
+        if k // ncols == nrows - 1:
+            ax.set_xlabel("trial")
     axes[0][0].legend(frameon=False, fontsize=8, loc="upper left")
+    return fig
+
+
+def noisy_share_curves(runs, title=None):
+    """The share of each trial's presses on the noisy button for a few runs on the
+    console with the noisy button, one curve each (mean over seeds, 95% band); the
+    dotted line is chance, 1/6. A run labelled with a signal's name is drawn in that
+    signal's colour and style; another (a student's signal) in black.
+
+    Args:
+      runs: {label: GoalOrientedResult with the noisy button}.
+      title: the axes' title, or None.
+    """
+    if not isinstance(runs, dict) or not runs:
+        raise _validate.ArgumentTypeError(
+            f"runs must be a non-empty dict {{label: GoalOrientedResult}}, got "
+            f"{_validate.show(runs)}")
+    from icm.experiments.goal_oriented import GoalOrientedResult
+
+    fig, ax = new_figure(width=6.0, height=3.4)
+    for label, result in runs.items():
+        _validate.instance(f"runs[{label!r}]", result, GoalOrientedResult,
+                           "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
+        if result.button_share.shape[2] <= buttons.NOISY_BUTTON:
+            raise ValueError(f"runs[{label!r}] must be a run with the noisy button "
+                             f"(noisy_button=True)")
+        colour = SIGNAL_COLOURS[label] if label in SIGNAL_COLOURS else "black"
+        style = _signal_style(label) if label in SIGNAL_COLOURS else \
+            {"linestyle": "-", "marker": None}
+        plot_mean_band(ax, _noisy_share(result), colour, _label(str(label)), **style)
+    _chance_line(ax)
+    ax.set(xlabel="trial", ylabel="share of presses\non the noisy button", ylim=(0, 1),
+           xlim=(1, max(r.n_trials for r in runs.values())))
+    if title is not None:
+        ax.set_title(_validate.text("title", title), fontsize=10)
+    ax.legend(frameon=False, fontsize=8, loc="upper left")
     return fig
 
 
@@ -147,8 +214,8 @@ def _block_shares(result, index):
 
 def wobbly_rod_figure(comparison):
     """The rods with the wobbly rod, per intrinsic reward: the share of episodes that
-    end with the wobbly rod toppled (left), and the error the predictor would still
-    make on the red rod's pairs (right; below 0.1, red is predicted well), against
+    end with the wobbly rod toppled (top), and the error the predictor would still
+    make on the red rod's pairs (bottom; below 0.1, red is predicted well), against
     episode (mean over seeds, 95% band; shares over blocks of `BLOCK` episodes).
 
     Args:
@@ -158,25 +225,25 @@ def wobbly_rod_figure(comparison):
                  "icm.experiments.run_reward_comparison")
     if True not in comparison.settings["wobbly"]:
         raise ValueError("comparison must hold runs with the wobbly rod (wobbly=(..., True))")
-    fig, (left, right) = new_figure(width=6.7, height=7.6, nrows=2)
+    fig, (top, bottom) = new_figure(width=6.7, height=7.6, nrows=2)
     for reward in comparison.settings["rewards"]:
         result = comparison.results[(reward, True)]
         colour = SIGNAL_COLOURS[reward]
         shares = _block_shares(result, result.rod_names.index(rods.WOBBLY))
         x = BLOCK * np.arange(shares.shape[1]) + (BLOCK + 1) / 2
-        plot_mean_band(left, shares, colour, _label(reward), x=x, **_signal_style(reward))
-        plot_mean_band(right, result.rod_error[:, :, 0], colour, _label(reward),
+        plot_mean_band(top, shares, colour, _label(reward), x=x, **_signal_style(reward))
+        plot_mean_band(bottom, result.rod_error[:, :, 0], colour, _label(reward),
                        **_signal_style(reward))
     n = comparison.settings["n_seeds"]
-    left.set(xlabel="episode", ylabel="share of episodes\nending at the wobbly rod",
+    top.set(xlabel="episode", ylabel="share of episodes\nending at the wobbly rod",
              ylim=(0, 1), xlim=(1, comparison.settings["n_episodes"]))
-    left.set_title(f"Where the episodes end, {n} seeds", fontsize=10)
-    legend_below(left, ncols=2)
-    right.axhline(WELL_PREDICTED_ERROR, color="black",
+    top.set_title(f"Where the episodes end, {n} seeds", fontsize=10)
+    legend_below(top, ncols=2)
+    bottom.axhline(WELL_PREDICTED_ERROR, color="black",
                   linestyle="--", linewidth=1)
-    right.set(xlabel="episode", ylabel="largest error left on a red pair", ylim=(0, 1.02),
+    bottom.set(xlabel="episode", ylabel="largest error left on a red pair", ylim=(0, 1.02),
               xlim=(1, comparison.settings["n_episodes"]))
-    right.set_title(f"What is learned about the red rod, {n} seeds", fontsize=10)
+    bottom.set_title(f"What is learned about the red rod, {n} seeds", fontsize=10)
     return fig
 
 
@@ -214,8 +281,8 @@ def coin_flip_figure(curves):
 
 def noisy_scenes(camera="front", height=360, width=480):
     """Two images from the simulated scenes beyond the paper: the iCub pressing the
-    noisy button (blue, on its stand right of the console), and the wobbly rod (yellow,
-    beside the grid) falling as the hand passes it, backward from cell (0, 2). The
+    noisy button (blue, on its stand at the robot's right of the console), and the wobbly
+    rod (yellow, beside the grid, at the robot's left) falling as the hand passes it, backward from cell (0, 2). The
     first seed whose draw topples the wobbly rod is used (a rod that stands shows
     nothing).
 
@@ -284,5 +351,6 @@ def scenes_figure(camera="front"):
         ax.set_title(textwrap.fill(title, 30), fontsize=10)
         ax.axis("off")
     return fig.describe("Two renderings of the simulated iCub: (a) its finger presses the "
-                        "noisy button, the blue one right of the console; (b) the wobbly "
-                        "yellow rod falls as the hand passes it.")
+                        "noisy button, the blue one on its own stand at the robot's right "
+                        "of the console; (b) the wobbly yellow rod falls as the hand "
+                        "passes it.")
