@@ -454,3 +454,23 @@ def test_every_clear_paired_verdict_of_the_chapter_is_replicated():
              for name, v in chapter.items() if v["clear"]}
     assert set(clear) <= set(stored["verdicts"])
     assert curiosity.replicate(clear) == {name: stored["verdicts"][name] for name in clear}
+
+
+def test_the_word_clear_needs_holms_correction_over_the_whole_family():
+    from icm import chapters
+
+    class Fake:
+        def __init__(self, verdicts):
+            self.verdicts = verdicts
+
+        def paired_verdicts(self):
+            return self.verdicts
+
+    holm = {"a": {"n_family": 2, "clear": True, "p_holm": 0.01},
+            "b": {"n_family": 2, "clear": False, "p_holm": 0.5}}
+    assert chapters.curiosity.verdict_claims(Fake(holm)) == {"clear_is_holm": True}
+    partial = {**holm, "a": {**holm["a"], "n_family": 1}}  # corrected in a smaller family
+    assert chapters.curiosity.verdict_claims(Fake(partial)) == {"clear_is_holm": False}
+    loose = {**holm, "a": {**holm["a"], "p_holm": 0.2}}  # called clear past the rate
+    assert chapters.curiosity.verdict_claims(Fake(loose)) == {"clear_is_holm": False}
+    assert chapters.curiosity.verdict_claims(Fake({})) == {"clear_is_holm": False}

@@ -51,9 +51,40 @@ REWARD_CLAIMS = {
 (`RewardComparison.claims`)."""
 
 
+VERDICT_CLAIMS = {
+    "clear_is_holm": "each paired difference called clear survives Holm's correction for "
+                     "the chapter's whole family of paired comparisons at a family-wise 5%",
+}
+"""The claim behind the chapter's word "clear" (`verdict_claims`)."""
+
+
+def verdict_claims(comparison):
+    """Whether the chapter's paired verdicts are Holm's over its whole family: each one
+    was corrected in a family of all of them, and each called clear has an adjusted
+    p-value within the family-wise rate.
+
+    Args:
+      comparison: the chapter's `SignalComparison`.
+
+    Returns:
+      {"clear_is_holm": bool}.
+    """
+    paired = comparison.paired_verdicts()
+    return {"clear_is_holm": bool(paired) and all(
+        v["n_family"] == len(paired) and (not v["clear"] or v["p_holm"] <= stats.FAMILY_RATE)
+        for v in paired.values())}
+
+
 BOLD_CLAIMS = {
     "Novelty pays the coin exactly what it pays the sure outcome": ("novelty_blind", "exact"),
 }
+STRONG_WORDS = {
+    "the likelier one of them looks clear by luck": ("clear_is_holm", "corrected"),
+    "a difference is called clear only if it survives it": ("clear_is_holm", "corrected"),
+}
+"""The chapter's sentences with a word of strength beside a result, other than the bold
+claims, and the check that carries each (book/_ext/claim_words.py): the definition of
+"clear" in the fold on how sure its verdicts are."""
 """The bold claims of the chapter "Which curiosity?" that use a word of strength
 ("every", "exactly", ...; book/_ext/claim_words.py), each with the claim that checks
 it (`COIN_CLAIMS`, `SIGNAL_CLAIMS`) and the kind of that check: "exact" (an array
