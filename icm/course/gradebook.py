@@ -42,7 +42,7 @@ class TestGrade:
       name: "public test" or "hidden test N".
       hidden: whether its cases are hidden.
       points: its points.
-      cases: its `CaseGrade`s.
+      cases: its cases (`CaseGrade`).
     """
 
     name: str
@@ -66,7 +66,7 @@ class ExerciseGrade:
       label: the exercise's label.
       title: its number and title, e.g. "Exercise 2.1: the least-squares slope".
       possible: its points.
-      tests: its `TestGrade`s.
+      tests: its tests (`TestGrade`).
       problem: why it could not be tested at all ("" if it was).
     """
 
