@@ -381,21 +381,27 @@ def test_a_message_the_feedback_cannot_encode_costs_nobody_their_feedback(tiny_a
 
 
 def _grown(folder, out, assignments):
-    """How much the grader's memory grows while it grades `folder`, in bytes, measured in
-    a process of its own (grading an honest notebook there grows it by nothing)."""
+    """How much the grader's memory grows while it grades `folder` (one notebook), in
+    bytes, measured in a process of its own (grading an honest notebook there grows it
+    by nothing), and what the grader said of the notebook's first case (or of the
+    notebook, if no case ran)."""
     script = (
         "import json, resource, sys\n"
         "from icm.course import grade\n"
         "before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss\n"
-        "grade.grade(sys.argv[1], sys.argv[2], assignments=sys.argv[3], memory_limit=2.0,\n"
-        "            time_limit=60, cell_timeout=10, progress=lambda _: None)\n"
+        "graded, = grade.grade(sys.argv[1], sys.argv[2], assignments=sys.argv[3],\n"
+        "                      memory_limit=2.0, time_limit=60, cell_timeout=10,\n"
+        "                      progress=lambda _: None)\n"
         "after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss\n"
-        "print(json.dumps({'grown': (after - before) * 1024}))\n")
+        "said = [case.message for grade in graded.exercises.values()\n"
+        "        for test in grade.tests for case in test.cases][:1] or [graded.problem]\n"
+        "print(json.dumps({'grown': (after - before) * 1024, 'said': said[0]}))\n")
     done = subprocess.run([sys.executable, "-c", script, str(folder), str(out),
                            str(assignments)], capture_output=True, text=True, cwd=ROOT,
                           timeout=300)
     assert done.returncode == 0, done.stderr[-2000:]
-    return json.loads(done.stdout.splitlines()[-1])["grown"]
+    measured = json.loads(done.stdout.splitlines()[-1])
+    return measured["grown"], measured["said"]
 
 
 BLOAT = f'''import sys
@@ -426,7 +432,10 @@ def test_a_reply_the_channel_accepts_cannot_cost_the_grader_gigabytes(tiny_assig
     are decoded at once)."""
     folder = tmp_path / "class"
     _notebook(folder, "m_bloat.ipynb", {**WRONG, "least_squares_slope": BLOAT})
-    grown = _grown(folder, tmp_path / "grades.csv", tiny_assignments)
+    grown, said = _grown(folder, tmp_path / "grades.csv", tiny_assignments)
+    if "given: [[]" not in said and "could not be read" not in said:
+        pytest.skip(f"inconclusive: the reply did not reach the grader on this machine, "
+                    f"which is too slow now ({said[:200]})")
     assert grown < 64 * 2 ** 20, f"the grader grew by {grown / 2 ** 20:.0f} MiB"
 
 
@@ -441,7 +450,7 @@ def test_a_notebook_the_grader_reads_cannot_cost_it_gigabytes(tiny_assignments, 
     (folder / "m_nested.ipynb").write_bytes(
         b'{"cells": [], "metadata": {"otter": {"assignment_name": "goal_oriented_interest"},'
         b' "lists": [' + b"[]," * (lists - 1) + b"[]]}}")
-    grown = _grown(folder, tmp_path / "grades.csv", tiny_assignments)
+    grown, _ = _grown(folder, tmp_path / "grades.csv", tiny_assignments)
     assert grown < 256 * 2 ** 20, f"the grader grew by {grown / 2 ** 20:.0f} MiB"
 
 
@@ -673,9 +682,10 @@ def _outside_code(text):
 
 
 def test_what_a_notebook_says_reaches_the_feedback_as_text(tiny_assignments, tmp_path):
-    """A cell's error text is written into the feedback's Markdown as it is, and a case's
+    """A cell's error text is written into the feedback's Markdown as it is, a case's
     report inside a fence of three backticks, which a line of three in the student's
-    error text closes: a notebook can add headings ("10 of 10") and HTML of its own."""
+    error text closes, and the file's name into a heading: a notebook can add headings
+    ("10 of 10") and HTML of its own."""
     folder = tmp_path / "class"
     _notebook(folder, "m_markdown.ipynb", {
         **WRONG, "least_squares_slope": "def least_squares_slope(values):\n"
@@ -683,11 +693,14 @@ def test_what_a_notebook_says_reaches_the_feedback_as_text(tiny_assignments, tmp
                                         "<img src=x onerror=alert(2)>\\n\\n```')\n"}, [
         "raise ValueError('x\\n\\n## Exercise 2.1: the least-squares slope: 10 of 10\\n\\n"
         "<img src=x onerror=alert(1)>')\n"])
+    _notebook(folder, "<img src=x onerror=alert(3)>.ipynb", WRONG)
     _, _, feedback, _ = _grade(folder, tiny_assignments)
     outside = _outside_code((feedback / "m_markdown.md").read_text(encoding="utf-8"))
     assert not any(line.startswith("## Exercise 2.1: the least-squares slope: 10 of 10")
                    for line in outside)
-    assert [line for line in outside if "<img" in line] == []
+    for path in feedback.glob("*.md"):
+        outside = _outside_code(path.read_text(encoding="utf-8"))
+        assert [line for line in outside if "<img" in line] == [], path.name
 
 
 def test_the_progress_lines_hold_no_terminal_control_characters(tiny_assignments, tmp_path):
