@@ -187,10 +187,11 @@ def write_bytes(path, data):
 
 
 def write_text(path, text):
-    """Writes a text file whole (UTF-8; see `write_bytes`).
+    """Writes a text file whole (UTF-8, a character it cannot hold written as its
+    escape, e.g. a file name's undecodable byte; see `write_bytes`).
 
     Args:
       path: the file.
       text: its text.
     """
-    write_bytes(path, text.encode("utf-8"))
+    write_bytes(path, text.encode("utf-8", "backslashreplace"))

@@ -16,6 +16,12 @@ MAX_JSON_BYTES = 64 * 2 ** 20
 """The largest JSON file read back (a notebook with its outputs included)."""
 
 
+MAX_JSON_CONTAINERS = 1_000_000
+"""The most lists and objects (brackets [ and {) a JSON file read back may hold: each
+takes 56 bytes or more once read, so a file of empty lists would take over 20 times its
+size in memory."""
+
+
 class RecordError(ValueError):
     """A file that is not what it should be; the message names the file and the
     field."""
@@ -53,6 +59,9 @@ def parse_json(data, model, name):
     """
     if len(data) > MAX_JSON_BYTES:
         raise RecordError(f"{name}: larger than {MAX_JSON_BYTES // 2 ** 20} MiB")
+    brackets = (b"[", b"{") if isinstance(data, bytes) else ("[", "{")
+    if sum(data.count(bracket) for bracket in brackets) > MAX_JSON_CONTAINERS:
+        raise RecordError(f"{name}: more than {MAX_JSON_CONTAINERS:,} lists and objects")
     try:
         content = json.loads(data)
     except RecursionError:

@@ -348,7 +348,7 @@ def test_arguments_changed_in_place_are_changed_back_here():
     assert session.write_back(rng, moved) and rng.random() == moved.random()
 
 
-def test_control_groups_of_version_2_are_made_and_limited(tmp_path):
+def test_control_groups_of_version_2_are_made_and_limited(tmp_path, monkeypatch):
     root = tmp_path / "cgroup"
     root.mkdir()
     (root / "cgroup.controllers").write_text("cpu memory pids io\n")
@@ -357,10 +357,20 @@ def test_control_groups_of_version_2_are_made_and_limited(tmp_path):
     (root / cgroups.GROUP / "cgroup.subtree_control").write_text("")
     kind = sandbox.CgroupV2(root)
     assert kind.usable() == ""
-    assert (root / "cgroup.subtree_control").read_text() == "+memory +pids"
-    assert (root / cgroups.GROUP / "cgroup.subtree_control").read_text() == "+memory +pids"
-    group = kind.create("one", sandbox.Limits(memory=2 ** 30, processes=10))
+    assert (root / "cgroup.subtree_control").read_text() == "+memory +pids +cpu"
+    assert (root / cgroups.GROUP / "cgroup.subtree_control").read_text() == \
+        "+memory +pids +cpu"
+    real_mkdir = pathlib.Path.mkdir
+
+    def mkdir_with_files(self, *args, **kwargs):  # as the kernel fills a new group
+        real_mkdir(self, *args, **kwargs)
+        if self.parent == root / cgroups.GROUP:
+            (self / "cpu.max").write_text("max 100000")
+    monkeypatch.setattr(pathlib.Path, "mkdir", mkdir_with_files)
+    group = kind.create("one", sandbox.Limits(memory=2 ** 30, processes=10, cpus=1.5))
+    monkeypatch.undo()
     folder = root / cgroups.GROUP / "one"
+    assert (folder / "cpu.max").read_text() == "150000 100000"
     assert (folder / "memory.max").read_text() == str(2 ** 30)
     assert (folder / "pids.max").read_text() == "10"
     (folder / "memory.events").write_text("low 0\nhigh 0\nmax 3\noom 1\noom_kill 1\n")
@@ -379,7 +389,7 @@ def _controllers(tmp_path, text):
 
 
 @pytest.mark.skipif(not CONFINED.available, reason=f"no confinement: {CONFINED.problem}")
-def test_the_confinement_sees_only_the_system_python_numpy_and_the_runner():
+def test_the_confinement_sees_only_python_numpy_and_the_runner_and_refuses_calls():
     cells = ["import os, sys, socket\n"
              "seen = sorted(os.listdir('/'))\n"
              "grader = sorted(os.listdir('/grader'))\n"
@@ -388,8 +398,16 @@ def test_the_confinement_sees_only_the_system_python_numpy_and_the_runner():
              "import importlib.util\n"
              "missing = [m for m in ('icm', 'otter', 'pytest', 'pip') "
              "if importlib.util.find_spec(m) is not None]\n"
+             "import ctypes\n"
+             "libc = ctypes.CDLL(None, use_errno=True)\n"
+             "refused = []\n"
+             "for number in (248, 250, 272, 101, 323):  # add_key keyctl unshare ptrace "
+             "userfaultfd (x86-64)\n"
+             "    refused.append((libc.syscall(number, 0, 0, 0, 0, 0), ctypes.get_errno()))\n"
+             "status = open('/proc/self/status').read()\n"
+             "bounds = status.split('CapBnd:')[1].split()[0]\n"
              "def probe():\n"
-             "    return [seen, grader, packages, list(who), missing]\n"]
+             "    return [seen, grader, packages, list(who), missing, refused, bounds]\n"]
     import time
 
     with sandbox.Confined(CONFINED, sandbox.Limits()) as run:
@@ -397,9 +415,15 @@ def test_the_confinement_sees_only_the_system_python_numpy_and_the_runner():
         while "ready" not in run.receive(time.monotonic() + 60):
             pass
         run.send({"id": 1, "call": "probe", "args": []})
-        seen, grader, packages, who, importable = runner.decode(
+        seen, grader, packages, who, importable, refused, bounds = runner.decode(
             run.receive(time.monotonic() + 60)["value"])
     assert "work" not in seen and "home" not in seen and "etc" not in seen
     assert grader == ["packages", "runner.py"]
     assert set(packages) <= {"numpy", "numpy.libs"}
     assert who == [65534, 65534, 1] and importable == []
+    import platform
+
+    if platform.machine() == "x86_64":  # the seccomp filter: each refused, EPERM
+        assert refused == [(-1, 1)] * 5, refused
+    if sandbox.drops_root():  # no capability left to gain, even through a setuid file
+        assert bounds == "0000000000000000"

@@ -36,10 +36,12 @@ when given) and one feedback file per submission, in Markdown.
 
 import concurrent.futures
 import dataclasses
+import errno
 import hashlib
 import os
 import pathlib
 import secrets
+import stat
 import time
 
 from icm import _validate, files, records
@@ -61,6 +63,11 @@ GRADING_SETUP = "import numpy as np"
 """What the grader runs in place of an assignment's setup cell left unchanged (the
 setup installs icm and otter and starts `grader.check`, which only the student's own
 kernel runs): the import it gives the student's answers."""
+MAX_SUBMISSION_BYTES = 32 * 2 ** 20
+"""The largest notebook read (a notebook with its outputs is a few MB)."""
+FEEDBACK_STEM_BYTES = 200
+"""The longest stem of a feedback file's name, in bytes (a name has at most 255, and
+its temporary name while it is written takes more)."""
 SETUP_MARK = "grader = otter.Notebook("
 """How the setup cell of an assignment's notebook is recognised."""
 
@@ -211,10 +218,13 @@ def _judged(exercise, function, cases, hidden):
             for case in remaining:
                 verdicts.setdefault(case.name, gradebook.CaseGrade(case.name, False, stopped))
             break
-        except (TypeError, ValueError) as error:  # a function the check cannot call
+        except Exception as error:  # a function the check cannot call, or judge
+            text = str(error) if isinstance(error, (TypeError, ValueError)) else (
+                f"the check could not judge your function's answer ({type(error).__name__}"
+                f": {error})")
             for case in remaining:
                 verdicts.setdefault(case.name, gradebook.CaseGrade(case.name, False,
-                                                                   str(error)))
+                                                                   text[:2000]))
             break
         if order is None:
             order = list(result.cases)
@@ -231,8 +241,12 @@ def _judged(exercise, function, cases, hidden):
             passed_cases += [case for case in remaining if case.name == name]
         if failed is None:
             break
-        verdicts[failed] = gradebook.CaseGrade(failed, False,
-                                               grading.case_message(result, hidden))
+        message = grading.case_message(result, hidden)
+        if not hidden:  # its place among all the test's cases, not among those rerun
+            message = message.replace(result.headline(), f"{exercise.function}: case "
+                                      f"{order.index(failed) + 1} of {len(order)}, "
+                                      f"\"{failed}\", failed.", 1)
+        verdicts[failed] = gradebook.CaseGrade(failed, False, message)
         given = [case.name for case in remaining]
         if failed not in given:  # a case of the check's own: the last it judges
             break
@@ -358,16 +372,24 @@ def _submissions(folder):
 
 
 def _read(path):
-    """A submission's bytes, or (None, why not)."""
-    if path.is_symlink():
-        return None, "a symbolic link, not a file: not read"
+    """A submission's bytes, or (None, why not): a regular file only (opened without
+    following a link or waiting on a named pipe), of a sane size."""
     try:
-        size = path.stat().st_size
-        if size > records.MAX_JSON_BYTES:
-            return None, f"larger than {records.MAX_JSON_BYTES // 2 ** 20} MiB: not read"
-        return path.read_bytes(), ""
+        handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_NOFOLLOW)
     except OSError as error:
+        if error.errno == errno.ELOOP:
+            return None, "a symbolic link, not a file: not read"
         return None, f"cannot be read ({error.strerror})"
+    with os.fdopen(handle, "rb") as file:
+        status = os.fstat(handle)
+        if not stat.S_ISREG(status.st_mode):
+            return None, "not a regular file: not read"
+        if status.st_size > MAX_SUBMISSION_BYTES:
+            return None, f"larger than {MAX_SUBMISSION_BYTES // 2 ** 20} MiB: not read"
+        try:
+            return file.read(MAX_SUBMISSION_BYTES + 1), ""
+        except OSError as error:
+            return None, f"cannot be read ({error.strerror})"
 
 
 def _is_grade_sheet(path):
@@ -445,7 +467,8 @@ def grade(submissions, out, assignments="_build/assignments", feedback_dir=None,
         else:
             graded = grade_submission(name, data, loaded, secret, confinement, limits,
                                       time_limit, cell_timeout)
-        progress(f"{graded.submission}: {gradebook.number(graded.total)} of "
+        progress(f"{gradebook.printable(graded.submission)}: "
+                 f"{gradebook.number(graded.total)} of "
                  f"{gradebook.number(sum(graded.possible.values()))}"
                  + (f" ({graded.problem})" if graded.problem else "") +
                  f" [{graded.seconds:.0f} s]")
@@ -455,10 +478,30 @@ def grade(submissions, out, assignments="_build/assignments", feedback_dir=None,
         results = list(pool.map(one, contents))
     gradebook.write_csv(results, loaded, out, students)
     files.fresh_folder(feedback_dir)
-    written = set()
-    for graded in results:
-        stem = pathlib.Path(graded.submission).stem
-        name = f"{stem}.md" if stem.lower() not in written else f"{graded.submission}.md"
-        written.add(stem.lower())
+    for graded, name in zip(results, feedback_names(results)):
         files.write_text(feedback_dir / name, gradebook.feedback(graded))
     return results
+
+
+def feedback_names(results):
+    """Each submission's feedback file's name: its stem (cut to `FEEDBACK_STEM_BYTES`)
+    and ".md", made unique whatever the case ("-2", "-3", ...), so that no student's
+    feedback is written over another's.
+
+    Args:
+      results: the list of `gradebook.Graded`.
+
+    Returns:
+      The names, in the same order.
+    """
+    names, taken = [], set()
+    for graded in results:
+        stem = os.fsdecode(os.fsencode(pathlib.Path(graded.submission).stem)
+                           [:FEEDBACK_STEM_BYTES])
+        name, copy = f"{stem}.md", 1
+        while gradebook.folded(name) in taken:
+            copy += 1
+            name = f"{stem}-{copy}.md"
+        taken.add(gradebook.folded(name))
+        names.append(name)
+    return names
