@@ -96,6 +96,13 @@ def workshop(tmp_path):
     (tmp_path / "link_dir").symlink_to("other")
     (tmp_path / "link_dir.xml").symlink_to("other")
     (tmp_path / "link_html").symlink_to("HTML")
+    (tmp_path / "dangling").symlink_to("nowhere")
+    # Links to the commands' own outputs: writing through them would change those.
+    (tmp_path / "own_export.xml").write_text(f"{lms.DECLARATION}\n{lms.SIGNATURE}\n<quiz/>\n")
+    (tmp_path / "link_own_export.xml").symlink_to("own_export.xml")
+    marked_folder(tmp_path / "own_slides", slides.COMMAND)
+    (tmp_path / "link_own_slides").symlink_to("own_slides")
+    (tmp_path / "link_own_assign").symlink_to("assign_out")
     (tmp_path / "dir.xml").mkdir()
     os.mkfifo(tmp_path / "pipe.xml")
     (tmp_path / "subs").mkdir()
@@ -104,6 +111,18 @@ def workshop(tmp_path):
     bad.mkdir(parents=True)
     (bad / grade.MANIFEST).write_text('{"chapter": "x", "number": ')
     return tmp_path
+
+
+@pytest.fixture
+def deadline():
+    """Ends a test that waits more than 30 s (a named pipe read would wait forever)."""
+    def too_long(*_):
+        raise TimeoutError("waited more than 30 s")
+    previous = signal.signal(signal.SIGALRM, too_long)
+    signal.alarm(30)
+    yield
+    signal.alarm(0)
+    signal.signal(signal.SIGALRM, previous)
 
 
 def tree(*roots):
@@ -162,13 +181,17 @@ DESTINATIONS = {
     "lms: the book, through a link": (("lms", "link_html", "--out", "HTML/q.xml"),
                                       "HTML/q.xml"),
     "lms: a link to a file": (("lms", "HTML", "--out", "link_file.xml"), "link_file.xml"),
+    "lms: a link to its own export": (("lms", "HTML", "--out", "link_own_export.xml"),
+                                      "link_own_export.xml"),
+    "lms: a new file that is not XML": (("lms", "HTML", "--out", "new.ipynb"), "new.ipynb"),
     "lms: a link to a folder": (("lms", "HTML", "--out", "link_dir.xml"), "link_dir.xml"),
     "lms: a folder for the file": (("lms", "HTML", "--out", "dir.xml"), "dir.xml"),
     "lms: a file for a folder on the way": (("lms", "HTML", "--out", "file.txt/q.xml"),
-                                            "file.txt"),
+                                            "file.txt is a file"),
     "lms: a file for the book": (("lms", "notes.ipynb", "--out", "q.xml"), "notes.ipynb"),
     "lms: no book": (("lms", "nothing", "--out", "q.xml"), "nothing"),
-    "lms: a read-only folder": (("lms", "HTML", "--out", "ro/q.xml"), "ro"),
+    "lms: a broken link on the way": (("lms", "HTML", "--out", "dangling/q.xml"), "dangling"),
+    "lms: a read-only folder": (("lms", "HTML", "--out", "ro/q.xml"), "ro is read-only"),
     "lms: a named pipe": (("lms", "HTML", "--out", "pipe.xml"), "pipe.xml"),
     "slides: a notebook": (("slides", "HTML", "--out", "notes.ipynb"), "notes.ipynb"),
     "slides: the book itself": (("slides", "HTML", "--out", "HTML"), "HTML"),
@@ -179,12 +202,15 @@ DESTINATIONS = {
                                                 "HTML/s"),
     "slides: a link to a file": (("slides", "HTML", "--out", "link_file.xml"), "link_file.xml"),
     "slides: a link to a folder": (("slides", "HTML", "--out", "link_dir"), "link_dir"),
+    "slides: a link to its own folder": (("slides", "HTML", "--out", "link_own_slides"),
+                                         "link_own_slides"),
     "slides: a file for the folder": (("slides", "HTML", "--out", "file.txt"), "file.txt"),
     "slides: a file for the book": (("slides", "notes.ipynb", "--out", "s"), "notes.ipynb"),
     "slides: someone else's folder": (("slides", "HTML", "--out", "other"), "other"),
     "slides: the assignments' folder": (("slides", "HTML", "--out", "assign_out"), "assign_out"),
-    "slides: in a read-only folder": (("slides", "HTML", "--out", "ro/s"), "ro"),
-    "slides: a read-only folder": (("slides", "HTML", "--out", "ro"), "ro"),
+    "slides: a broken link on the way": (("slides", "HTML", "--out", "dangling/s"), "dangling"),
+    "slides: in a read-only folder": (("slides", "HTML", "--out", "ro/s"), "ro is read-only"),
+    "slides: a read-only folder": (("slides", "HTML", "--out", "ro"), "ro is read-only"),
     "slides: a named pipe": (("slides", "HTML", "--out", "pipe.xml"), "pipe.xml"),
     "assign: a notebook": (("assign", "notes.ipynb", *ASSIGN), "notes.ipynb"),
     "assign: the book's sources": (("assign", ROOT / "book", *ASSIGN), str(ROOT / "book")),
@@ -193,11 +219,14 @@ DESTINATIONS = {
     "assign: holding the book's sources": (("assign", ROOT, *ASSIGN), str(ROOT)),
     "assign: a link to a file": (("assign", "link_file.xml", *ASSIGN), "link_file.xml"),
     "assign: a link to a folder": (("assign", "link_dir", *ASSIGN), "link_dir"),
+    "assign: a link to its own folder": (("assign", "link_own_assign", *ASSIGN),
+                                         "link_own_assign"),
     "assign: a file for the folder": (("assign", "file.txt", *ASSIGN), "file.txt"),
-    "assign: a file on the way": (("assign", "file.txt/a", *ASSIGN), "file.txt"),
+    "assign: a file on the way": (("assign", "file.txt/a", *ASSIGN), "file.txt is a file"),
     "assign: someone else's folder": (("assign", "other", *ASSIGN), "other"),
     "assign: the slides' folder": (("assign", "slides_out", *ASSIGN), "slides_out"),
-    "assign: in a read-only folder": (("assign", "ro/a", *ASSIGN), "ro"),
+    "assign: a broken link on the way": (("assign", "dangling/a", *ASSIGN), "dangling"),
+    "assign: in a read-only folder": (("assign", "ro/a", *ASSIGN), "ro is read-only"),
     "assign: an unknown chapter": (("assign", "a", "--chapters", "nothing"), "nothing"),
     "grade: a notebook for the sheet": (("grade", "subs", "--out", "subs/alice.ipynb"),
                                         "subs/alice.ipynb"),
@@ -209,7 +238,7 @@ DESTINATIONS = {
                                                     "--feedback", "slides_out"), "slides_out"),
     "grade: a folder for the sheet": (("grade", "subs", "--out", "dir.xml"), "dir.xml"),
     "grade: a link for the sheet": (("grade", "subs", "--out", "link_file.xml"), "link_file.xml"),
-    "grade: a read-only folder": (("grade", "subs", "--out", "ro/g.csv"), "ro"),
+    "grade: a read-only folder": (("grade", "subs", "--out", "ro/g.csv"), "ro is read-only"),
     "grade: a malformed manifest": (("grade", "subs", "--out", "g.csv", "--assignments",
                                      "bad_assignments", "--trusted"),
                                     "bad_assignments/chapter/autograder/assignment.json"),
@@ -227,10 +256,17 @@ NUMBER_CASES = [(command, option, value) for command, options in NUMBERS.items()
                 if not (option == "--seed" and value == "0")]  # (a seed may be 0)
 
 
+def _no_work(*_, **__):
+    raise AssertionError("the command began its work before it refused")
+
+
 @pytest.mark.parametrize("case", sorted(DESTINATIONS))
 def test_a_bad_destination_is_refused_before_any_work_and_nothing_changes(
-        case, workshop, monkeypatch, capsys):
+        case, workshop, monkeypatch, capsys, deadline):
     arguments, named = DESTINATIONS[case]
+    for module, name in ((lms, "_soup"), (slides, "_soup"), (assign, "assign_chapter"),
+                         (grade, "grade_submission")):  # the work: never begun
+        monkeypatch.setattr(module, name, _no_work)
     around = (workshop, ROOT / "book") if arguments[0] == "assign" else (workshop,)
     before = tree(*around)
     result = course(monkeypatch, capsys, workshop, *arguments)
@@ -291,7 +327,8 @@ def test_the_real_command_says_one_line_and_exits_with_1(workshop):
 
 @pytest.mark.parametrize("bad", ["a named pipe", "not UTF-8", "a folder", "a figure outside",
                                  "no title"])
-def test_a_bad_page_of_the_book_is_refused_naming_it(bad, workshop, monkeypatch, capsys):
+def test_a_bad_page_of_the_book_is_refused_naming_it(bad, workshop, monkeypatch, capsys,
+                                                     deadline):
     page = workshop / "HTML" / "book" / f"{assign.chapters()[-1][0]}.html"
     named = page.name
     if bad == "a named pipe":  # read, it would never end
@@ -525,7 +562,7 @@ def test_replacing_a_link_never_touches_what_it_points_to(tmp_path):
 
 # --- what is read back --------------------------------------------------------------------------
 
-def test_a_file_read_back_is_a_bounded_regular_file_named_in_every_error(tmp_path):
+def test_a_file_read_back_is_a_bounded_regular_file_named_in_every_error(tmp_path, deadline):
     os.mkfifo(tmp_path / "pipe.json")
     (tmp_path / "big.json").write_bytes(b" " * 2049)
     (tmp_path / "latin.html").write_bytes(b"caf\xe9")
@@ -553,6 +590,14 @@ def test_assign_checks_its_manifest_with_the_graders_model(monkeypatch, tmp_path
         assign.assign(tmp_path / "a", seed=0, names=[CHAPTER], run_tests=False,
                       progress=lambda _: None)
     assert tree(tmp_path) == before  # refused before any work
+
+
+def test_an_error_of_the_system_is_one_line_too(workshop, monkeypatch, capsys):
+    def disk_full(*_, **__):
+        raise OSError(28, "No space left on device", "q.xml")
+    monkeypatch.setattr(lms, "export_moodle", disk_full)
+    assert_refused(course(monkeypatch, capsys, workshop, "lms", "HTML", "--out", "q.xml"),
+                   "q.xml: No space left on device")
 
 
 def test_the_one_line_of_an_error():
