@@ -10,7 +10,9 @@ size, refused naming the file otherwise (a named pipe would never end; a huge fi
 would fill the memory).
 """
 
+import errno
 import json
+import os
 import pathlib
 import re
 import stat
@@ -84,34 +86,46 @@ def parse_json(data, model, name):
         raise RecordError(f"{name}: nested too deeply") from None
 
 
-def read_bytes(path, limit=MAX_JSON_BYTES):
-    """A file's bytes: a regular file of at most `limit` bytes.
+def read_bytes(path, limit=MAX_JSON_BYTES, follow=True):
+    """A file's bytes: a regular file of at most `limit` bytes, opened without waiting
+    (a named pipe put in its place is refused, never waited on).
 
     Args:
       path: the file.
       limit: the most bytes read.
+      follow: whether a symbolic link is followed (False: refused).
 
     Returns:
       The bytes.
 
     Raises:
-      RecordError: for a file missing, not a regular file (a folder, a named pipe),
-        larger than `limit` or unreadable, naming it.
+      RecordError: for a file missing, a link (unless `follow`), not a regular file (a
+        folder, a named pipe), larger than `limit` or unreadable, naming it.
     """
     path = pathlib.Path(path)
+    flags = os.O_RDONLY | os.O_NONBLOCK | (0 if follow else os.O_NOFOLLOW)
     try:
-        info = path.stat()
-        if not stat.S_ISREG(info.st_mode):
-            raise RecordError(f"{path}: not a file" + (" but a folder" if
-                                                        stat.S_ISDIR(info.st_mode) else ""))
-        if info.st_size > limit:
-            raise RecordError(f"{path}: larger than {limit / 2 ** 20:g} MiB")
-        with open(path, "rb") as file:
-            data = file.read(limit + 1)
+        handle = os.open(path, flags)
     except FileNotFoundError:
         raise RecordError(f"{path}: does not exist") from None
     except OSError as error:
+        if error.errno == errno.ELOOP and not follow:
+            raise RecordError(f"{path}: a symbolic link, not a file") from None
+        if error.errno == errno.EISDIR:
+            raise RecordError(f"{path}: not a file but a folder") from None
         raise RecordError(f"{path}: cannot be read ({error.strerror})") from None
+    info = os.fstat(handle)
+    if not stat.S_ISREG(info.st_mode) or info.st_size > limit:
+        os.close(handle)
+        if not stat.S_ISREG(info.st_mode):
+            raise RecordError(f"{path}: not a file" + (" but a folder" if
+                                                        stat.S_ISDIR(info.st_mode) else ""))
+        raise RecordError(f"{path}: larger than {limit / 2 ** 20:g} MiB")
+    with os.fdopen(handle, "rb") as file:
+        try:
+            data = file.read(limit + 1)
+        except OSError as error:
+            raise RecordError(f"{path}: cannot be read ({error.strerror})") from None
     if len(data) > limit:  # (grown since)
         raise RecordError(f"{path}: larger than {limit / 2 ** 20:g} MiB")
     return data

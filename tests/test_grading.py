@@ -108,7 +108,7 @@ def test_a_class_is_graded_case_by_case(graded):
 def test_each_student_gets_feedback_that_says_why_and_never_shows_a_hidden_case(graded):
     sheet, results, _ = graded
     folder = sheet.parent / f"{sheet.stem}-feedback"
-    assert files.is_ours(folder)
+    assert files.is_ours(folder, grade.COMMAND)
     assert sorted(p.name for p in folder.glob("*.md")) == sorted(
         f"{pathlib.Path(name).stem}.md" for name in results)
     correct = (folder / "correct.md").read_text()

@@ -14,20 +14,20 @@ standard error, naming the option or the file, with exit status 1; no traceback.
 
 import argparse
 import math
-import os
 import sys
 
 from icm._validate import MAX_SEED
+from icm.course import limits
 
-CORES = os.cpu_count() or 1
-"""The machine's cores: the most `--jobs` (`icm.course.grade.MAX_JOBS`, the same)."""
+CORES = limits.CORES
+"""The machine's cores: the most `--jobs`."""
 NUMBERS = {
     # option: (kind, lowest, highest, what the number counts)
     "--seed": (int, 0, MAX_SEED, "the hidden tests' seed"),
-    "--jobs": (int, 1, CORES, "this machine's cores"),
-    "--time-limit": (float, 1.0, 86400.0, "seconds"),
-    "--memory-limit": (float, 0.25, 1024.0, "GiB"),
-    "--cell-timeout": (float, 1.0, 86400.0, "seconds"),
+    "--jobs": (int, *limits.JOBS, "this machine's cores"),
+    "--time-limit": (float, *limits.TIME_LIMIT, "seconds"),
+    "--memory-limit": (float, *limits.MEMORY_LIMIT, "GiB"),
+    "--cell-timeout": (float, *limits.CELL_TIMEOUT, "seconds"),
 }
 """The range of every number of the command line, stated in its help and checked as
 it is read (`icm.course.grade.grade` checks its own the same)."""

@@ -36,16 +36,14 @@ when given) and one feedback file per submission, in Markdown.
 
 import concurrent.futures
 import dataclasses
-import errno
 import hashlib
 import os
 import pathlib
 import secrets
-import stat
 import time
 
 from icm import _validate, files, records
-from icm.course import gradebook, grading, sandbox, session
+from icm.course import gradebook, grading, limits, sandbox, session
 from icm.exercises._core import NOT_IMPLEMENTED
 from icm.exercises.registry import EXERCISES
 
@@ -57,7 +55,7 @@ CELL_TIMEOUT = 120.0
 """Seconds one cell may run before it is left out."""
 MEMORY_LIMIT = 4.0
 """GiB of memory for one submission, all its processes and its RAM disk together."""
-MAX_JOBS = os.cpu_count() or 1
+MAX_JOBS = limits.JOBS[1]
 """The most submissions graded at once: the machine's cores."""
 GRADING_SETUP = "import numpy as np"
 """What the grader runs in place of an assignment's setup cell left unchanged (the
@@ -68,6 +66,8 @@ MAX_SUBMISSION_BYTES = 32 * 2 ** 20
 FEEDBACK_STEM_BYTES = 200
 """The longest stem of a feedback file's name, in bytes (a name has at most 255, and
 its temporary name while it is written takes more)."""
+COMMAND = "grade"
+"""This command's name in the marker of the feedback folders it writes."""
 SETUP_MARK = "grader = otter.Notebook("
 """How the setup cell of an assignment's notebook is recognised."""
 
@@ -372,24 +372,12 @@ def _submissions(folder):
 
 
 def _read(path):
-    """A submission's bytes, or (None, why not): a regular file only (opened without
-    following a link or waiting on a named pipe), of a sane size."""
+    """A submission's bytes, or (None, why not): a regular file only, not through a
+    link, of a sane size (`records.read_bytes`)."""
     try:
-        handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_NOFOLLOW)
-    except OSError as error:
-        if error.errno == errno.ELOOP:
-            return None, "a symbolic link, not a file: not read"
-        return None, f"cannot be read ({error.strerror})"
-    with os.fdopen(handle, "rb") as file:
-        status = os.fstat(handle)
-        if not stat.S_ISREG(status.st_mode):
-            return None, "not a regular file: not read"
-        if status.st_size > MAX_SUBMISSION_BYTES:
-            return None, f"larger than {MAX_SUBMISSION_BYTES // 2 ** 20} MiB: not read"
-        try:
-            return file.read(MAX_SUBMISSION_BYTES + 1), ""
-        except OSError as error:
-            return None, f"cannot be read ({error.strerror})"
+        return records.read_bytes(path, MAX_SUBMISSION_BYTES, follow=False), ""
+    except records.RecordError as error:
+        return None, str(error).split(": ", 1)[-1] + ": not read"
 
 
 def _is_grade_sheet(path):
@@ -428,21 +416,22 @@ def grade(submissions, out, assignments="_build/assignments", feedback_dir=None,
         (unless `trusted`).
       ValueError: for bad limits or destinations (before any work).
     """
-    time_limit = _validate.real("time_limit", time_limit, 1.0, 86400.0)
-    memory_limit = _validate.real("memory_limit", memory_limit, 0.25, 1024.0)
-    cell_timeout = _validate.real("cell_timeout", cell_timeout, 1.0, 86400.0)
-    jobs = _validate.integer("jobs", jobs, 1, MAX_JOBS)
+    time_limit = _validate.real("time_limit", time_limit, *limits.TIME_LIMIT)
+    memory_limit = _validate.real("memory_limit", memory_limit, *limits.MEMORY_LIMIT)
+    cell_timeout = _validate.real("cell_timeout", cell_timeout, *limits.CELL_TIMEOUT)
+    jobs = _validate.integer("jobs", jobs, *limits.JOBS)
     trusted = _validate.boolean("trusted", trusted)
-    submissions = pathlib.Path(submissions)
-    if not submissions.is_dir():
-        raise GradeError(f"the submissions' folder {submissions} does not exist")
+    try:
+        submissions = records.input_folder(submissions, "the submissions' folder")
+    except records.RecordError as error:
+        raise GradeError(str(error)) from None
     out = pathlib.Path(out)
     feedback_dir = pathlib.Path(feedback_dir) if feedback_dir else \
         out.parent / f"{out.stem}-feedback"
     inputs = [submissions, assignments] + ([roster] if roster else [])
     files.check_file(out, own=_is_grade_sheet, force=force, inputs=inputs, what="--out")
     files.check_folder(feedback_dir, force=force, inputs=inputs + [out],
-                       what="--feedback")
+                       what="--feedback", command=COMMAND)
     paths = _submissions(submissions)
     if not paths:
         raise GradeError(f"no notebook (*.ipynb) in {submissions}")
@@ -454,7 +443,7 @@ def grade(submissions, out, assignments="_build/assignments", feedback_dir=None,
         if not confinement.available:
             raise GradeError(f"submissions cannot be confined here: {confinement.problem}. "
                              f"Grade only notebooks you trust with --trusted")
-    limits = sandbox.Limits(memory=int(memory_limit * 2 ** 30),
+    run_limits = sandbox.Limits(memory=int(memory_limit * 2 ** 30),
                             cpu_seconds=int(time_limit) + 30)
     secret = secrets.token_bytes(32)  # this run's hidden cases; never written anywhere
     # Everything is read before any submission runs.
@@ -465,7 +454,7 @@ def grade(submissions, out, assignments="_build/assignments", feedback_dir=None,
         if data is None:
             graded = gradebook.Graded(name, problem=unread)
         else:
-            graded = grade_submission(name, data, loaded, secret, confinement, limits,
+            graded = grade_submission(name, data, loaded, secret, confinement, run_limits,
                                       time_limit, cell_timeout)
         progress(f"{gradebook.printable(graded.submission)}: "
                  f"{gradebook.number(graded.total)} of "
@@ -477,9 +466,9 @@ def grade(submissions, out, assignments="_build/assignments", feedback_dir=None,
     with concurrent.futures.ThreadPoolExecutor(jobs) as pool:
         results = list(pool.map(one, contents))
     gradebook.write_csv(results, loaded, out, students)
-    files.fresh_folder(feedback_dir)
-    for graded, name in zip(results, feedback_names(results)):
-        files.write_text(feedback_dir / name, gradebook.feedback(graded))
+    with files.staged(feedback_dir, replace=True, command=COMMAND) as staging:
+        for graded, name in zip(results, feedback_names(results)):
+            files.write_text(staging / name, gradebook.feedback(graded))
     return results
 
 

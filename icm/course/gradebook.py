@@ -180,11 +180,7 @@ def read_roster(path):
         bad row (named by its line), or a repeated id or file.
     """
     path = pathlib.Path(path)
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except (OSError, UnicodeDecodeError) as error:
-        raise records.RecordError(f"{path}: cannot be read as a UTF-8 CSV ({error})") \
-            from None
+    text = records.read_text(path).removeprefix("\ufeff")  # (a spreadsheet's BOM)
     reader = csv.DictReader(io.StringIO(text))
     fields = [name.strip().lower() for name in reader.fieldnames or ()]
     missing = [name for name in ("id", "name", "file") if name not in fields]
