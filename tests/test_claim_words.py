@@ -21,7 +21,7 @@ import claim_words  # noqa: E402 (book/_ext)
 from icm import chapters  # noqa: E402
 
 NOTEBOOKS = sorted((ROOT / "book").glob("*.ipynb"))
-UNDER_REWRITE = set()
+UNDER_REWRITE = {"simulated_icub", "robustness"}
 """Chapters 3, 6 and 7, whose words other branches are rewriting (issue 44): their flags
 are listed (`test_the_chapters_under_rewrite_are_listed`), not yet required empty."""
 
@@ -175,8 +175,38 @@ PLANTED = {
 weak to carry it."""
 
 
+PLANTED_PLAIN = {
+    "every": "Red is mastered first in every layout.",
+    "always": "Red is always mastered first.",
+    "never": "The critic never fails to learn red.",
+    "in every seed": "Red came first in every seed.",
+    "at every point": "Red is predicted well at every point of the map.",
+    "in all N": "The teacher was sooner in all eight cases.",
+    "only because": "It learns red only because red is easy.",
+    "because": "Red is learned first because it is easy.",
+    "so ... no": "Red is learned at once, so no practice is needed.",
+    "clear": "Learning progress learns green with a clear lead.",
+    "clearly": "Growing up learns clearly faster.",
+    "exactly": "Red is mastered exactly when green is.",
+    "fastest": "Novelty learns the fastest.",
+    "most": "Red is mastered first most of the time.",
+}
+"""The same overclaims with no number and no bold text: a sentence that speaks of what
+the learners did needs its check all the same."""
+
+
 def test_every_pattern_has_a_planted_overclaim():
-    assert set(PLANTED) == set(claim_words.PATTERNS)
+    assert set(PLANTED) == set(claim_words.PATTERNS) == set(PLANTED_PLAIN)
+
+
+@pytest.mark.parametrize("pattern", sorted(PLANTED_PLAIN))
+def test_a_planted_overclaim_without_a_number_fails_too(pattern):
+    sentence = PLANTED_PLAIN[pattern]
+    found = claim_words.problems([sentence], {}, set())
+    assert len(found) == 1 and "with no check" in found[0] and pattern in found[0], found
+    # The same word in a sentence about the rules, not about what the learners did,
+    # is the code's to check.
+    assert claim_words.problems(["Each trial lights every button once."], {}, set()) == []
 
 
 @pytest.mark.parametrize("pattern", sorted(PLANTED))
