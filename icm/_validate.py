@@ -344,6 +344,27 @@ def event_numbers(name, value):
     return array
 
 
+def broadcastable(name, value, other_name, other):
+    """Raises ValueError, naming both, if the arrays `value` and `other` (of the
+    arguments `name` and `other_name`) have shapes that do not broadcast together."""
+    try:
+        np.broadcast_shapes(np.shape(value), np.shape(other))
+    except ValueError:
+        raise ValueError(f"{name} and {other_name} must have shapes that broadcast "
+                         f"together (element-wise), got {np.shape(value)} and "
+                         f"{np.shape(other)}") from None
+
+
+def finite_results(name, value, *results):
+    """Raises ValueError, naming `name` and showing `value`, if any of `results` (sums,
+    means or spreads computed from `value`) is not finite: numbers near the largest
+    float (about 1e308; 1e154 for squares) overflow, and a band or a p-value of
+    infinities means nothing."""
+    if not all(np.all(np.isfinite(result)) for result in results):
+        raise ValueError(f"{name} must be small enough for their sums and squares to stay "
+                         f"finite (NaN and infinity have no meaning here), got {show(value)}")
+
+
 def available_memory():
     """Bytes of memory this machine can still give (Linux: MemAvailable)."""
     try:

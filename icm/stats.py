@@ -26,16 +26,6 @@ def _per_seed_values(values):
     return values
 
 
-def _finite_sums(name, value, *results):
-    """Raises ValueError, naming `name`, if any of `results` (sums, means or spreads of
-    `value`) is not finite: numbers near the largest float (about 1e308; 1e154 for
-    squares) overflow, and a band or a p-value of infinities means nothing."""
-    if not all(np.all(np.isfinite(result)) for result in results):
-        raise ValueError(f"{name} must be small enough for their sums and squares to stay "
-                         f"finite (NaN and infinity have no meaning here), got "
-                         f"{_validate.show(value)}")
-
-
 def _level(level):
     """A confidence level: None for `BAND_LEVEL`, else a number in (0, 1)."""
     if level is None:
@@ -70,12 +60,12 @@ def mean_band(values, level=BAND_LEVEL):
     with np.errstate(over="ignore", invalid="ignore"):  # refused below
         mean = values.mean(axis=0)
         if n < 2:
-            _finite_sums("values", values, mean)
+            _validate.finite_results("values", values, mean)
             return mean, mean.copy(), mean.copy()
         half = _scipy_stats.t.ppf(0.5 + level / 2, n - 1) * values.std(axis=0, ddof=1) / \
             np.sqrt(n)
         low, high = mean - half, mean + half
-    _finite_sums("values", values, mean, low, high)
+    _validate.finite_results("values", values, mean, low, high)
     return mean, low, high
 
 
@@ -157,18 +147,8 @@ def comes_first(first, second):
     """
     first = _validate.event_numbers("first", first)
     second = _validate.event_numbers("second", second)
-    _broadcast("first", first, "second", second)
+    _validate.broadcastable("first", first, "second", second)
     return (first >= 1) & ((second == -1) | (first < second))
-
-
-def _broadcast(name, value, other_name, other):
-    """Raises ValueError, naming both, if the arrays' shapes do not broadcast together."""
-    try:
-        np.broadcast_shapes(value.shape, other.shape)
-    except ValueError:
-        raise ValueError(f"{name} and {other_name} must have shapes that broadcast "
-                         f"together (element-wise), got {value.shape} and "
-                         f"{other.shape}") from None
 
 
 def paired_gaps(arm, baseline):
@@ -250,7 +230,7 @@ def bootstrap_band(values, level=None, resamples=1000, seed=0):
         mean = values.mean(axis=0)
         means = (_exact.matmul(counts, values.reshape(n, -1)) / n).reshape(
             (resamples,) + values.shape[1:])
-    _finite_sums("values", values, mean, means)
+    _validate.finite_results("values", values, mean, means)
     low, high = np.quantile(means, [(1 - level) / 2, (1 + level) / 2], axis=0)
     # Rounding in the weighted means must not put the band outside the values' range.
     low = np.clip(low, values.min(axis=0), mean)
@@ -345,7 +325,7 @@ def paired_p_value(differences, seed=0, alternative="two-sided"):
         signs[0] = 1  # the observed arrangement is one of the flips
     with np.errstate(over="ignore", invalid="ignore"):  # refused below
         means = _exact.matvec(signs, differences) / n
-    _finite_sums("differences", differences, means)
+    _validate.finite_results("differences", differences, means)
     observed = means[0]  # the identity's (signs[0] is every +1)
     tolerance = 1e-12 * max(1.0, float(np.abs(differences).max()))
     if alternative == "two-sided":
@@ -401,7 +381,8 @@ def corrected_verdicts(family, rate=FAMILY_RATE, seed=0):
                 raise ValueError(f"family[{name!r}] must hold one difference per seed "
                                  f"(or be a p-value), got none")
             with np.errstate(over="ignore"):  # refused here, under the member's name
-                _finite_sums(f"family[{name!r}]", differences, np.abs(differences).sum())
+                _validate.finite_results(f"family[{name!r}]", differences,
+                                         np.abs(differences).sum())
             p_values.append(paired_p_value(differences, seed))
             means.append(float(differences.mean()))
     clear, adjusted, _, _ = multipletests(p_values, alpha=rate, method="holm")
@@ -481,7 +462,7 @@ def share_interval(successes, n, level=LEVEL):
         if value.size == 0:
             raise ValueError(f"{name} must hold at least one count, got none: "
                              f"{_validate.show(shown)}")
-    _broadcast("successes", k, "n", n_)
+    _validate.broadcastable("successes", k, "n", n_)
     if np.any(n_ < 1):
         raise ValueError(f"n must be an integer (or integers) >= 1, got {_validate.show(n)}")
     if np.any(k < 0) or np.any(k > n_):
