@@ -161,8 +161,10 @@ included): the first such test of a worker waits in its setup (`built_book`) for
 build that started with the run. The build executes every notebook afresh (its target:
 150 s on an idle machine, `make bench`), then writes the HTML (66 CPU-seconds), on
 cores the unit tests share; it guards itself (a cell stalled for 60 s fails, and so does
-a runaway one: book/_ext/execute_book.py). Half an hour is ten times what it takes on
-an idle machine, and a third of CI's 90 minutes."""
+a runaway one: book/_ext/execute_book.py). Half an hour is about eight times what it
+takes on an idle machine, and a third of CI's 90 minutes (in a make test of
+2026-12-05, on a machine ten times slower than a quiet one, seven of the eight
+notebooks executed in 188 s of wall time, before the eighth failed on main's data)."""
 
 
 def book_test_ceiling(config):
