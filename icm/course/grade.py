@@ -77,7 +77,8 @@ class Assignment:
       chapter: the chapter's name.
       number: its number in the book.
       title: its title.
-      exercises: its `records.ManifestExercise`s, in order (implement and extend).
+      exercises: its exercises (`records.ManifestExercise`), in order (implement and
+        extend).
       handed_out: the sources of the student's notebook's code cells that are not
         answer cells (setup, checks, export, the extend exercises' empty cells).
       setup: the source of its setup cell ("" if none).

@@ -80,7 +80,7 @@ def project(physics, camera, points, height=480, width=640):
     return _pixels(Camera(physics, height, width, camera_id=camera).matrix, points)
 
 
-def _label(ax, xy, text, offset=(0, -40), fontsize=9):
+def _label(ax, xy, text, offset=(0, -40), fontsize=8):
     """Writes `text` in a white box near pixel `xy` of an image axis, with an arrow to it."""
     ax.annotate(text, xy=xy, xytext=offset, textcoords="offset points", ha="center",
                 fontsize=fontsize, bbox=dict(boxstyle="round,pad=0.25", facecolor="white",
@@ -152,11 +152,16 @@ def toppling_rod(camera="front", height=480, width=640, start_cell=(2, 0), actio
     return render(topple_moment(start_cell, action), camera, height, width)
 
 
-ROD_VIEW = {"lookat": (0.22, -0.07, 0.64), "distance": 0.85, "azimuth": 110.0,
-            "elevation": -15.0}
-"""The free camera of Figure 1 (b) (MuJoCo's lookat, distance in metres, azimuth and
-elevation in degrees): from the robot's right, across the rod's fall, so that the
-falling rod is seen along its length, not end on, and the whole robot is in frame."""
+PRESS_VIEW = {"lookat": (0.35, -0.08, 0.6), "distance": 0.85, "azimuth": 210.0,
+              "elevation": -28.0}
+"""The free camera of Figure 1 (a) (MuJoCo's lookat, distance in metres, azimuth and
+elevation in degrees): in front of the robot and to its right, where the open green
+lid stands out against the table."""
+ROD_VIEW = {"lookat": (0.25, -0.08, 0.65), "distance": 0.7, "azimuth": 115.0,
+            "elevation": -16.0}
+"""The free camera of Figure 1 (b): from the robot's right, across the rod's fall, so
+that the falling rod is seen along its length, not end on (from the front it looks like
+a small cube)."""
 
 
 def _free_view(physics, view, height, width):
@@ -174,29 +179,28 @@ def _pixels(matrix, points):
     return projected[:, :2] / projected[:, 2:3]
 
 
-def figure1(seed=0, camera="front"):
+def figure1(seed=0):
     """Figure 1, rebuilt from the model: (a) the iCub pushing the green button, the
-    green box open, seen from `camera`; (b) the iCub's hand toppling the red rod, seen
-    from the robot's right (`ROD_VIEW`: a rod falling away from the robot would look
-    like a cube from the front). Labels point at what each panel is about: the open
-    green lid and the shut red box, the falling red rod and the standing blue one."""
+    green box open (seen from `PRESS_VIEW`); (b) the iCub's hand toppling the red rod,
+    seen from the robot's right (`ROD_VIEW`). Labels point at what each panel is about:
+    the open green lid and the shut red box, the falling red rod and the standing blue
+    one."""
     height, width = 480, 640
-    physics, _ = press_moment(seed)
-    check_camera(physics, camera)
     fig, (left, right) = new_figure(width=11, height=4.4, ncols=2)
-    left.imshow(render(physics, camera, height, width))
-    lid, box = project(physics, camera, [physics.named.data.geom_xpos["green_lid"],
-                                         physics.named.data.geom_xpos["red_lid"]],
-                       height, width)
-    _label(left, lid, "green box: lid open", offset=(-70, -45))
-    _label(left, box, "red box: shut", offset=(30, -55))
+    physics, _ = press_moment(seed)
+    image, matrix = _free_view(physics, PRESS_VIEW, height, width)
+    left.imshow(image)
+    lid, box = _pixels(matrix, [physics.named.data.geom_xpos["green_lid"],
+                                physics.named.data.geom_xpos["red_lid"]])
+    _label(left, lid, "green lid: open", offset=(10, 55))
+    _label(left, box, "red box: shut", offset=(40, -40))
     rod_physics = topple_moment()
     image, matrix = _free_view(rod_physics, ROD_VIEW, height, width)
     right.imshow(image)
     red, blue = _pixels(matrix, [rod_physics.named.data.xpos[f"{name}_rod"]
                                  for name in rods.ROD_NAMES])
-    _label(right, red, "red rod, falling", offset=(-75, -50))
-    _label(right, blue, "blue rod, standing", offset=(45, 55))
+    _label(right, red, "red rod: falling", offset=(-95, 30))
+    _label(right, blue, "blue rod: standing", offset=(55, 60))
     for ax, title in [(left, "(a) pressing the green button opens the green box"),
                       (right, "(b) the hand topples the red rod")]:
         ax.set_title(textwrap.fill(title, 30), fontsize=10)
@@ -236,7 +240,7 @@ def cameras_figure(physics, cameras, height=240, width=320, number_buttons=False
             caps = [physics.named.data.geom_xpos[f"button{b}_cap"] + [0.0, 0.0, 0.03]
                     for b in range(buttons.N_BUTTONS)]
             pixels = project(physics, camera, caps, height, width)
-            if np.linalg.norm(np.diff(pixels, axis=0), axis=1).min() < 14:
+            if np.linalg.norm(np.diff(pixels, axis=0), axis=1).min() < 0.06 * width:
                 continue  # the buttons seen end on: the numbers would overlap
             for b, (column, row) in enumerate(pixels):
                 if 0 <= column < width and 0 <= row < height:
@@ -257,8 +261,8 @@ def record_press(seed=0, button=None, camera=None, frame_every=2, height=240, wi
         control updates (40 ms of simulated time at 2).
 
     Returns:
-      A dict of arrays: "time" (s since the press started, at the end of each
-        update of the motors' targets), "depth" (the pressed button's depth, mm), "other"
+      A dict of arrays: "time" (s since the press started, at the end of each update
+      of the motors' targets), "depth" (the pressed button's depth, mm), "other"
       (deepest of the other buttons, mm), "lids" (red and green lid angles, degrees),
       "fingertip" (m), "frames" (list of images), and "button", "boxes" (the
       observation after the press), "lights".
@@ -326,7 +330,7 @@ def record_move(start_cell=(2, 0), action=0, camera=None, frame_every=2, height=
 
 
 JOINT_MOTIONS = {
-    "r_shoulder_pitch": "swings the arm forward and up (negative) or back (positive)",
+    "r_shoulder_pitch": "swings the arm forward (negative) or back (positive)",
     "r_shoulder_roll": "lifts the arm sideways, away from the body (positive)",
     "r_shoulder_yaw": "turns the upper arm about its length: positive swings the bent "
                       "forearm out, to the robot's right",
@@ -336,14 +340,15 @@ JOINT_MOTIONS = {
     "r_wrist_yaw": "tilts the hand sideways: positive, towards the robot's left when the "
                    "elbow is bent",
 }
-"""What turning each joint of the right arm does, from the arm hanging straight down
-(every angle 0); tests/test_icub_figures.py checks each direction on the model."""
+"""What turning each joint of the right arm does, from the arm hanging straight along
+the torso (every angle 0); tests/test_icub_figures.py checks each direction on the
+model."""
 
 
 def joint_table(physics):
     """The right arm's joints as a Markdown table a newcomer can read: each joint in
     the iCub's order, what turning it does (`JOINT_MOTIONS`: from 0 degrees, the arm
-    hanging straight down), its range in degrees and its motor's gain kp.
+    hanging straight along the torso), its range in degrees and its motor's gain kp.
 
     Args:
       physics: a physics of one of the scenes (`icm.envs.buttons.load_physics()`).
