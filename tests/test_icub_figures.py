@@ -233,6 +233,8 @@ def _fingertip_at(physics, angles):
 
 def test_the_joint_table_says_which_way_each_joint_turns():
     """JOINT_MOTIONS's words, on the model (x forward, y to the robot's left, z up)."""
+    from icm.chapters import simulated_icub as chapter
+
     physics = buttons.load_physics()
     physics.forward()
     shoulder = physics.named.data.xpos["r_upper_arm"]
@@ -255,9 +257,9 @@ def test_the_joint_table_says_which_way_each_joint_turns():
     elbow = move({"r_elbow": 100}, bent)
     assert wrist[2] > 0 and elbow[2] > 0  # both bend the same way: up
     assert move({"r_wrist_yaw": 20}, bent)[1] > 0  # towards the robot's left
-    table = figures_icub.joint_table(physics)
-    assert all(figures_icub.JOINT_MOTIONS[name] in table for name in figures_icub.JOINT_MOTIONS)
-    refused(lambda: figures_icub.joint_table("physics"), "physics", "'physics'", "type")
+    table = chapter.joint_table(physics)
+    assert all(chapter.JOINT_MOTIONS[name] in table for name in chapter.JOINT_MOTIONS)
+    refused(lambda: chapter.joint_table("physics"), "physics", "'physics'", "type")
 
 
 def test_the_buttons_are_numbered_from_the_robots_left():

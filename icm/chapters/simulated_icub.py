@@ -5,8 +5,9 @@ of a comparison split into trials (`trial_steps`, `rod_episode_ends`), the ceili
 the goal-oriented learner's interest and the band of Figure 5 under it
 (`interest_ceiling`, `interest_band_top`), how high a mean of interest peaks and where
 it starts (`interest_peaks`), the phases of a press as they run (`press_phases`,
-checked on a recorded press by `press_claims`), and how the arm holds a posture, with
-and without gravity compensation (`hold_above_red`)."""
+checked on a recorded press by `press_claims`), the arm's joints as a table
+(`joint_table`), and how the arm holds a posture, with and without gravity compensation
+(`hold_above_red`)."""
 
 import math
 
@@ -58,6 +59,46 @@ def _check_comparison(name, check):
         raise _validate.ArgumentTypeError(f"{name} must be what compare_twins returns, "
                                           f"got {_validate.show(check)}")
     return check
+
+
+JOINT_MOTIONS = {
+    "r_shoulder_pitch": "swings the arm forward (negative) or back (positive)",
+    "r_shoulder_roll": "lifts the arm sideways, away from the body (positive)",
+    "r_shoulder_yaw": "turns the upper arm about its length: positive swings the bent "
+                      "forearm out, to the robot's right",
+    "r_elbow": "bends the elbow (positive); near 0 the arm is straight",
+    "r_wrist_prosup": "turns the forearm about its length, palm down or palm up",
+    "r_wrist_pitch": "bends the hand at the wrist: negative, the way the elbow bends",
+    "r_wrist_yaw": "tilts the hand sideways: positive, towards the robot's left when the "
+                   "elbow is bent",
+}
+"""What turning each joint of the right arm does, from the arm hanging straight along
+the torso (every angle 0); tests/test_icub_figures.py checks each direction on the
+model."""
+
+
+def joint_table(physics):
+    """The right arm's joints as a Markdown table a newcomer can read: each joint in
+    the iCub's order, what turning it does (`JOINT_MOTIONS`: from 0 degrees, the arm
+    hanging straight along the torso), its range in degrees and its motor's gain kp.
+
+    Args:
+      physics: a physics of one of the scenes (`icm.envs.buttons.load_physics()`).
+
+    Returns:
+      A Markdown string (display it with `IPython.display.Markdown`).
+    """
+    from dm_control import mujoco as dm_mujoco
+
+    _validate.instance("physics", physics, dm_mujoco.Physics, "a dm_control Physics")
+    lines = ["| # | joint | what turning it does | range (degrees) | motor's gain kp "
+             "(N m per radian) |", "|---|---|---|---|---|"]
+    for i, name in enumerate(icub.ARM_JOINTS, start=1):
+        low, high = np.rad2deg(physics.named.model.jnt_range[name])
+        kp = physics.named.model.actuator_gainprm[name][0]
+        lines.append(f"| {i} | {name} | {JOINT_MOTIONS[name]} | {low:.1f} to {high:.1f} "
+                     f"| {kp:g} |")
+    return "\n".join(lines)
 
 
 def trial_steps(button_check, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL):

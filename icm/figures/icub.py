@@ -329,48 +329,6 @@ def record_move(start_cell=(2, 0), action=0, camera=None, frame_every=2, height=
             "toppled": toppled}
 
 
-JOINT_MOTIONS = {
-    "r_shoulder_pitch": "swings the arm forward (negative) or back (positive)",
-    "r_shoulder_roll": "lifts the arm sideways, away from the body (positive)",
-    "r_shoulder_yaw": "turns the upper arm about its length: positive swings the bent "
-                      "forearm out, to the robot's right",
-    "r_elbow": "bends the elbow (positive); near 0 the arm is straight",
-    "r_wrist_prosup": "turns the forearm about its length, palm down or palm up",
-    "r_wrist_pitch": "bends the hand at the wrist: negative, the way the elbow bends",
-    "r_wrist_yaw": "tilts the hand sideways: positive, towards the robot's left when the "
-                   "elbow is bent",
-}
-"""What turning each joint of the right arm does, from the arm hanging straight along
-the torso (every angle 0); tests/test_icub_figures.py checks each direction on the
-model."""
-
-
-def joint_table(physics):
-    """The right arm's joints as a Markdown table a newcomer can read: each joint in
-    the iCub's order, what turning it does (`JOINT_MOTIONS`: from 0 degrees, the arm
-    hanging straight along the torso), its range in degrees and its motor's gain kp.
-
-    Args:
-      physics: a physics of one of the scenes (`icm.envs.buttons.load_physics()`).
-
-    Returns:
-      A Markdown string (display it with `IPython.display.Markdown`).
-    """
-    from dm_control import mujoco as dm_mujoco
-
-    from icm.envs import icub
-
-    _validate.instance("physics", physics, dm_mujoco.Physics, "a dm_control Physics")
-    lines = ["| # | joint | what turning it does | range (degrees) | motor's gain kp "
-             "(N m per radian) |", "|---|---|---|---|---|"]
-    for i, name in enumerate(icub.ARM_JOINTS, start=1):
-        low, high = np.rad2deg(physics.named.model.jnt_range[name])
-        kp = physics.named.model.actuator_gainprm[name][0]
-        lines.append(f"| {i} | {name} | {JOINT_MOTIONS[name]} | {low:.1f} to {high:.1f} "
-                     f"| {kp:g} |")
-    return "\n".join(lines)
-
-
 OBSERVATION_ENTRIES = {
     "arm_joints": ("the arm's joint angles, in the order of the joints' table",
                    "degrees", np.rad2deg, 1),
