@@ -61,6 +61,19 @@ def _check_comparison(name, check):
     return check
 
 
+STRONG_WORDS = {
+    "so the tests compare outcomes, not numbers: they (`tests/test_live_viewer.py`) press "
+    "every button": ("tests/test_live_viewer.py::test_every_press_in_the_browser_opens_"
+                     "the_lid_python_opens", "rule"),
+    "replay other random presses on another seed, comparing at every step": (
+        "tests/test_physics.py::test_compare_twins_finds_agreement_and_would_find_a_"
+        "difference", "rule"),
+}
+"""The chapter's sentences with a word of strength beside what the learners did, and
+the test that checks each (book/_ext/claim_words.py): what the tests compare, a rule
+of the code."""
+
+
 JOINT_MOTIONS = {
     "r_shoulder_pitch": "swings the arm forward (negative) or back (positive)",
     "r_shoulder_roll": "lifts the arm sideways, away from the body (positive)",
