@@ -83,6 +83,9 @@ STRONG_WORDS = {
     "Each clear one is rerun on a root seed no other run uses": ("clear_is_holm",
                                                                   "corrected"),
     "the likelier one of them looks clear by luck": ("clear_is_holm", "corrected"),
+    # Every sentence that quotes a glued paired verdict ("clearly sooner", "no clear
+    # difference") quotes Holm's.
+    "{glue:text}`paired_": ("clear_is_holm", "corrected"),
     "a difference is called clear only if it survives it": ("clear_is_holm", "corrected"),
 }
 """The chapter's sentences with a word of strength beside a result, other than the bold
