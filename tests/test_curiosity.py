@@ -6,7 +6,6 @@ each, so that a claim that held only by luck of the book's seeds would fail here
 """
 
 import inspect
-import math
 
 import numpy as np
 import pytest
@@ -327,12 +326,15 @@ def test_red_first_in_words(comparison):
     lowest = min(comparison.numbers(s, d)["red_first"]
                  for (s, d, noisy) in comparison.results if not noisy)
     text = comparison.describe_red_first()
-    assert text == ("in every seed" if lowest == 1 else
-                    f"in at least {math.floor(1000 * lowest + 1e-9) / 10:.1f}% of the seeds")
+    n = comparison.settings["n_seeds"]
+    held = round(lowest * n)
+    # A count of the sample, never "every seed" (a sample's 100% is not every seed).
+    assert text == (f"in {n} of the {n} seeds" if held == n else
+                    f"in at least {held} of the {n} seeds")
     every = curiosity.SignalComparison(comparison.settings, {
         key: result for key, result in comparison.results.items()
         if key[:2] == ("novelty", "region")})
-    assert every.describe_red_first() == "in every seed"
+    assert every.describe_red_first() == f"in {n} of the {n} seeds"
 
 
 # --- the chapter's paired comparisons: corrected, and replicated ----------------------------

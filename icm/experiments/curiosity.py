@@ -265,10 +265,11 @@ class SignalComparison:
 
     def describe_red_first(self):
         """In words, the fewest seeds in which red is mastered first, over the runs
-        without the noisy button: "in every seed" or "in at least 99.0% of the seeds"."""
+        without the noisy button, as a count of the sample (`results.in_seeds`): "in
+        100 of the 100 seeds" or "in at least 98 of the 100 seeds"."""
         lowest = min(self.numbers(s, d)["red_first"]
                      for (s, d, noisy) in self.results if not noisy)
-        return in_seeds(lowest)
+        return in_seeds(lowest, n_seeds=self.settings["n_seeds"])
 
     def fastest(self):
         """(signal, interest_per) of the world without the noisy button that masters
