@@ -582,7 +582,11 @@ def test_the_readings_summary_names_what_changes_a_verdict():
     total = 2 * len(changed.readings)
     text = robustness_readings.readings_summary([changed, same])
     assert text.startswith(f"1 of the {total} other readings changes a claim's verdict")
-    assert "read as zero" in text and text.endswith(f"the other {total - 1} change none")
+    assert "fewer than k times: zero (goal-oriented learner: interest moves to green " \
+           "later fails, 20.0%)" in text and text.endswith(f"the other {total - 1} change none")
+    assert robustness_readings.changed_readings([changed, same], shares=False) == (
+        "interest of a task seen fewer than k times: zero (goal-oriented learner)")
+    assert robustness_readings.changed_readings([same]) == "none"
     assert robustness_readings.readings_summary([same]).startswith("none of the")
     refused(lambda: robustness_readings.readings_summary([]), "results", "[]", "type")
 

@@ -208,10 +208,10 @@ def readings_summary(results):
 def changed_readings(results, shares=True):
     """In words, each other reading (of several `ReadingsResult` objects) that changes a
     claim's verdict: with `shares`, with the learner, each claim it changes, its verdict
-    and its share seen, e.g. "reading of the TD error and reward formulas read as
+    and its share seen, e.g. "reading of the TD error and reward formulas:
     printed_reward (actor-critic: green predicted well too fails, 2.0%)"; without, with
-    the learner alone ("... read as printed_reward (actor-critic)"). "none" if none
-    does (Markdown).
+    the learner alone ("...: printed_reward (actor-critic)"). "none" if none does
+    (Markdown).
 
     Args:
       results: a list of `ReadingsResult` objects.
@@ -223,7 +223,7 @@ def changed_readings(results, shares=True):
     for i, result in enumerate(results):
         _validate.instance(f"results[{i}]", result, ReadingsResult)
     _validate.boolean("shares", shares)
-    named = [f"{r.label} read as {show_value(r.value)} ({result.study.short}"
+    named = [f"{r.label}: {show_value(r.value)} ({result.study.short}"
              + ("".join(f"{': ' if k == 0 else ', '}{result.study.claim(c).text} "
                         f"{result.verdict(c, r)}, {result.share(c, r)[0]:.1%}"
                         for k, c in enumerate(result.changed(r))) if shares else "")
