@@ -6,7 +6,6 @@ each, so that a claim that held only by luck of the book's seeds would fail here
 """
 
 import inspect
-import math
 
 import numpy as np
 import pytest
