@@ -237,6 +237,11 @@ which needs no correction for their number: it fails if any one fails)."""
 STRONG_WORDS = {
     **{text: (name, kind, "points") for text, (name, kind) in BOLD_CLAIMS.items()},
     "it holds at every point with an initial Q": ("rods_blue_needs_drive", "all", "points"),
+    # Exercise 6.1's rule ("never" is -1), which the exercise's check holds answers to.
+    'the trials counted from 1 and -1 meaning "never"': (
+        "tests/test_exercises.py::test_a_typical_wrong_answer_fails_naming_the_case", "rule"),
+    '"Never" is `-1`, the smallest number': (
+        "tests/test_exercises.py::test_a_typical_wrong_answer_fails_naming_the_case", "rule"),
 }
 """The chapter's sentences that say a word of strength about its maps, in the form the
 reading of all prose takes (book/_ext/claim_words.py: {a fragment of the sentence: (claim
