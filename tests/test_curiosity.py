@@ -6,6 +6,7 @@ each, so that a claim that held only by luck of the book's seeds would fail here
 """
 
 import inspect
+import math
 
 import numpy as np
 import pytest

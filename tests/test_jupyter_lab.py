@@ -128,6 +128,21 @@ def test_a_code_cells_figure_gets_its_caption_numbered_with_the_glued_ones():
     assert "**Fig. 2.2** Second." in lab.cells[4].source
 
 
+def test_cross_references_read_as_the_page_numbers_and_names_them():
+    notebook = _executed(["(sec-rods)=\n## The rod table\n\n:::{dropdown} Why a fold?\n"
+                          ":name: fold-why\nBecause.\n:::",
+                          "```{glue:figure} fig_a\n:name: fig-a\n\nA caption.\n```",
+                          "```{exercise} Implement: the minimum jerk\n:label: ex-jerk\n```",
+                          "See {numref}`fig-a`, {numref}`fig-code`, {numref}`Figure %s "
+                          "<fig-a>`, {numref}`ex-jerk`, {ref}`sec-rods`, {ref}`fold-why` "
+                          "and {ref}`the fold <fold-why>`."])
+    notebook.cells.insert(1, nbformat.v4.new_code_cell("figure()", metadata={
+        "mystnb": {"figure": {"caption": "First.", "name": "fig-code"}}}))
+    lab = lab_edition.lab_notebook(notebook, "students", TITLES, LABELS, chapter=3)
+    assert lab.cells[-1].source == ("See Fig. 3.2, Fig. 3.1, Figure 3.2, Exercise 3.1, The "
+                                    "rod table, Why a fold? and the fold.")
+
+
 def test_a_quiz_explanation_is_folded_until_the_student_looks():
     lab = _lab([":::{div} icm-quiz-explanation\nThe answer: {glue:text}`share:.0%`.\n:::",
                 ":::{div} other\nStays.\n:::"])
@@ -148,7 +163,8 @@ def test_the_students_notebooks_have_no_solution_the_instructors_have_theirs():
     ("{glue:math}`share`", "{glue:math}"),
     ("{doc}`nowhere`", "not a page of the book"),
     ("{cite:p}`nobody2020`", "not in references.bib"),
-    ("{numref}`fig-5`", "{numref}"),
+    ("{numref}`fig-5`", "names no figure, exercise, section or fold"),
+    ("{ref}`nowhere`", "names no figure, exercise, section or fold"),
     ("```{glue:math} share\n```", "{glue:math}")])
 def test_what_cannot_be_written_for_jupyter_is_refused_by_name(markdown, words):
     with pytest.raises(lab_edition.LabEditionError, match=re.escape(words)) as error:
