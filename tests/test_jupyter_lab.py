@@ -14,6 +14,7 @@ two page loads, seconds on a quiet machine.
 import base64
 import json
 import os
+import pathlib
 import re
 import shutil
 import socket
@@ -141,6 +142,18 @@ def test_cross_references_read_as_the_page_numbers_and_names_them():
     lab = lab_edition.lab_notebook(notebook, "students", TITLES, LABELS, chapter=3)
     assert lab.cells[-1].source == ("See Fig. 3.2, Fig. 3.1, Figure 3.2, Exercise 3.1, The "
                                     "rod table, Why a fold? and the fold.")
+
+
+def test_a_figure_of_another_chapter_reads_with_that_chapters_number():
+    other = _executed(["# Five", "```{glue:figure} fig_a\n:name: fig-5\n\nA caption.\n```"])
+    this = _executed(["See {numref}`fig-5` and {ref}`the other <fig-5>`."])
+    targets = lab_edition.book_targets({pathlib.Path("five.ipynb"): other}, {"five": 5})
+    lab = lab_edition.lab_notebook(this, "students", TITLES, LABELS, chapter=3,
+                                   book_targets=targets)
+    assert lab.cells[-1].source.split("---\n")[-1] == "See Fig. 5.1 and the other."
+    with pytest.raises(lab_edition.LabEditionError, match="'fig-5' is also five.ipynb's"):
+        lab_edition.book_targets({pathlib.Path("five.ipynb"): other,
+                                  pathlib.Path("six.ipynb"): other}, {"five": 5, "six": 6})
 
 
 def test_a_quiz_explanation_is_folded_until_the_student_looks():

@@ -199,7 +199,7 @@ def _reference(name, content, targets, where):
     target = (targets or {}).get(label)
     if target is None:
         raise LabEditionError(f"{where}: {{{name}}}`{content}` names no figure, exercise, "
-                              f"section or fold of this chapter")
+                              f"section or fold of the book")
     if name == "ref":
         return text or target["title"]
     if target.get("number") is None:
@@ -402,7 +402,8 @@ def numbering_frontmatter(chapter):
     return f'---\nnumbering:\n  enumerator: "{chapter}.%s"\n---\n'
 
 
-def lab_notebook(executed, edition, titles, labels, chapter=None, name="notebook"):
+def lab_notebook(executed, edition, titles, labels, chapter=None, name="notebook",
+                 book_targets=None):
     """The chapter as `make lab` opens it (a new notebook; the argument is unchanged).
 
     Args:
@@ -413,6 +414,8 @@ def lab_notebook(executed, edition, titles, labels, chapter=None, name="notebook
       chapter: the chapter's number in the book, which numbers its exercises and
         figures as the page does (None: not numbered).
       name: the notebook's name, for errors.
+      book_targets: the other chapters' cross-reference targets (`book_targets`), for
+        a {ref} or {numref} to another chapter, as the page resolves it (default: none).
 
     Raises:
       LabEditionError: for a construct not written for Jupyter.
@@ -426,7 +429,7 @@ def lab_notebook(executed, edition, titles, labels, chapter=None, name="notebook
     if edition == "students":
         notebook = student_edition.strip_solutions(notebook, name)
     figures = []
-    targets = targets_of(notebook.cells, chapter)
+    targets = {**(book_targets or {}), **targets_of(notebook.cells, chapter)}
 
     def next_figure():
         figures.append(f"{chapter}.{len(figures) + 1}")
@@ -581,13 +584,28 @@ EDITION_WORDS = {"students": "the students' edition, without the solutions",
                  "instructor": "the instructor's edition, with the solutions"}
 
 
+def book_targets(executed, numbers):
+    """Every chapter's cross-reference targets in one map (`targets_of`, each chapter
+    numbered by `numbers`), so that a chapter may name another's figure as the page
+    does; a label used by two chapters is an error, as Sphinx warns of it."""
+    found, owner = {}, {}
+    for path, notebook in executed.items():
+        for label, target in targets_of(notebook.cells, numbers.get(path.stem)).items():
+            if label in found:
+                raise LabEditionError(f"{path.name}: the label {label!r} is also "
+                                      f"{owner[label]}'s")
+            found[label], owner[label] = target, path.name
+    return found
+
+
 def prepare(path_output, edition, folder=None, root=ROOT):
     """Executes (what the cache lacks), writes the edition's notebooks into `folder`
     (default: `edition_folder`); returns the folder. Prints what it wrote and kept."""
     executed = executed_chapters(path_output, root)
     titles, labels, numbers = chapter_titles(root), citation_labels(root), chapter_numbers(root)
+    targets = book_targets(executed, numbers)
     notebooks = {path.name: lab_notebook(nb, edition, titles, labels,
-                                         numbers.get(path.stem), path.name)
+                                         numbers.get(path.stem), path.name, targets)
                  for path, nb in executed.items()}
     folder = pathlib.Path(folder) if folder else edition_folder(path_output, edition)
     written, kept = write_edition(folder, notebooks, edition)
