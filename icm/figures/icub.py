@@ -199,11 +199,11 @@ def figure1(seed=0):
     right.imshow(image)
     red, blue = _pixels(matrix, [rod_physics.named.data.xpos[f"{name}_rod"]
                                  for name in rods.ROD_NAMES])
-    _label(right, red, "red rod: falling", offset=(-95, 30))
+    _label(right, red, "red rod: falling", offset=(-115, -20))
     _label(right, blue, "blue rod: standing", offset=(55, 60))
     for ax, title in [(left, "(a) pressing the green button opens the green box"),
                       (right, "(b) the hand topples the red rod")]:
-        ax.set_title(textwrap.fill(title, 30), fontsize=10)
+        ax.set_title(textwrap.fill(title, 32), fontsize=10)
         ax.axis("off")
     return fig.describe("The paper's Figure 1, rendered from the model: (a) the iCub's "
                         "finger holds the lit green button down and the green box's lid is "
