@@ -6,10 +6,11 @@
 """
 
 import argparse
+import io
 import pathlib
 import sys
 
-from icm import experiments
+from icm import experiments, files
 from icm.experiments import goal_babbling, rod_toppling
 from icm.learners import actor_critic, goal_oriented, q_learning
 from icm.learners.goal_babbling import GoalBabblingSettings
@@ -85,26 +86,36 @@ def _dpi(text):
 
 
 def _check_out(parser, out):
-    """Refuses, before anything runs, an --out that cannot be written (by trying: a
-    file that did not exist is created and removed again)."""
+    """Refuses, before anything runs, an --out that cannot be written: a folder, a
+    symbolic link (writing would replace what it points to), a name not ending in an
+    image's suffix (so no other file is ever replaced), a folder that does not exist or
+    cannot be written."""
+    if out.is_symlink():
+        parser.error(f"--out must be a file, not a symbolic link: {out}")
     if out.is_dir():
         parser.error(f"--out must be a file to write, got the folder {out}")
-    if out.suffix.lower() not in (".png", ".pdf", ".svg"):
-        if out.name.lower() in (".png", ".pdf", ".svg"):  # Path(".png").suffix is ""
+    if out.suffix.lower() not in IMAGE_FORMATS:
+        if out.name.lower() in IMAGE_FORMATS:  # Path(".png").suffix is ""
             parser.error(f"--out must name a file before its suffix (for example "
                          f"figure{out.name}), got {out}")
         parser.error(f"--out must end in .png, .pdf or .svg, got {out} (suffix "
                      f"{out.suffix or 'none'})")
     if not out.parent.exists():
         parser.error(f"--out: the folder {out.parent} does not exist")
-    existed = out.exists()
-    try:
-        with open(out, "ab"):
-            pass
-    except OSError as error:
-        parser.error(f"--out: {out} cannot be written ({error.strerror})")
-    if not existed:
-        out.unlink()
+    if not files.writable(out.parent):
+        parser.error(f"--out: the folder {out.parent} cannot be written")
+
+
+IMAGE_FORMATS = {".png": "png", ".pdf": "pdf", ".svg": "svg"}
+"""The images a figure command writes, by --out's suffix: it replaces only such a file."""
+
+
+def _save(figure, out, dpi):
+    """Writes the figure whole: drawn in memory, then put in place under --out's name
+    (`files.write_bytes`), so a run stopped half-way leaves an earlier image whole."""
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format=IMAGE_FORMATS[out.suffix.lower()], dpi=dpi)
+    files.write_bytes(out, buffer.getvalue())
 
 
 SETTINGS_DEST = "settings_"
@@ -383,7 +394,7 @@ def main(argv=None):
     except ValueError as error:
         parser.exit(2, f"{parser.prog} {args.figure}: error: {error}\n")
     try:
-        figure.savefig(args.out, dpi=args.dpi)
+        _save(figure, args.out, args.dpi)
     except OSError as error:  # e.g. the disk filled up while the run went on
         parser.exit(2, f"{parser.prog} {args.figure}: error: --out: {error}\n")
     print(f"wrote {args.out}")

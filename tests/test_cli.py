@@ -180,9 +180,17 @@ def test_figure7_of_run_n_computes_that_run_alone(tmp_path, monkeypatch, capsys)
     assert len(calls) == 1 and calls[0]["n_seeds"] == 1 and calls[0]["first_run"] == 3
 
 
+def _link_to_a_notebook(folder):
+    """An --out named like an image, a symbolic link to a student's notebook."""
+    (folder / "notes.ipynb").write_text("{}")
+    (folder / "fig.png").symlink_to(folder / "notes.ipynb")
+    return folder / "fig.png"
+
+
 @pytest.mark.parametrize("make_out, message", [
     (lambda d: (d / "a_folder.png").mkdir() or d / "a_folder.png", "must be a file to write"),
     (lambda d: pathlib.Path("/proc/fig5.png"), "cannot be written"),
+    (lambda d: _link_to_a_notebook(d), "not a symbolic link"),
 ])
 def test_an_out_that_cannot_be_written_is_refused_before_anything_runs(make_out, message,
                                                                       tmp_path, monkeypatch,
@@ -195,6 +203,26 @@ def test_an_out_that_cannot_be_written_is_refused_before_anything_runs(make_out,
     status, _, err = in_process(["figure5", "--out", str(out)], capsys)
     assert status == 2 and message in err and "Traceback" not in err
     assert ran == []  # refused before the run
+    if (tmp_path / "notes.ipynb").exists():
+        assert (tmp_path / "notes.ipynb").read_text() == "{}"
+
+
+def test_an_image_is_replaced_whole_or_not_at_all(tmp_path, monkeypatch, capsys):
+    import matplotlib.figure
+
+    out = tmp_path / "fig5.png"
+    out.write_bytes(b"the earlier image")
+
+    def dies_half_way(self, target, **kwargs):
+        target.write(b"half an image")
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", dies_half_way)
+    status, _, err = in_process(["figure5", "--seeds", "2", "--trials", "4", "--out",
+                                 str(out)], capsys)
+    assert status == 2 and "No space left on device" in err
+    assert out.read_bytes() == b"the earlier image"
+    assert [p.name for p in tmp_path.iterdir()] == ["fig5.png"]  # no half-written file
 
 
 def test_a_huge_dpi_is_refused_in_one_line(capsys):
