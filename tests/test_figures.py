@@ -109,3 +109,16 @@ def test_the_png_counts_legends_over_data_and_overlapping_texts():
     ax.text(0.5, 0.5, "one")
     ax.text(0.5, 0.5, "two")
     assert int(_png_text(fig)["icm:text-overlaps"]) == 1
+
+    # Two boxed labels whose arrows point at neighbouring things: apart, however their
+    # arrows run; the same labels on one another: counted.
+    fig, ax = figures.new_figure()
+    box = dict(boxstyle="round", facecolor="white")
+    ax.annotate("left label", xy=(0.52, 0.1), xytext=(0.1, 0.3), bbox=box,
+                arrowprops=dict(arrowstyle="->"))
+    ax.annotate("right label", xy=(0.48, 0.1), xytext=(0.7, 0.8), bbox=box,
+                arrowprops=dict(arrowstyle="->"))
+    assert int(_png_text(fig)["icm:text-overlaps"]) == 0
+    ax.annotate("on the right one", xy=(0.5, 0.1), xytext=(0.72, 0.8), bbox=box,
+                arrowprops=dict(arrowstyle="->"))
+    assert int(_png_text(fig)["icm:text-overlaps"]) == 1

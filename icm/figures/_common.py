@@ -249,12 +249,23 @@ def _tick_labels(axis):
     return labels
 
 
+def _text_box(text, renderer):
+    """Where `text` is written: its box if it has one, else its letters; an
+    annotation's arrow left out (matplotlib counts it in the annotation's extent, so
+    two labels whose arrows point at neighbouring things would count as overlapping)."""
+    patch = text.get_bbox_patch()
+    if patch is not None:
+        text.update_bbox_position_size(renderer)
+        return patch.get_window_extent(renderer)
+    return matplotlib.text.Text.get_window_extent(text, renderer)
+
+
 def _text_overlaps(fig, renderer):
     """How many pairs of texts overlap (by more than 2 px each way), or reach out of
     the figure."""
     if renderer is None:
         return 0
-    boxes = [text.get_window_extent(renderer) for text in _texts(fig)]
+    boxes = [_text_box(text, renderer) for text in _texts(fig)]
     count = 0
     for i, a in enumerate(boxes):
         if a.x0 < -1 or a.y0 < -1 or a.x1 > fig.bbox.width + 1 or a.y1 > fig.bbox.height + 1:
