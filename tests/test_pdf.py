@@ -32,6 +32,44 @@ def test_without_a_built_book_it_says_what_to_do(tmp_path, capsys):
     assert not (tmp_path / "book.pdf").exists()
 
 
+@pytest.mark.parametrize("make_out, words", [
+    (lambda d: d / "notes.ipynb", "must end in .pdf"),
+    (lambda d: d / "html" / "book.pdf", "inside the input"),
+    (lambda d: (d / "theirs.pdf").write_bytes(b"%PDF-1.4 a student's") and d / "theirs.pdf",
+     "exists and was not written by this command"),
+    (lambda d: (d / "folder.pdf").mkdir() or d / "folder.pdf", "is a folder"),
+    (lambda d: (d / "link.pdf").symlink_to(d / "html" / "index.html") or d / "link.pdf",
+     "symbolic link"),
+])
+def test_an_out_it_must_not_write_is_refused_before_printing(tmp_path, capsys, make_out,
+                                                              words):
+    (tmp_path / "html").mkdir()
+    (tmp_path / "html" / "index.html").write_text("the built book")
+    out = make_out(tmp_path)
+    before = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    assert print_book.main(["--html", str(tmp_path / "html"), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert words in err and "Traceback" not in err, err
+    assert {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()} == before
+
+
+def test_a_pdf_it_printed_is_replaced_and_another_only_with_force(tmp_path):
+    from pypdf import PdfWriter
+
+    ours, theirs = tmp_path / "ours.pdf", tmp_path / "theirs.pdf"
+    for path, mark in [(ours, {print_book.PRINTED_BY: print_book.PRINTED_BY_VALUE}),
+                       (theirs, {"/Title": "Lecture notes"})]:
+        writer = PdfWriter()
+        writer.add_blank_page(100, 100)
+        writer.add_metadata(mark)
+        with open(path, "wb") as handle:
+            writer.write(handle)
+    assert print_book.check_out(ours, tmp_path / "html") == ours
+    with pytest.raises(print_book.files.DestinationError, match="--force"):
+        print_book.check_out(theirs, tmp_path / "html")
+    assert print_book.check_out(theirs, tmp_path / "html", force=True) == theirs
+
+
 def test_make_pdf_prints_the_built_book():
     makefile = (ROOT / "Makefile").read_text()
     assert re.search(r"^pdf: book\b", makefile, re.MULTILINE)
@@ -44,6 +82,7 @@ def book_pdf(built_book, tmp_path_factory):
         pytest.skip("Chromium is not installed (Debian: apt-get install chromium)")
     out = tmp_path_factory.mktemp("pdf") / "book.pdf"
     pages = print_book.print_book(built_book, out, CHROMIUM)
+    assert print_book.printed_here(out)  # marked as this command's, so it may replace it
     return out, pages
 
 

@@ -20,7 +20,8 @@ pages:
 3. the pages are joined in table-of-contents order, each chapter a bookmark of the
    PDF, its pages footed with the chapter's title and page numbers.
 
-Exit status: 0 when the PDF was written; 1 (with the reason) when the built book or
+Exit status: 0 when the PDF was written; 2 when --out is refused (a file this command
+did not print, a folder, a link, inside the built book); 1 (with the reason) when the built book or
 Chromium is missing, or a page failed to load or reached for the network.
 """
 
@@ -31,6 +32,8 @@ import shutil
 import sys
 
 import yaml
+
+from icm import files
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 LEFT_OUT = ("book/api",)
@@ -112,12 +115,43 @@ def print_book(html, out, chromium=None):
     if requests or errors:
         raise RuntimeError(f"printing the book: network requests {requests[:3]}, "
                            f"errors {errors[:3]}")
-    writer.add_metadata({"/Title": _book_title(), "/Author": _book_author()})
-    out = pathlib.Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    with open(out, "wb") as handle:
-        writer.write(handle)
+    writer.add_metadata({"/Title": _book_title(), "/Author": _book_author(),
+                         PRINTED_BY: PRINTED_BY_VALUE})
+    data = io.BytesIO()
+    writer.write(data)
+    files.write_bytes(out, data.getvalue())  # whole or not at all
     return len(writer.pages)
+
+
+PRINTED_BY, PRINTED_BY_VALUE = "/ICMPrintedBy", "book/_ext/print_book.py"
+"""The PDF's own mark (in its metadata): a file that has it is one this command wrote,
+which it may replace; any other file at --out is refused unless --force."""
+
+
+def printed_here(path):
+    """Whether the file at `path` is a PDF this command printed (`PRINTED_BY`)."""
+    from pypdf import PdfReader
+    from pypdf.errors import PyPdfError
+
+    with open(path, "rb") as handle:
+        if handle.read(5) != b"%PDF-":
+            return False
+    try:
+        metadata = PdfReader(path).metadata or {}
+    except PyPdfError:  # a damaged PDF, or one that only starts like a PDF
+        return False
+    return metadata.get(PRINTED_BY) == PRINTED_BY_VALUE
+
+
+def check_out(out, html, force=False):
+    """Refuses, before any page is printed, an --out this command must not write: not
+    ending in .pdf, a symbolic link or a folder, inside the built book (an input), or
+    an existing file it did not print (unless `force`). Raises files.DestinationError."""
+    out = pathlib.Path(out)
+    if out.suffix.lower() != ".pdf":
+        raise files.DestinationError(f"--out must end in .pdf, got {out}")
+    return files.check_file(out, own=printed_here, force=force, inputs=[html],
+                            what="--out")
 
 
 def _escape(text):
@@ -141,8 +175,16 @@ def main(argv=None):
     parser.add_argument("--html", type=pathlib.Path, default=ROOT / "_build" / "html",
                         help="the built HTML book (default: _build/html)")
     parser.add_argument("--out", type=pathlib.Path, default=ROOT / "_build" / "pdf" / "book.pdf",
-                        help="where the PDF goes (default: _build/pdf/book.pdf)")
+                        help="where the PDF goes (default: _build/pdf/book.pdf); a file "
+                             "there that this command did not print is refused")
+    parser.add_argument("--force", action="store_true",
+                        help="replace a file at --out that this command did not print")
     args = parser.parse_args(argv)
+    try:
+        check_out(args.out, args.html, args.force)
+    except files.DestinationError as error:
+        print(f"print_book: {error}", file=sys.stderr)
+        return 2
     try:
         count = print_book(args.html, args.out)
     except (FileNotFoundError, RuntimeError) as error:
