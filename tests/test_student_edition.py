@@ -222,6 +222,22 @@ def test_the_students_edition_has_no_source_pages(tmp_path):
     assert "Marking guides" not in instructors and "full edition" in instructors
 
 
+def test_it_empties_its_own_sources_only(tmp_path):
+    from icm import files
+
+    student_edition.prepare(tmp_path / "source")
+    (tmp_path / "source" / "stale.txt").write_text("from an earlier run")
+    student_edition.prepare(tmp_path / "source")  # its own folder: emptied, written again
+    assert not (tmp_path / "source" / "stale.txt").exists()
+    theirs = tmp_path / "theirs"
+    theirs.mkdir()
+    (theirs / "thesis.tex").write_text("a student's thesis")
+    with pytest.raises(files.DestinationError, match="not written by icm"):
+        student_edition.prepare(theirs)
+    assert (theirs / "thesis.tex").read_text() == "a student's thesis"
+    assert sorted(p.name for p in theirs.iterdir()) == ["thesis.tex"]
+
+
 def test_make_has_the_students_edition_target():
     makefile = (ROOT / "Makefile").read_text()
     assert "book-students:" in makefile and "book/_ext/student_edition.py" in makefile

@@ -221,12 +221,21 @@ def _notebooks(book):
     return sorted(book.glob("*.ipynb"))
 
 
-def prepare(source, root=ROOT):
+COMMAND = "book/_ext/student_edition.py"
+"""The name in the marker of the folder this command fills (`icm.files`): it empties
+only a folder that has it."""
+
+
+def prepare(source, root=ROOT, force=False):
     """Copies the book into `source` and strips its notebooks; returns the stripped
-    notebooks' paths. Raises StripError for a notebook that cannot be stripped."""
-    if source.exists():
-        shutil.rmtree(source)
-    source.mkdir(parents=True)
+    notebooks' paths. Raises StripError for a notebook that cannot be stripped, and
+    files.DestinationError for a `source` this command did not write (not empty and
+    without its marker; with `force`, its files are kept and ours written over them)."""
+    from icm import files
+
+    files.check_folder(source, force=force, inputs=[root / "book"], command=COMMAND,
+                       what="the students' edition's sources")
+    files.fresh_folder(source, command=COMMAND)
     for name in COPIED:
         path = root / name
         if path.is_dir():
@@ -306,13 +315,18 @@ def main(argv=None):
                         help="every Sphinx warning is an error, as in the tests")
     parser.add_argument("--keep-going", action="store_true",
                         help="after a notebook fails, execute the others anyway")
+    parser.add_argument("--force", action="store_true",
+                        help="write the sources into a _build/students/source that this "
+                             "command did not write (its files are kept)")
     args = parser.parse_args(argv)
     output = args.path_output.resolve()
     students = output / "_build" / "students"
     source = students / "source"
+    from icm import files
+
     try:
-        stripped = prepare(source)
-    except StripError as error:
+        stripped = prepare(source, force=args.force)
+    except (StripError, files.DestinationError) as error:
         print(f"student_edition: {error}", file=sys.stderr)
         return 1
     print(f"students' edition: {len(stripped)} notebooks without their solutions in {source}")
