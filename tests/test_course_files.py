@@ -605,3 +605,27 @@ def test_the_one_line_of_an_error():
         "x.csv: No such file or directory"
     assert course_cli.one_line(ValueError("first\n  second\n")) == "first; second"
     assert course_cli.one_line(ValueError("")) == "ValueError"
+
+
+def test_a_fresh_folder_empties_only_this_commands_own_folder(tmp_path):
+    ours = files.fresh_folder(tmp_path / "ours", command="student_edition")
+    assert files.marker_command(ours) == "student_edition"
+    (ours / "old.txt").write_text("from an earlier run")
+    (ours / "sub").mkdir()
+    (ours / "sub" / "deep.txt").write_text("deeper")
+    (tmp_path / "kept.txt").write_text("beside it")
+    (ours / "link").symlink_to(tmp_path / "kept.txt")
+    files.fresh_folder(ours, command="student_edition")
+    assert sorted(p.name for p in ours.iterdir()) == [files.MARKER]
+    assert (tmp_path / "kept.txt").read_text() == "beside it"  # a link removed, not followed
+    # Another command's folder, or one of nobody's, keeps its files (it gains the marker).
+    theirs = files.fresh_folder(tmp_path / "theirs", command="slides")
+    (theirs / "deck.html").write_text("slides")
+    files.fresh_folder(theirs, command="student_edition")
+    assert (theirs / "deck.html").read_text() == "slides"
+    assert files.marker_command(theirs) == "student_edition"
+    plain = tmp_path / "plain"
+    plain.mkdir()
+    (plain / "notes.txt").write_text("mine")
+    files.fresh_folder(plain)
+    assert (plain / "notes.txt").read_text() == "mine" and files.is_ours(plain)
