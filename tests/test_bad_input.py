@@ -8,6 +8,7 @@ numpy, dm_control or argparse.
 
 import collections
 import pathlib
+import re
 
 import numpy as np
 import pytest
@@ -36,7 +37,9 @@ def refused(call, name, shown, kind):
         assert isinstance(error, TypeError)
     else:
         assert not isinstance(error, TypeError), f"a type error for a bad value: {message}"
-    assert name in message, f"the message does not name {name!r}: {message}"
+    # The name as a word of its own ("level", not "XXlevelXX" nor "sublevel").
+    assert re.search(rf"(?<!\w){re.escape(name)}(?!\w)", message), \
+        f"the message does not name {name!r}: {message}"
     assert shown in message, f"the message does not show {shown!r}: {message}"
     where = pathlib.Path(info.traceback[-1].path).resolve()
     assert ICM_DIR in where.parents, f"raised outside icm, in {where}: {message}"
@@ -570,10 +573,19 @@ EVENTS = np.array([3, -1, 5])
     (lambda: stats.share_interval(1, 4, level=NAN), "level", "nan", "value"),
     (lambda: stats.share_interval(1, 4, level=0.0), "level", "0.0", "value"),
     (lambda: stats.share_interval(1, 4, level=None), "level", "None", "type"),
+    (lambda: stats.share_interval(1, 4, level=1.0), "level", "1.0", "value"),
+    (lambda: stats.share_interval(1, 4, level=1.5), "level", "1.5", "value"),
+    (lambda: stats.share_interval(-1, 4), "successes", "-1", "value"),
+    (lambda: stats.share_interval(1, 0), "n", "0", "value"),
+    (lambda: stats.share_interval(1, "4"), "n", "'4'", "type"),
     # verdict(low, high, threshold): more in test_robustness_verdicts_need_shares_...
     (lambda: stats.verdict(0.5, 0.6, NAN), "threshold", "nan", "value"),
     (lambda: stats.verdict(0.5, "0.6", 0.9), "high", "'0.6'", "type"),
     (lambda: stats.verdict(-0.1, 0.6, 0.9), "low", "-0.1", "value"),
+    (lambda: stats.verdict(1.5, 1.6, 0.9), "low", "1.5", "value"),
+    (lambda: stats.verdict(0.5, 1.5, 0.9), "high", "1.5", "value"),
+    (lambda: stats.verdict(0.5, 0.6, 1.5), "threshold", "1.5", "value"),
+    (lambda: stats.verdict(0.7, 0.6, 0.5), "low must be at most high", "0.7", "value"),
     # paired_power(differences, n_seeds, alternative, rate, simulations, seed)
     (lambda: stats.paired_power([], 5, "less"), "differences", "none", "value"),
     (lambda: stats.paired_power([1.0, NAN], 5, "less"), "differences", "nan", "value"),

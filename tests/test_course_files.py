@@ -629,3 +629,15 @@ def test_a_fresh_folder_empties_only_this_commands_own_folder(tmp_path):
     (plain / "notes.txt").write_text("mine")
     files.fresh_folder(plain)
     assert (plain / "notes.txt").read_text() == "mine" and files.is_ours(plain)
+
+
+def test_a_file_whose_owner_cannot_be_read_is_not_the_commands(tmp_path):
+    out = tmp_path / "grades.csv"
+    out.write_text("id,name\n")
+
+    def unreadable(path):
+        raise OSError(13, "Permission denied")
+
+    with pytest.raises(files.DestinationError, match="was not written by this command"):
+        files.check_file(out, own=unreadable)
+    assert files.check_file(out, own=lambda path: True) == out

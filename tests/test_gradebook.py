@@ -169,3 +169,25 @@ def test_the_feedback_of_what_could_not_be_graded_says_why():
     backticks = _graded("z.ipynb", slope_cases=(False, True, True))
     backticks.exercises[LABEL_A].tests[0].cases[0].message = "```\n# Title"
     assert "    ````text\n    ```\n    # Title\n    ````" in gb.feedback(backticks)
+
+
+def test_a_roster_is_read_with_its_bom_and_refused_by_line_when_wrong(tmp_path):
+    roster = tmp_path / "roster.csv"
+    roster.write_text("\ufeffID,Name,File,email\ns1,Ada,ada.ipynb,a@x\ns2, Bo ,bo.ipynb,\n",
+                      encoding="utf-8")
+    assert [(r.id, r.name, r.file) for r in gb.read_roster(roster)] == \
+        [("s1", "Ada", "ada.ipynb"), ("s2", "Bo", "bo.ipynb")]
+    for text, words in [
+            ("id,name\ns1,Ada\n", "the roster needs the columns id, name and file; missing "
+                                  "file"),
+            ("name\nAda\n", "missing id, file"),
+            ("id,name,file\ns1,Ada,a.ipynb\ns1,Bo,b.ipynb\n",
+             "line 3: the id 's1' is also on line 2"),
+            ("id,name,file\ns1,Ada,a.ipynb\ns2,Bo,x\ns3,Cy,A.IPYNB\n",
+             "line 4: the file 'a.ipynb' is also on line 2"),
+            ("id,name,file\ns1,Ada,../a.ipynb\n", "line 2")]:
+        roster.write_text(text)
+        with pytest.raises(records.RecordError) as error:
+            gb.read_roster(roster)
+        assert str(error.value).startswith(f"{roster}") and words in str(error.value), \
+            (text, str(error.value))

@@ -511,3 +511,17 @@ def test_the_seeds_found_reach_the_power_and_one_fewer_does_not(differences, pow
     else:
         assert 1 <= found <= most and reached(found)
         assert found == 1 or not reached(found - 1)
+
+
+@pytest.mark.parametrize("successes, n, level", [
+    (8, 10, 0.95), (1, 4, 0.95), (189, 200, 0.95), (3, 50, 0.9), (0, 7, 0.95),
+    (200, 200, 0.95), (47, 60, 0.99)])
+def test_the_share_interval_is_wilsons_as_scipy_computes_it(successes, n, level):
+    from scipy.stats import binomtest
+
+    expected = binomtest(successes, n).proportion_ci(confidence_level=level,
+                                                     method="wilson")
+    low, high = stats.share_interval(successes, n, level)
+    assert (low, high) == pytest.approx((expected.low, expected.high), abs=1e-12)
+    lows, highs = stats.share_interval(np.array([successes, 0]), np.array([n, n]), level)
+    assert lows.tolist() == pytest.approx([low, 0.0]) and highs[0] == pytest.approx(high)
