@@ -577,6 +577,10 @@ EVENTS = np.array([3, -1, 5])
     (lambda: stats.share_interval(1, 4, level=1.5), "level", "1.5", "value"),
     (lambda: stats.share_interval(-1, 4), "successes", "-1", "value"),
     (lambda: stats.share_interval(1, 0), "n", "0", "value"),
+    (lambda: stats.share_interval(0, 0), "n must be an integer (or integers) >= 1", "0",
+     "value"),
+    (lambda: stats.share_interval(1, np.array([], int)), "n must hold at least one count",
+     "none", "value"),
     (lambda: stats.share_interval(1, "4"), "n", "'4'", "type"),
     # verdict(low, high, threshold): more in test_robustness_verdicts_need_shares_...
     (lambda: stats.verdict(0.5, 0.6, NAN), "threshold", "nan", "value"),

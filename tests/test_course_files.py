@@ -641,3 +641,27 @@ def test_a_file_whose_owner_cannot_be_read_is_not_the_commands(tmp_path):
     with pytest.raises(files.DestinationError, match="was not written by this command"):
         files.check_file(out, own=unreadable)
     assert files.check_file(out, own=lambda path: True) == out
+
+
+@pytest.mark.parametrize("before", ["none", "made", "unmarked", "another command's"])
+def test_a_staged_write_that_fails_leaves_the_folder_as_it_was(tmp_path, before):
+    folder = tmp_path / "a" / "out"
+    if before == "made":
+        files.fresh_folder(folder, command="slides")
+    elif before != "none":
+        folder.mkdir(parents=True)
+        (folder / "theirs.txt").write_text("kept")
+        if before == "another command's":
+            files.fresh_folder(folder, command="grade")
+    state = lambda: sorted((str(p.relative_to(tmp_path)), p.read_bytes() if p.is_file()
+                            else None) for p in tmp_path.rglob("*"))
+    was = state()
+    with pytest.raises(RuntimeError, match="half-way"):
+        with files.staged(folder, command="slides") as staging:
+            (staging / "deck.html").write_text("half a deck")
+            (staging / "sub").mkdir()
+            (staging / "sub" / "x").write_text("x")
+            raise RuntimeError("stopped half-way")
+    assert state() == was
+    if before == "none":
+        assert not (tmp_path / "a").exists()  # the folders made for it removed too

@@ -191,3 +191,21 @@ def test_a_roster_is_read_with_its_bom_and_refused_by_line_when_wrong(tmp_path):
             gb.read_roster(roster)
         assert str(error.value).startswith(f"{roster}") and words in str(error.value), \
             (text, str(error.value))
+
+
+def test_the_edges_of_the_sheet_and_the_feedback(tmp_path):
+    # A submission off the roster with a problem of its own; one whose chapter is unknown.
+    unknown = gb.Graded("mystery.ipynb", problem="no chapter's setup cell")
+    rows = _sheet([_graded("late.ipynb", problem="a cell ran past its time"), unknown],
+                  [records.RosterRow(id="s1", name="Ada", file="ada.ipynb")], tmp_path)
+    assert rows[2][:3] == ["", "", "late.ipynb"]
+    assert rows[2][-1] == "not on the roster; a cell ran past its time"
+    assert rows[3][:4] == ["", "", "mystery.ipynb", ""]
+    assert rows[3][-1] == "not on the roster; no chapter's setup cell"
+    # A known chapter, nothing graded, a problem: not graded, and why.
+    stopped = gb.Graded("s.ipynb", "goal_oriented_interest", problem="the kernel died")
+    assert gb.feedback(stopped) == "# Feedback: s.ipynb\n\nNot graded: the kernel died.\n"
+    noted = _graded("n.ipynb")
+    noted.notes = ["cell 2: left out (past its time)", "cell 5: NameError"]
+    assert ("```text\ncell 2: left out (past its time)\ncell 5: NameError\n```"
+            in gb.feedback(noted))

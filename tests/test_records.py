@@ -24,3 +24,34 @@ def test_a_refused_record_names_its_first_wrong_field_and_counts_the_others():
     whole = _error(records.RosterRow, ["not", "a", "row"])
     assert records.problem(whole).startswith("the whole: ")
     assert "more" not in records.problem(whole)
+
+
+class _Anything(records.BaseModel):
+    model_config = records.ConfigDict(extra="allow")
+
+
+def test_json_read_back_is_refused_past_its_sizes_by_name(monkeypatch):
+    monkeypatch.setattr(records, "MAX_JSON_BYTES", 3 * 2 ** 20)
+    monkeypatch.setattr(records, "MAX_JSON_CONTAINERS", 4)
+    at_limit = b'{"a": "' + b"x" * (3 * 2 ** 20 - 9) + b'"}'
+    assert len(at_limit) == 3 * 2 ** 20
+    assert records.parse_json(at_limit, _Anything, "big.json").a.startswith("xx")
+    with pytest.raises(records.RecordError) as error:
+        records.parse_json(at_limit + b" ", _Anything, "big.json")
+    assert str(error.value) == "big.json: larger than 3 MiB"
+    for data in (b'{"a": [[[]]]}', '{"a": [{}, []]}'):  # bytes or text: 4 containers
+        assert records.parse_json(data, _Anything, "ok.json")
+    for data in (b'{"a": [[[[]]]]}', '{"a": [{}, [], {}]}'):
+        with pytest.raises(records.RecordError) as error:
+            records.parse_json(data, _Anything, "many.json")
+        assert str(error.value) == "many.json: more than 4 lists and objects"
+
+
+def test_json_nested_past_pythons_recursion_is_refused_by_name():
+    deep = "[" * 100_000 + "]" * 100_000
+    with pytest.raises(records.RecordError) as error:
+        records.parse_json(deep, _Anything, "deep.json")
+    assert str(error.value) == "deep.json: JSON nested too deeply"
+    with pytest.raises(records.RecordError) as error:
+        records.parse_json(b"{not json", _Anything, "bad.json")
+    assert str(error.value).startswith("bad.json: not JSON (")

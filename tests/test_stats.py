@@ -525,3 +525,30 @@ def test_the_share_interval_is_wilsons_as_scipy_computes_it(successes, n, level)
     assert (low, high) == pytest.approx((expected.low, expected.high), abs=1e-12)
     lows, highs = stats.share_interval(np.array([successes, 0]), np.array([n, n]), level)
     assert lows.tolist() == pytest.approx([low, 0.0]) and highs[0] == pytest.approx(high)
+
+
+@pytest.mark.parametrize("level", [0.95, 0.9])
+def test_the_mean_band_is_students_t_interval_as_scipy_computes_it(level):
+    from scipy.stats import sem, t
+
+    values = np.array([[1.0, 10.0, 0.5], [2.0, 14.0, 0.5], [4.0, 9.0, 0.5],
+                       [3.5, 11.0, 0.5]])  # 4 seeds, 3 points (the last without spread)
+    mean, low, high = stats.mean_band(values, level)
+    expected_low, expected_high = t.interval(level, 3, loc=values.mean(axis=0),
+                                             scale=sem(values, axis=0))
+    assert mean.tolist() == pytest.approx(values.mean(axis=0).tolist())
+    assert low[:2].tolist() == pytest.approx(expected_low[:2].tolist(), abs=1e-12)
+    assert high[:2].tolist() == pytest.approx(expected_high[:2].tolist(), abs=1e-12)
+    assert low[2] == high[2] == 0.5
+    # Two seeds already give a band; one seed gives the mean itself.
+    two = stats.mean_band(values[:2], level)
+    assert two[1][0] < two[0][0] < two[2][0]
+    one = stats.mean_band(values[:1], level)
+    assert [part.tolist() for part in one] == [values[0].tolist()] * 3
+
+
+def test_sums_that_overflow_in_the_band_are_refused_naming_the_values():
+    with pytest.raises(ValueError, match=r"^values .*finite"):
+        stats.mean_band(np.array([[1e308], [-1e308], [1e308]]))
+    with pytest.raises(ValueError, match=r"^values .*finite"):
+        stats.mean_band(np.array([[1e308, 1.0], [1e308, 2.0]]))
