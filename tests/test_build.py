@@ -16,6 +16,7 @@ import contextlib
 import importlib.util
 import json
 import os
+import pathlib
 import re
 import subprocess
 import sys
@@ -109,27 +110,63 @@ SLOW_SHARE = 2 / 3
 process that computes beside them (three processes on two cores)."""
 
 
-def _cpu_group():
-    """A new control group whose processes share `SLOW_SHARE` of a core at most (the
-    scheduler's quota, as a Binder or CI container's fraction of a core), made with the
-    grader's control groups (`icm.course.cgroups`); None where none can be made here
-    (no cpu controller, or no right to make groups)."""
-    from icm.course import cgroups, sandbox
+class _CpuGroup:
+    """A control group of the cpu controller whose processes share `SLOW_SHARE` of a
+    core at most (the scheduler's quota, as a Binder or CI container's fraction of a
+    core). Made at the top of the hierarchy, beside the machine's other processes: the
+    group competes with them for the processor as one process would (a group inside
+    another shares that one's part; the grader's `icm.course.cgroups` makes its groups
+    inside one, so it is not used here)."""
 
-    for hierarchy in (cgroups.CgroupV2(), cgroups.CgroupV1()):
-        if hierarchy.usable():
-            continue
-        limits = sandbox.Limits(cpus=SLOW_SHARE, processes=4096, memory=2 ** 40)
+    PERIOD = 100_000
+    """The scheduler's period, in microseconds."""
+
+    def __init__(self, folder):
+        self.folder = folder
+
+    @classmethod
+    def make(cls):
+        """A new group, or None where none can be made here (no cpu controller, or no
+        right to make groups: not root, no delegated group)."""
+        root = pathlib.Path("/sys/fs/cgroup")
+        name = f"icm-slow-machine-{os.getpid()}-{time.monotonic_ns()}"
+        quota = int(SLOW_SHARE * cls.PERIOD)
         try:
-            group = hierarchy.create(f"slow-machine-{os.getpid()}-{time.monotonic_ns()}",
-                                     limits)
+            if (root / "cpu" / "cpu.cfs_quota_us").exists():  # version 1
+                folder = root / "cpu" / name
+                limits = {"cpu.cfs_period_us": str(cls.PERIOD), "cpu.cfs_quota_us": str(quota)}
+            elif "cpu" in (root / "cgroup.subtree_control").read_text().split():  # version 2
+                folder = root / name
+                limits = {"cpu.max": f"{quota} {cls.PERIOD}"}
+            else:
+                return None
+            folder.mkdir()
         except OSError:
-            continue
-        if any((folder / name).exists() for folder in group.folders
-               for name in ("cpu.max", "cpu.cfs_quota_us")):
-            return group
-        group.kill_and_remove()
-    return None
+            return None
+        group = cls(folder)
+        try:
+            for file, value in limits.items():
+                (folder / file).write_text(value)
+        except OSError:
+            group.remove()
+            return None
+        return group
+
+    def add(self, pid):
+        """Moves a process into the group (its children then start in it)."""
+        (self.folder / "cgroup.procs").write_text(str(pid))
+
+    def remove(self):
+        """Removes the group, once its processes have ended (they have: the executions
+        wait for their kernels)."""
+        for _ in range(100):
+            try:
+                self.folder.rmdir()
+                return
+            except FileNotFoundError:
+                return
+            except OSError:  # its last process not yet reaped
+                time.sleep(0.05)
 
 
 @contextlib.contextmanager
@@ -137,9 +174,8 @@ def machine_made_slow(executions):
     """A slow machine for `executions` processes started in the block: yields (what it
     is, a `preexec_fn` per execution, which starts its process on it).
 
-    Where control groups with a CPU quota can be made (as root, or in a delegated
-    group: where the grader confines submissions), each execution gets a group of its
-    own, whose processes (the executor, its kernels and their children) share
+    Where control groups with a CPU quota can be made (`_CpuGroup`: as root, as in
+    CI), each execution gets a group of its own, whose processes (the executor, its kernels and their children) share
     `SLOW_SHARE` of a core; nothing else is slowed, nor any core burnt: the tests
     running meanwhile (pytest-xdist's other worker) keep theirs. Elsewhere, a CPU
     burner runs on every core (`conftest.cpu_burners`; each `preexec_fn` None): it slows
@@ -147,7 +183,7 @@ def machine_made_slow(executions):
     groups = []
     try:
         for _ in range(executions):
-            group = _cpu_group()
+            group = _CpuGroup.make()
             if group is None:
                 break
             groups.append(group)
@@ -159,7 +195,7 @@ def machine_made_slow(executions):
                [lambda group=group: group.add(os.getpid()) for group in groups])
     finally:
         for group in groups:  # (their processes have ended: this only removes them)
-            group.kill_and_remove()
+            group.remove()
 
 
 @pytest.fixture(scope="module")
