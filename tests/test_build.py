@@ -5,15 +5,18 @@ repairs itself and that two builds in one folder take turns: tests/test_build_ca
 a module of its own so that pytest-xdist runs the two on both cores.)
 
 Each test runs `book/_ext/execute_book.py` (or `build_book.py`'s lock) on small
-notebooks of its own, many of them while a CPU burner runs on every core; and the
-book's slowest chapter is executed whole while burners run, as a student's laptop
-doing other work, a Binder fraction of a core or a shared CI runner would run it. (The
-whole book is built once per run at the machine's own speed, `conftest.built_book`.)"""
+notebooks of its own, some of them on a machine made slow (`machine_made_slow`: a
+fraction of a core, or CPU burners on every core); and the book's slowest chapter is
+executed whole on it, as a student's laptop doing other work, a Binder fraction of a
+core or a shared CI runner would run it. (The whole book is built once per run at the
+machine's own speed, `conftest.built_book`.)"""
 
 import asyncio
+import contextlib
 import importlib.util
 import json
 import os
+import pathlib
 import re
 import subprocess
 import sys
@@ -54,14 +57,16 @@ def notebook(path, *cells, tags=None):
     return path
 
 
-def run(out, *arguments, timeout=900, env=None):
+def run(out, *arguments, timeout=900, env=None, preexec_fn=None):
     """Runs execute_book.py into `out`; returns (status, stdout, stderr, seconds).
     `timeout` (s) only guards against a hang of the test itself: generous, since a
-    loaded machine (a load of 15 on 2 cores, seen here) starts a kernel in a minute."""
+    loaded machine (a load of 15 on 2 cores, seen here) starts a kernel in a minute.
+    `preexec_fn`: run in the child before it starts (`machine_made_slow`'s)."""
     start = time.monotonic()
     completed = subprocess.run(
         [sys.executable, str(EXECUTE_BOOK), "--path-output", str(out)] + [str(a) for a in arguments],
-        capture_output=True, text=True, cwd=ROOT, timeout=timeout, env=env)
+        capture_output=True, text=True, cwd=ROOT, timeout=timeout, env=env,
+        preexec_fn=preexec_fn)
     return completed.returncode, completed.stdout, completed.stderr, time.monotonic() - start
 
 
@@ -99,10 +104,104 @@ def slowest_chapter():
     return name if (ROOT / name).exists() else SLOWEST_CHAPTER
 
 
+SLOW_SHARE = 2 / 3
+"""The share of one core that the slow machine gives each execution started on it
+(`machine_made_slow`): what a CPU burner on every core of a 2-core machine leaves a
+process that computes beside them (three processes on two cores)."""
+
+
+class _CpuGroup:
+    """A control group of the cpu controller whose processes share `SLOW_SHARE` of a
+    core at most (the scheduler's quota, as a Binder or CI container's fraction of a
+    core). Made at the top of the hierarchy, beside the machine's other processes: the
+    group competes with them for the processor as one process would (a group inside
+    another shares that one's part; the grader's `icm.course.cgroups` makes its groups
+    inside one, so it is not used here)."""
+
+    PERIOD = 100_000
+    """The scheduler's period, in microseconds."""
+
+    def __init__(self, folder):
+        self.folder = folder
+
+    @classmethod
+    def make(cls):
+        """A new group, or None where none can be made here (no cpu controller, or no
+        right to make groups: not root, no delegated group)."""
+        root = pathlib.Path("/sys/fs/cgroup")
+        name = f"icm-slow-machine-{os.getpid()}-{time.monotonic_ns()}"
+        quota = int(SLOW_SHARE * cls.PERIOD)
+        try:
+            if (root / "cpu" / "cpu.cfs_quota_us").exists():  # version 1
+                folder = root / "cpu" / name
+                limits = {"cpu.cfs_period_us": str(cls.PERIOD), "cpu.cfs_quota_us": str(quota)}
+            elif "cpu" in (root / "cgroup.subtree_control").read_text().split():  # version 2
+                folder = root / name
+                limits = {"cpu.max": f"{quota} {cls.PERIOD}"}
+            else:
+                return None
+            folder.mkdir()
+        except OSError:
+            return None
+        group = cls(folder)
+        try:
+            for file, value in limits.items():
+                (folder / file).write_text(value)
+        except OSError:
+            group.remove()
+            return None
+        return group
+
+    def add(self, pid):
+        """Moves a process into the group (its children then start in it)."""
+        (self.folder / "cgroup.procs").write_text(str(pid))
+
+    def remove(self):
+        """Removes the group, once its processes have ended (they have: the executions
+        wait for their kernels)."""
+        for _ in range(100):
+            try:
+                self.folder.rmdir()
+                return
+            except FileNotFoundError:
+                return
+            except OSError:  # its last process not yet reaped
+                time.sleep(0.05)
+
+
+@contextlib.contextmanager
+def machine_made_slow(executions):
+    """A slow machine for `executions` processes started in the block: yields (what it
+    is, a `preexec_fn` per execution, which starts its process on it).
+
+    Where control groups with a CPU quota can be made (`_CpuGroup`: as root, as in
+    CI), each execution gets a group of its own, whose processes (the executor, its kernels and their children) share
+    `SLOW_SHARE` of a core; nothing else is slowed, nor any core burnt: the tests
+    running meanwhile (pytest-xdist's other worker) keep theirs. Elsewhere, a CPU
+    burner runs on every core (`conftest.cpu_burners`; each `preexec_fn` None): it slows
+    every process of the machine, and burns the cores for as long as the block lasts."""
+    groups = []
+    try:
+        for _ in range(executions):
+            group = _CpuGroup.make()
+            if group is None:
+                break
+            groups.append(group)
+        if len(groups) < executions:
+            with cpu_burners() as burning:
+                yield f"{burning} CPU burners running", [None] * executions
+            return
+        yield (f"{SLOW_SHARE:.2f} of a core each",
+               [lambda group=group: group.add(os.getpid()) for group in groups])
+    finally:
+        for group in groups:  # (their processes have ended: this only removes them)
+            group.remove()
+
+
 @pytest.fixture(scope="module")
 def under_load(tmp_path_factory):
-    """Two executions side by side while a burner runs on every core (one period of
-    burners for both, so that a run of the tests burns it once):
+    """Two executions side by side on a machine made slow (`machine_made_slow`; one
+    slow period for both, so that a run of the tests has it once):
 
     - "small": two notebooks executed by one executor with a stall period of 3 s
       (--keep-going, two kernels): one whose cell hangs (a sleep: no output, no CPU)
@@ -111,7 +210,7 @@ def under_load(tmp_path_factory):
       executor of its own, with the book's settings.
 
     Returns {"small": (status, stdout, stderr, seconds), "chapter": (chapter, status,
-    stdout, stderr, seconds, burners)}."""
+    stdout, stderr, seconds, what the slow machine was)}."""
     folder = tmp_path_factory.mktemp("under-load")
     hangs = notebook(folder / "hangs.ipynb", "x = 1", "import time\ntime.sleep(600)")
     computes = notebook(folder / "computes.ipynb", BUSY.format(6), "print('finished')")
@@ -119,14 +218,16 @@ def under_load(tmp_path_factory):
     # The chapter's output goes to files, not pipes: a pipe nobody reads while the
     # small notebooks run would block its executor once full.
     stdout, stderr = folder / "chapter.out", folder / "chapter.err"
-    with cpu_burners() as burning, open(stdout, "w") as out, open(stderr, "w") as err:
+    with machine_made_slow(2) as (slow, (chapter_on_it, small_on_it)), \
+            open(stdout, "w") as out, open(stderr, "w") as err:
         start = time.monotonic()
         whole = subprocess.Popen(
             [sys.executable, str(EXECUTE_BOOK), "--path-output", str(folder / "chapter"),
-             "--force", str(ROOT / chapter)], stdout=out, stderr=err, text=True, cwd=ROOT)
+             "--force", str(ROOT / chapter)], stdout=out, stderr=err, text=True, cwd=ROOT,
+            preexec_fn=chapter_on_it)
         try:
             small = run(folder / "out", "--stall", 3, "--keep-going", "--jobs", 2, hangs,
-                        computes)
+                        computes, preexec_fn=small_on_it)
             status = whole.wait(timeout=900)
         finally:
             if whole.poll() is None:
@@ -134,16 +235,16 @@ def under_load(tmp_path_factory):
                 whole.wait()
         seconds = time.monotonic() - start
     return {"small": small, "chapter": (chapter, status, stdout.read_text(),
-                                        stderr.read_text(), seconds, burning)}
+                                        stderr.read_text(), seconds, slow)}
 
 
 def test_the_slowest_chapter_executes_on_a_machine_made_slow(under_load, note):
-    chapter, status, stdout, stderr, seconds, burning = under_load["chapter"]
+    chapter, status, stdout, stderr, seconds, slow = under_load["chapter"]
     assert status == 0, stderr[-8000:]
     assert f"executed {chapter} in" in stdout, stdout
     assert "1 of 1 notebooks executed" in stdout
-    note(f"{chapter} executed with {burning} CPU burners running (and two small "
-         f"notebooks beside it) in {seconds:.0f} s")
+    note(f"{chapter} executed on a machine made slow ({slow}; two small notebooks "
+         f"beside it) in {seconds:.0f} s")
 
 
 def test_a_stuck_cell_fails_within_the_bound_naming_the_notebook_and_the_cell_even_under_load(

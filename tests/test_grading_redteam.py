@@ -72,8 +72,13 @@ OPTIONS = {"jobs": 2, "memory_limit": 1.0, "time_limit": 60, "cell_timeout": 10}
 UNIFORM = ("def choose_region(interests, epsilon, rng):\n"
            "    return int(rng.integers(len(interests)))\n")
 """A wrong goal-choice rule: uniform whatever the interests."""
-LENGTH = "def my_interest(history):\n    return float(len(history))\n"
-"""A curiosity signal that meets the contract: the number of errors seen."""
+CONSTANT = "def my_interest(history):\n    return 0.0\n"
+"""A wrong curiosity signal: it meets the contract (a finite number >= 0, the same twice
+for the same history) but is a constant, which the check refuses after its determinism
+pass, before its runs with the noisy button. Those runs call the signal about 29,000
+times per test, each call a round trip to the confined notebook (5 tests, some 20 s
+per submission graded): a signal that passed the contract would pay them for nothing
+here, since the attack below raises before them."""
 
 
 def _write_assignments(folder):
@@ -246,15 +251,15 @@ def my_interest(history):
     if tuple(history) in seen:  # the check's second look at the same history
         raise Boom("raised where the check does not catch it")
     seen.add(tuple(history))
-    return float(len(history))
+    return 0.0
 '''
-"""A curiosity signal that raises when the check calls it a second time on the same
-history (`signal_verdict`'s determinism pass, outside any `try`)."""
+"""`CONSTANT`, but raising when the check calls it a second time on the same history
+(`signal_verdict`'s determinism pass, outside any `try`)."""
 
 
 @pytest.mark.parametrize("chapter, honest, attack", [
     ("forming_actions", {"choose_region": UNIFORM}, {"choose_region": GENERATOR_CASE_RAISES}),
-    ("curiosity", {"my_interest": LENGTH}, {"my_interest": SECOND_LOOK_RAISES}),
+    ("curiosity", {"my_interest": CONSTANT}, {"my_interest": SECOND_LOOK_RAISES}),
 ], ids=["goal-choice generator case", "curiosity second look"])
 def test_an_error_raised_where_a_check_does_not_expect_one_costs_its_own_points_only(
         tiny_assignments, tmp_path, chapter, honest, attack):

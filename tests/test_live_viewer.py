@@ -475,8 +475,7 @@ class QuietHandler(http.server.SimpleHTTPRequestHandler):
 
 @browser_only
 @pytest.mark.parametrize("served", ["file", "http"])
-def test_the_views_work_from_disk_and_over_http(browser, live_page, http_server, served,
-                                                tmp_path):
+def test_the_views_work_from_disk_and_over_http(browser, live_page, http_server, served):
     if served == "file":
         visit = Visit(browser, live_page.as_uri())
     else:
@@ -491,7 +490,6 @@ def test_the_views_work_from_disk_and_over_http(browser, live_page, http_server,
     visit.view(SCENE).get_by_role("button", name="Press button 2").click()
     visit.wait_idle(SCENE)
     assert "opened the red box" in visit.view(SCENE).locator(".icm-live-status").inner_text()
-    visit.view(SCENE).screenshot(path=str(tmp_path / "press.png"))
 
     visit.start(RODS)  # right, right, forward: the hand runs into the red rod
     canvas = visit.view(RODS).locator("canvas")
@@ -500,7 +498,6 @@ def test_the_views_work_from_disk_and_over_http(browser, live_page, http_server,
         visit.wait_idle(RODS)
     status = visit.view(RODS).locator(".icm-live-status").inner_text()
     assert "red rod down" in status and "blue rod standing" in status, status
-    visit.view(RODS).screenshot(path=str(tmp_path / "topple.png"))
     assert visit.errors == [] and visit.refused == []
     visit.close()
 
