@@ -779,6 +779,29 @@ def test_the_noise_case_runs_where_noise_can_trap():
     assert share(per_task) < 0.25 < share(per_button)
 
 
+def test_the_signal_is_asked_once_per_history_and_the_run_is_the_same():
+    from icm.exercises._runs import run_goal_oriented_with
+
+    class AskedEveryTime(curiosity_signal.SignalInterest):
+        def interest(self, task):
+            return float(self.function(list(self.histories.get(task, []))))
+
+    asked = []
+
+    def counted(history):
+        asked.append(tuple(history))
+        return signal_loves_noise(history)
+
+    settings = dict(n_seeds=3, n_trials=8, noisy_button=True, interest_per="region")
+    kept = run_goal_oriented_with(lambda: curiosity_signal.SignalInterest(counted), **settings)
+    calls, distinct = len(asked), len(set(asked))
+    asked.clear()
+    every = run_goal_oriented_with(lambda: AskedEveryTime(counted), **settings)
+    assert distinct <= calls < len(asked)  # asked once per history of each run
+    np.testing.assert_array_equal(kept.button_share, every.button_share)
+    np.testing.assert_array_equal(kept.prediction_error, every.prediction_error)
+
+
 def test_the_noise_case_fails_a_signal_that_breaks_on_a_history_the_learner_makes():
     # Passes the cases (none has 7 errors), then meets a history of 7 in the run.
     def breaks_at_seven(history):
