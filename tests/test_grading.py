@@ -9,6 +9,7 @@ import json
 import pathlib
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -408,7 +409,6 @@ def test_the_confinement_sees_only_python_numpy_and_the_runner_and_refuses_calls
              "bounds = status.split('CapBnd:')[1].split()[0]\n"
              "def probe():\n"
              "    return [seen, grader, packages, list(who), missing, refused, bounds]\n"]
-    import time
 
     with sandbox.Confined(CONFINED, sandbox.Limits()) as run:
         run.start({"cells": cells, "functions": ["probe"]})
@@ -427,3 +427,47 @@ def test_the_confinement_sees_only_python_numpy_and_the_runner_and_refuses_calls
         assert refused == [(-1, 1)] * 5, refused
     if sandbox.drops_root():  # no capability left to gain, even through a setuid file
         assert bounds == "0000000000000000"
+
+
+# --- the time limits: each fires once, at its limit, never a multiple of it -------------
+
+LOOP = "while True:\n    pass\n"
+
+
+def test_each_cell_past_its_limit_is_left_out_once_and_the_rest_is_graded(assignments,
+                                                                         tmp_path):
+    # Three cells that never end: each is left out once, at its own limit, and the
+    # notebook is run again without it (never rerun: three limits in all, not six); its
+    # answers are then graded in full.
+    folder = tmp_path / "class"
+    submission(assignments, folder, "loops", extra=[LOOP, LOOP, LOOP])
+    cell = 4.0
+    graded = grade.grade(folder, tmp_path / "g.csv", assignments=assignments,
+                         time_limit=120, cell_timeout=cell, trusted=not CONFINED.available,
+                         progress=lambda _: None)[0]
+    left_out = [note for note in graded.notes if "left out" in note]
+    assert len(left_out) == 3 and all("time limit of a cell" in n for n in left_out)
+    assert graded.total == 20 and not graded.problem
+    assert 3 * cell <= graded.seconds < 3 * cell + 30, graded.seconds
+
+
+def test_a_submission_is_stopped_at_its_own_limit_once_not_at_a_multiple(assignments,
+                                                                        tmp_path):
+    # Functions that never return, in a submission allowed less than one test's limit:
+    # the first call is stopped at the submission's limit, and nothing else runs (a
+    # limit counted per test or per exercise would let it run three times as long).
+    folder = tmp_path / "class"
+    looping = {name: f"def {signature}:\n" + "".join(f"    {line}\n" for line in
+                                                    LOOP.splitlines())
+               for name, signature in (("least_squares_slope", "least_squares_slope(values)"),
+                                       ("task_interest", "task_interest(history, others, "
+                                                         "window=5, new_task_factor=0.5)"))}
+    submission(assignments, folder, "loops", looping)
+    limit = 8.0
+    assert limit < EXERCISES["ex-least-squares-slope"].timeout
+    graded = grade.grade(folder, tmp_path / "g.csv", assignments=assignments,
+                         time_limit=limit, trusted=not CONFINED.available,
+                         progress=lambda _: None)[0]
+    assert graded.total == 0
+    assert "time limit" in graded.problem, graded.problem
+    assert limit <= graded.seconds < limit + 10, graded.seconds
