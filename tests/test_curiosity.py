@@ -492,7 +492,9 @@ def test_red_first_parts_are_the_words_in_two(comparison):
     (-2.12, -3.651, -0.73, ("2.1 trials sooner", "0.7 to 3.7 trials sooner")),
     (1.5, 0.2, 2.9, ("1.5 trials later", "0.2 to 2.9 trials later")),
     (-1.43, -3.47, 0.94, ("1.4 trials sooner", "from 3.5 trials sooner to 0.9 later")),
-    (0.01, -0.29, 0.36, ("0.0 trials later", "from 0.3 trials sooner to 0.4 later")),
+    (0.01, -0.29, 0.36, ("less than 0.1 trials later", "from 0.3 trials sooner to 0.4 later")),
+    (-0.049, -0.3, 0.2, ("less than 0.1 trials sooner", "from 0.3 trials sooner to 0.2 later")),
+    (0.05, -0.3, 0.4, ("0.1 trials later", "from 0.3 trials sooner to 0.4 later")),
 ])
 def test_a_paired_gap_reads_in_plain_words(mean, low, high, words):
     assert chapters.curiosity.gap_words(mean, low, high) == words
@@ -507,7 +509,8 @@ def test_the_paired_words_say_clear_only_for_holms_and_name_a_failed_replication
     assert set(words) == set(paired)
     for name, v in paired.items():
         gap, detail = words[name]
-        assert gap.startswith(f"{abs(v['mean']):.1f} trials ")
+        shown = f"{abs(v['mean']):.1f}"
+        assert gap.startswith("less than 0.1 trials " if shown == "0.0" else f"{shown} trials ")
         assert detail.startswith(f"{icm.stats.BAND_LEVEL:.0%} band ")
         assert detail.endswith("a clear difference" if v["clear"] else "no clear difference")
         assert contradicted[name][1].endswith(

@@ -79,6 +79,10 @@ def verdict_claims(comparison):
 BOLD_CLAIMS = {
     "Novelty pays the coin exactly what it pays the sure outcome": ("novelty_blind", "exact"),
 }
+"""The bold claims of the chapter "Which curiosity?" that use a word of strength
+("every", "exactly", ...; book/_ext/claim_words.py), each with the claim that checks
+it (`COIN_CLAIMS`, `SIGNAL_CLAIMS`) and the kind of that check: "exact" (an array
+equality)."""
 STRONG_WORDS = {
     'How sure are "red before green" and "a clear difference"?': ("clear_is_holm",
                                                                    "corrected"),
@@ -92,10 +96,6 @@ STRONG_WORDS = {
 """The chapter's sentences with a word of strength beside a result, other than the bold
 claims, and the check that carries each (book/_ext/claim_words.py): the definition of
 "clear" in the fold on how sure its verdicts are."""
-"""The bold claims of the chapter "Which curiosity?" that use a word of strength
-("every", "exactly", ...; book/_ext/claim_words.py), each with the claim that checks
-it (`COIN_CLAIMS`, `SIGNAL_CLAIMS`) and the kind of that check: "exact" (an array
-equality)."""
 
 
 COIN_CLAIMS = {
@@ -241,8 +241,12 @@ def gap_words(mean, low, high):
     """A paired difference of mastery trials (arm minus baseline, negative: the arm
     masters sooner) with its band, in plain words: ("2.1 trials sooner", "0.7 to 3.7
     trials sooner"); a band that holds zero reads "from 3.5 trials sooner to 0.9
-    later"."""
-    gap = f"{abs(mean):.1f} trials {'sooner' if mean < 0 else 'later'}"
+    later", and a gap that rounds to 0.0 reads "less than 0.1 trials later" (a student
+    read "0.0 trials later" as a typo)."""
+    direction = "sooner" if mean < 0 else "later"
+    gap = f"{abs(mean):.1f} trials {direction}"
+    if gap.startswith("0.0 "):
+        gap = f"less than 0.1 trials {direction}"
     if high < 0:
         band = f"{-high:.1f} to {-low:.1f} trials sooner"
     elif low > 0:
