@@ -8,7 +8,7 @@ pays), and its bold claims with a word of strength (`BOLD_CLAIMS`).
 import numpy as np
 
 from icm import _validate, stats
-from icm.experiments.curiosity import RewardComparison, SignalComparison
+from icm.experiments.curiosity import CHANCE_SHARE, RewardComparison, SignalComparison
 from icm.experiments.rod_toppling import RODS
 
 
@@ -42,8 +42,9 @@ REWARD_CLAIMS = {
     "progress_learns_anyway": "learning progress predicts red and blue well in at least "
                               "90% of the seeds with the wobbly rod (the lower end of "
                               "each share's 95% interval)",
-    "progress_not_immune": "learning progress ends most of its late episodes at the "
-                           "wobbly rod",
+    "progress_not_immune": "learning progress is trapped by the wobbly rod too, in where "
+                           "it spends its time: more than half of its late episodes end "
+                           "there (the whole 95% band of that share above one half)",
     "novelty_random_not_trapped_but_slow": "novelty and the random walk are not trapped, "
                                            "and neither predicts red well in most seeds",
 }
@@ -78,10 +79,14 @@ def verdict_claims(comparison):
 BOLD_CLAIMS = {
     "Novelty pays the coin exactly what it pays the sure outcome": ("novelty_blind", "exact"),
 }
+"""The bold claims of the chapter "Which curiosity?" that use a word of strength
+("every", "exactly", ...; book/_ext/claim_words.py), each with the claim that checks
+it (`COIN_CLAIMS`, `SIGNAL_CLAIMS`) and the kind of that check: "exact" (an array
+equality)."""
 STRONG_WORDS = {
-    'How sure are "red before green" and "clearly sooner"?': ("clear_is_holm", "corrected"),
-    "Each clear one is rerun on a root seed no other run uses": ("clear_is_holm",
-                                                                  "corrected"),
+    'How sure are "red before green" and "a clear difference"?': ("clear_is_holm",
+                                                                   "corrected"),
+    "Each clear one is rerun on a fresh": ("clear_is_holm", "corrected"),
     "the likelier one of them looks clear by luck": ("clear_is_holm", "corrected"),
     # Every sentence that quotes a glued paired verdict ("clearly sooner", "no clear
     # difference") quotes Holm's.
@@ -91,10 +96,6 @@ STRONG_WORDS = {
 """The chapter's sentences with a word of strength beside a result, other than the bold
 claims, and the check that carries each (book/_ext/claim_words.py): the definition of
 "clear" in the fold on how sure its verdicts are."""
-"""The bold claims of the chapter "Which curiosity?" that use a word of strength
-("every", "exactly", ...; book/_ext/claim_words.py), each with the claim that checks
-it (`COIN_CLAIMS`, `SIGNAL_CLAIMS`) and the kind of that check: "exact" (an array
-equality)."""
 
 
 COIN_CLAIMS = {
@@ -137,17 +138,19 @@ def coin_claims(paid):
     }
 
 
-def red_first_words(comparison):
-    """The chapter's words for how often red is mastered before green in the world
-    without the noisy button, from `SignalComparison.red_first_intervals`: the
-    weakest learner's count and the lowest lower end of the learners' 95% intervals,
-    e.g. "in 100 of the 100 seeds: in at least 96.3% of seeds (the lower end of a 95%
-    interval)" (the sentence around it says "under each learner"). The share is rounded
-    down to one decimal, so that the sentence stays true (and a bound below 1 never
-    reads as 100.0%).
+def red_first_parts(comparison):
+    """How often red is mastered before green in the world without the noisy button,
+    from `SignalComparison.red_first_intervals`, in two parts the chapter quotes apart:
+    (the weakest learner's count, e.g. "in 100 of the 100 seeds", and the lowest lower
+    end of the learners' 95% intervals, e.g. "96.3%"). The share is rounded down to one
+    decimal, so that the sentence stays true (and a bound below 1 never reads as
+    100.0%).
 
     Args:
       comparison: a `SignalComparison`.
+
+    Raises:
+      ValueError: for a comparison without the world without the noisy button.
     """
     _validate.instance("comparison", comparison, SignalComparison,
                        "a SignalComparison (from icm.experiments.curiosity."
@@ -161,8 +164,138 @@ def red_first_words(comparison):
     low = min(low for _, _, low, _ in intervals.values())
     shown = np.floor(1000 * low + 1e-9) / 10
     count = f"{fewest} of the {n}" if fewest == n else f"at least {fewest} of the {n}"
-    return (f"in {count} seeds: in at least {shown:.1f}% of seeds (the lower end of a "
+    return f"in {count} seeds", f"{shown:.1f}%"
+
+
+def red_first_words(comparison):
+    """The chapter's words for how often red is mastered before green in the world
+    without the noisy button (`red_first_parts` in one phrase), e.g. "in 100 of the
+    100 seeds: in at least 96.3% of seeds (the lower end of a 95% interval)" (the
+    sentence around it says "under each learner").
+
+    Args:
+      comparison: a `SignalComparison`.
+    """
+    count, bound = red_first_parts(comparison)
+    return (f"{count}: in at least {bound} of seeds (the lower end of a "
             f"{stats.LEVEL:.0%} interval)")
+
+
+PAIRED_CLAIMS = {
+    "random_sooner_on_green": "seed by seed, pressing at random masters green sooner than "
+                              "learning progress: the paired difference is negative, clear "
+                              "after Holm's correction over the chapter's family, and not "
+                              "contradicted by its replication on a fresh root",
+}
+"""The claim behind the chapter's words "on green, pressing at random is faster than
+learning progress" (`paired_claims`)."""
+
+
+def _stored_verdicts(replications):
+    """The stored replications of the chapter's paired verdicts ({name: dict})."""
+    from icm.experiments import replication
+
+    if replications is None:
+        replications = replication.load_replications().get("curiosity", {})
+    return replications.get("verdicts", {})
+
+
+def paired_claims(comparison, replications=None):
+    """{claim name: whether it holds}, for each of `PAIRED_CLAIMS`, from
+    `SignalComparison.paired_verdicts` and the stored replications (`replications`,
+    default those of assets/replications.json for this chapter)."""
+    _validate.instance("comparison", comparison, SignalComparison,
+                       "a SignalComparison (from icm.experiments.curiosity."
+                       "run_signal_comparison)")
+    v = comparison.paired_verdicts()["random_vs_progress_green"]
+    stored = _stored_verdicts(replications).get("random_vs_progress_green", {})
+    return {"random_sooner_on_green": bool(v["clear"] and v["mean"] < 0
+                                           and stored.get("replicated") is not False)}
+
+
+NOISY_TASK_CLAIMS = {
+    "error_task_above_chance": "with interest per task, prediction error spends a little "
+                               "more of its presses on the noisy button than chance (the "
+                               "whole 95% band of its share above 1/6)",
+    "novelty_task_below_chance": "with interest per task, novelty spends less of its presses "
+                                 "on the noisy button than chance (the whole 95% band of its "
+                                 "share below 1/6)",
+}
+"""The claims behind the chapter's words "though prediction error's share sits a little
+above chance and novelty's below" (`noisy_task_claims`)."""
+
+
+def noisy_task_claims(comparison):
+    """{claim name: whether it holds}, for each of `NOISY_TASK_CLAIMS`, from the runs
+    with the noisy button and interest per task of a `SignalComparison`."""
+    _validate.instance("comparison", comparison, SignalComparison,
+                       "a SignalComparison (from icm.experiments.curiosity."
+                       "run_signal_comparison)")
+    error = comparison.numbers("prediction_error", "task", True)["noisy_share"]
+    novelty = comparison.numbers("novelty", "task", True)["noisy_share"]
+    return {"error_task_above_chance": error[1] > CHANCE_SHARE,
+            "novelty_task_below_chance": novelty[2] < CHANCE_SHARE}
+
+
+def gap_words(mean, low, high):
+    """A paired difference of mastery trials (arm minus baseline, negative: the arm
+    masters sooner) with its band, in plain words: ("2.1 trials sooner", "0.7 to 3.7
+    trials sooner"); a band that holds zero reads "from 3.5 trials sooner to 0.9
+    later", and a gap that rounds to 0.0 reads "less than 0.1 trials later" (a student
+    read "0.0 trials later" as a typo)."""
+    direction = "sooner" if mean < 0 else "later"
+    gap = f"{abs(mean):.1f} trials {direction}"
+    if gap.startswith("0.0 "):
+        gap = f"less than 0.1 trials {direction}"
+    if high < 0:
+        band = f"{-high:.1f} to {-low:.1f} trials sooner"
+    elif low > 0:
+        band = f"{low:.1f} to {high:.1f} trials later"
+    else:
+        band = f"from {-low:.1f} trials sooner to {high:.1f} later"
+    return gap, band
+
+
+def paired_plain_words(comparison, replications=None):
+    """The chapter's words for each of `SignalComparison.paired_verdicts`, in two parts
+    a sentence puts around its two learners: {name: (gap, detail)}, e.g. ("2.1 trials
+    sooner", "95% band 0.7 to 3.7 trials sooner: a clear difference"). The verdict is
+    "a clear difference" (Holm's, `paired_verdicts`) or "no clear difference", followed
+    by ", not replicated on a fresh root" where the stored replication (`replications`,
+    default that of assets/replications.json for this chapter) did not hold it."""
+    _validate.instance("comparison", comparison, SignalComparison,
+                       "a SignalComparison (from icm.experiments.curiosity."
+                       "run_signal_comparison)")
+    stored = _stored_verdicts(replications)
+    out = {}
+    for name, v in comparison.paired_verdicts().items():
+        gap, band = gap_words(v["mean"], v["low"], v["high"])
+        verdict = "a clear difference" if v["clear"] else "no clear difference"
+        if v["clear"] and stored.get(name, {}).get("replicated") is False:
+            verdict += ", not replicated on a fresh root"
+        out[name] = (gap, f"{stats.BAND_LEVEL:.0%} band {band}: {verdict}")
+    return out
+
+
+def red_box_openings(comparison, signal, interest_per="task"):
+    """Where one learner's openings of the red box come from, with the noisy button:
+    (presses of the red button per run, red boxes opened by the noisy button per run),
+    means over the seeds. The red button is lit red in every layout, so each of its
+    presses opens the red box, and every other opening is the noisy button's.
+
+    Args:
+      comparison: a `SignalComparison` with runs with the noisy button.
+      signal: the learner's signal; interest_per: "task" or "region".
+    """
+    _validate.instance("comparison", comparison, SignalComparison,
+                       "a SignalComparison (from icm.experiments.curiosity."
+                       "run_signal_comparison)")
+    comparison.numbers(signal, interest_per, True)  # checks the key
+    result = comparison.results[(signal, interest_per, True)]
+    presses = result.button_share[:, :, result.settings["red_button"]].sum(axis=1) \
+        * result.settings["presses_per_trial"]
+    opened = result.practice[:, :, 0].sum(axis=1)  # TASKS: red first
+    return float(np.rint(presses).mean()), float((opened - np.rint(presses)).mean())
 
 
 def noise_delays(comparison):

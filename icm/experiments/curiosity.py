@@ -535,7 +535,8 @@ class RewardComparison:
     def table(self):
         """A Markdown table, one row per (reward, world): the share of episodes ending
         at each rod over the second half of the runs, and how many seeds predict red
-        and blue well (and from which episode, median)."""
+        and blue well (and from which episode: the mean over the seeds that get
+        there)."""
         lines = ["| reward | wobbly rod | episodes ending at red / blue / wobbly / none, "
                  "second half | red predicted well: seeds (episode) "
                  "| blue predicted well: seeds (episode) |", "|" + "---|" * 5]

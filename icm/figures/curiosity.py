@@ -200,7 +200,8 @@ def noisy_share_curves(runs, title=None):
            xlim=(1, max(r.n_trials for r in runs.values())))
     if title is not None:
         ax.set_title(_validate.text("title", title), fontsize=10)
-    ax.legend(frameon=False, fontsize=8, loc="upper left")
+    # Under the axes: inside, it covered a curve that climbs to the top left.
+    legend_below(ax, ncols=2, fontsize=8)
     return fig
 
 
@@ -214,9 +215,10 @@ def _block_shares(result, index):
 
 def wobbly_rod_figure(comparison):
     """The rods with the wobbly rod, per intrinsic reward: the share of episodes that
-    end with the wobbly rod toppled (top), and the error the predictor would still
-    make on the red rod's pairs (bottom; below 0.1, red is predicted well), against
-    episode (mean over seeds, 95% band; shares over blocks of `BLOCK` episodes).
+    end with the wobbly rod toppled (top), and the largest error the predictor would
+    still make on a move that topples the red rod (bottom; a grey line at
+    `WELL_PREDICTED_ERROR`, below which red is predicted well), against episode (mean
+    over seeds, 95% band; shares over blocks of `BLOCK` episodes).
 
     Args:
       comparison: a `RewardComparison` with runs with the wobbly rod.
@@ -237,12 +239,19 @@ def wobbly_rod_figure(comparison):
     n = comparison.settings["n_seeds"]
     top.set(xlabel="episode", ylabel="share of episodes\nending at the wobbly rod",
              ylim=(0, 1), xlim=(1, comparison.settings["n_episodes"]))
-    top.set_title(f"Where the episodes end, {n} seeds", fontsize=10)
+    top.set_title(f"Where the episodes end (blocks of {BLOCK} episodes), {n} seeds",
+                  fontsize=10)
     legend_below(top, ncols=2)
-    bottom.axhline(WELL_PREDICTED_ERROR, color="black",
-                  linestyle="--", linewidth=1)
-    bottom.set(xlabel="episode", ylabel="largest error left on a red pair", ylim=(0, 1.02),
-              xlim=(1, comparison.settings["n_episodes"]))
+    # A thin solid grey line, labelled on the axes: a dashed one read as prediction
+    # error's line style.
+    bottom.axhline(WELL_PREDICTED_ERROR, color="0.45", linestyle="-", linewidth=0.8,
+                   zorder=1)
+    bottom.annotate(f"{WELL_PREDICTED_ERROR:g}: below it, red is predicted well",
+                    (0.36, WELL_PREDICTED_ERROR), xycoords=("axes fraction", "data"),
+                    xytext=(0, 3), textcoords="offset points", ha="left",
+                    va="bottom", fontsize=8, color="0.3")
+    bottom.set(xlabel="episode", ylabel="largest error left on a move\nthat topples red",
+               ylim=(0, 1.02), xlim=(1, comparison.settings["n_episodes"]))
     bottom.set_title(f"What is learned about the red rod, {n} seeds", fontsize=10)
     return fig
 
