@@ -55,3 +55,46 @@ def test_json_nested_past_pythons_recursion_is_refused_by_name():
     with pytest.raises(records.RecordError) as error:
         records.parse_json(b"{not json", _Anything, "bad.json")
     assert str(error.value).startswith("bad.json: not JSON (")
+
+
+def test_a_file_read_back_is_a_regular_file_within_its_limit(tmp_path):
+    import os
+
+    data = tmp_path / "data.json"
+    data.write_bytes(b"x" * 2 ** 20)
+    assert records.read_bytes(data, limit=2 ** 20) == b"x" * 2 ** 20
+    bigger = tmp_path / "bigger.json"
+    bigger.write_bytes(b"x" * (2 ** 20 + 1))
+    with pytest.raises(records.RecordError) as error:
+        records.read_bytes(bigger, limit=2 ** 20)
+    assert str(error.value) == f"{bigger}: larger than 1 MiB"
+    link = tmp_path / "link.json"
+    link.symlink_to(data)
+    assert records.read_bytes(link, limit=2 ** 20) == data.read_bytes()  # followed
+    with pytest.raises(records.RecordError) as error:
+        records.read_bytes(link, follow=False)
+    assert str(error.value) == f"{link}: a symbolic link, not a file"
+    with pytest.raises(records.RecordError) as error:
+        records.read_bytes(tmp_path)
+    assert str(error.value) == f"{tmp_path}: not a file but a folder"
+    fifo = tmp_path / "pipe.json"
+    os.mkfifo(fifo)  # never waited on
+    with pytest.raises(records.RecordError) as error:
+        records.read_bytes(fifo)
+    assert str(error.value) == f"{fifo}: not a file"
+    with pytest.raises(records.RecordError) as error:
+        records.read_bytes(tmp_path / "missing.json")
+    assert str(error.value) == f"{tmp_path / 'missing.json'}: does not exist"
+    assert records.read_text(data, limit=2 ** 20) == "x" * 2 ** 20
+    with pytest.raises(records.RecordError, match="larger than"):
+        records.read_text(data, limit=10)
+
+
+def test_an_input_folder_that_is_missing_says_what_to_do(tmp_path):
+    with pytest.raises(records.RecordError) as error:
+        records.input_folder(tmp_path / "subs", "the submissions' folder", "hand it in")
+    assert str(error.value) == f"the submissions' folder {tmp_path / 'subs'} does not " \
+                               f"exist: hand it in"
+    with pytest.raises(records.RecordError) as error:
+        records.input_folder(tmp_path / "subs", "the submissions' folder")
+    assert str(error.value) == f"the submissions' folder {tmp_path / 'subs'} does not exist"
