@@ -17,7 +17,7 @@ from icm.envs import buttons, rods
 from icm.experiments import actor_critic as ac_experiment
 from icm.experiments import goal_oriented as go_experiment
 from icm.experiments import rod_toppling as rod_experiment
-from icm.experiments._seeding import run_seeds
+from icm.experiments.seeding import run_seeds
 from icm.learners import (ActorCritic, GoalOrientedAgent, LinearPredictor,
                           NearestNeighbourPredictor, QLearner)
 from icm.learners.goal_oriented import GoalOrientedSettings

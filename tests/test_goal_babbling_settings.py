@@ -119,7 +119,7 @@ def test_a_strategy_not_registered_is_refused():
 
 def test_the_public_loop_is_the_runs_loop_and_observes_each_rollout():
     from icm.envs.buttons.movements import MovementLab
-    from icm.experiments._seeding import run_seeds
+    from icm.experiments.seeding import run_seeds
 
     run = goal_babbling.run_goal_babbling("learning_progress", n_seeds=2, n_rollouts=30,
                                           seed=4, progress=False)

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from icm import chapters
-from icm.envs._assets import asset_path
+from icm.store import asset_path
 from icm.experiments import remedies_study, replication
 from icm.experiments.studies import join_entries
 

@@ -572,7 +572,7 @@ def main():
     assets/replications.json under "robustness" (the other chapters' entries kept)."""
     import json
 
-    from icm.envs._assets import ASSETS
+    from icm.store import ASSETS
     from icm.experiments import replication
 
     out = replication.load_replications()

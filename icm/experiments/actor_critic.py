@@ -15,7 +15,7 @@ from icm.envs import buttons
 from icm.experiments import _grid
 from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import run_seeds
+from icm.experiments.seeding import run_seeds
 from icm.experiments.results import check_results, measures_table, percent
 from icm.learners import action_selection, actor_critic
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,

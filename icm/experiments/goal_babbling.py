@@ -38,7 +38,7 @@ from icm.envs.buttons.movements import (  # noqa: F401 (re-exported)
     HOLD_TIME, REACH_TIME, RETRACT_TIME, MovementLab)
 from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import check_run_size, run_seeds
+from icm.experiments.seeding import check_run_size, run_seeds
 from icm.learners import goal_oriented
 from icm.learners.goal_babbling import (  # noqa: F401 (N_BOOTSTRAP re-exported)
     N_BOOTSTRAP, GoalBabblingAgent, GoalBabblingSettings)

@@ -19,7 +19,7 @@ import platform
 import numpy as np
 
 from icm import _validate
-from icm.envs._assets import ASSETS, asset_path
+from icm.store import ASSETS, asset_path
 from icm.experiments import goal_babbling
 
 RUNS_FILE = "goal_babbling_runs.npz"

@@ -15,7 +15,7 @@ import json
 import numpy as np
 
 from icm import _validate
-from icm.envs._assets import ASSETS, asset_path
+from icm.store import ASSETS, asset_path
 from icm.experiments import goal_babbling
 from icm.experiments.results import percent
 from icm.stats import PANEL_RESAMPLES, bootstrap_band

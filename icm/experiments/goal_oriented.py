@@ -16,7 +16,7 @@ from icm.experiments import _grid
 from icm.experiments.results import check_results, measures_table, percent
 from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES, check_memory
 from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import run_seeds
+from icm.experiments.seeding import run_seeds
 from icm.learners import action_selection, goal_oriented, interest
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth, first_below,
                        first_from_which)

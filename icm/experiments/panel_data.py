@@ -34,7 +34,7 @@ import platform
 import numpy as np
 
 from icm import _validate
-from icm.envs._assets import ASSETS
+from icm.store import ASSETS
 from icm.experiments import actor_critic as _actor_critic
 from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments import rod_toppling as _rod_toppling

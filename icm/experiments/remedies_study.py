@@ -19,7 +19,7 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import buttons
-from icm.envs._assets import ASSETS, asset_path
+from icm.store import ASSETS, asset_path
 from icm.experiments import goal_babbling, goal_babbling_study, replication
 from icm.stats import POWER_SIMULATIONS, corrected_verdicts, paired_power
 

@@ -11,7 +11,7 @@ verdict that did not replicate, rather than dropping it.
 import json
 
 from icm import _validate
-from icm.envs._assets import ASSETS, asset_path
+from icm.store import ASSETS, asset_path
 from icm.stats import FAMILY_RATE, paired_p_value
 
 REPLICATION_ROOTS = {"forming_actions": 9001, "curiosity": 9002, "robustness": 9003}

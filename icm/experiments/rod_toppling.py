@@ -13,7 +13,7 @@ from icm._settings import with_settings
 from icm.envs import rods
 from icm.experiments._memory import check_memory
 from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import run_seeds
+from icm.experiments.seeding import run_seeds
 from icm.experiments.rod_episodes import (  # noqa: F401 (re-exported: the loop's names)
     LOOP_ROW_BYTES, MOMENTS, N_ACTIONS, N_STATES, RODS, WELL_PREDICTED_ERROR, memory_needed,
     play_episodes, summarize, toppling_pairs)

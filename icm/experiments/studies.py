@@ -490,7 +490,9 @@ def command_of(name, settings):
 
 
 def seeds_of(name, settings):
-    """What seeds a study's units use, in words."""
+    """What seeds a study's units use, in words (kept verbatim as the stored files have
+    them, so that a rerun writes the same bytes: `icm.experiments._seeding.run_seeds` is
+    now `icm.experiments.seeding.run_seeds`, the same function)."""
     if name in ("remedies", "goal-babbling", "remedies-replication"):
         return ("unit [label, root, first, n]: seeds first..first+n-1 of root seed "
                 "'root' (icm.experiments._seeding.run_seeds: child i of "

@@ -73,7 +73,7 @@ def rod_replay(n_episodes=DEFAULT_REPLAY_EPISODES, seed=0):
     from icm import _validate
     from icm.envs import rods
     from icm.experiments import rod_toppling as experiment
-    from icm.experiments._seeding import run_seeds
+    from icm.experiments.seeding import run_seeds
     from icm.learners import q_learning
 
     # run_rod_toppling's defaults, its seeds and the library's (the paper's) settings.
