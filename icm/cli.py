@@ -10,7 +10,7 @@ import pathlib
 import sys
 
 from icm import experiments
-from icm.experiments import goal_babbling, rod_toppling
+from icm.experiments import babbling_results, babbling_space, goal_babbling, rod_toppling
 from icm.learners import actor_critic, goal_oriented, q_learning
 from icm.learners.goal_babbling import GoalBabblingSettings
 
@@ -208,7 +208,7 @@ def _goal_babbling(args):
             outcome_space=args.outcome_space, threads=args.threads,
             demonstrations=args.demonstrations, **_settings_of(args))
     maturation = _settings_of(args)["maturation"]
-    print(goal_babbling.comparison_table(results))
+    print(babbling_results.comparison_table(results))
     if maturation != "none" or args.demonstrations:
         shown = ", ".join(map(str, args.demonstrations))
         plural = "s" if len(args.demonstrations) > 1 else ""
@@ -228,11 +228,11 @@ def _goal_babbling_options(parser):
                         default=goal_babbling.DEFAULT_N_ROLLOUTS,
                         help="movements per run, each simulated "
                              f"(default {goal_babbling.DEFAULT_N_ROLLOUTS})")
-    parser.add_argument("--outcome-space", choices=goal_babbling.OUTCOME_SPACES,
-                        default=goal_babbling.DEFAULT_OUTCOME_SPACE,
+    parser.add_argument("--outcome-space", choices=babbling_space.OUTCOME_SPACES,
+                        default=babbling_space.DEFAULT_OUTCOME_SPACE,
                         help="what a movement's outcome is: where the finger stopped, or "
                              "that and how far each cap went down "
-                             f"(default {goal_babbling.DEFAULT_OUTCOME_SPACE})")
+                             f"(default {babbling_space.DEFAULT_OUTCOME_SPACE})")
     _settings_options(parser, GoalBabblingSettings, skip=("strategy",))
     parser.add_argument("--demonstrations", type=_buttons, default=(),
                         help="the buttons a teacher shows first, by moving the arm to the "

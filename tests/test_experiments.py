@@ -153,12 +153,11 @@ def test_progress_bar_is_tqdm_when_on_and_absent_when_off():
     (icm.experiments.run_rod_toppling, dict(n_episodes=2)),
 ])
 def test_every_run_reports_progress_unless_told_not_to(run, kwargs, monkeypatch):
-    import importlib
+    from icm.experiments import loop  # every run's bar is the one loop's observer
 
-    module = importlib.import_module(run.__module__)
     calls = []
-    real = module.progress_bar
-    monkeypatch.setattr(module, "progress_bar",
+    real = loop.progress_bar
+    monkeypatch.setattr(loop, "progress_bar",
                         lambda *args, **kw: calls.append(args[3]) or real(*args, **kw))
     run(n_seeds=2, seed=0, **kwargs)
     run(n_seeds=2, seed=0, progress=False, **kwargs)

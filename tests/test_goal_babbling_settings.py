@@ -6,15 +6,15 @@ import numpy as np
 import pytest
 
 from icm import cli
-from icm.experiments import goal_babbling
+from icm.experiments import babbling_space, goal_babbling
 from icm.learners import goal_choice
 from icm.learners.goal_babbling import GoalBabblingSettings
 from icm.learners.maturation import JointRangeMaturation, MaturationSettings
 
 
 def _grid():
-    return goal_choice.RegionGrid(goal_babbling.GOAL_LOW, goal_babbling.GOAL_HIGH,
-                                  goal_babbling.REGION_GRID)
+    return goal_choice.RegionGrid(babbling_space.GOAL_LOW, babbling_space.GOAL_HIGH,
+                                  babbling_space.REGION_GRID)
 
 
 def test_the_settings_hold_the_defaults_the_run_used_to_type():
@@ -24,7 +24,7 @@ def test_the_settings_hold_the_defaults_the_run_used_to_type():
         "window": 10, "inverse_model": "nearest_neighbour", "measure": "learning_progress",
         "regions": "fixed", "maturation": "none"}
     assert goal_babbling.STRATEGIES == ("random_motor", "random_goal", "learning_progress")
-    assert goal_babbling.DEFAULT_EPSILON == 0.3 and goal_babbling.DEFAULT_WINDOW == 10
+    assert goal_choice.DEFAULT_EPSILON == 0.3 and goal_choice.DEFAULT_WINDOW == 10
     assert MaturationSettings().as_dict() == {"start": 0.5, "window": 40, "plateau": 0.01,
                                               "step": 0.01}
 
@@ -127,7 +127,7 @@ def test_the_public_loop_is_the_runs_loop_and_observes_each_rollout():
     seen = []
     seeds = [s[0] for s in run_seeds(4, 2, 2)]
     played = goal_babbling.babble(goal_babbling.make_agent(lab, seeds, 30), lab, 30,
-                                  observe=lambda i, movements, done: seen.append(i))
+                                  observe=lambda step: seen.append(int(step.episode[0])))
     assert seen == list(range(30))
     for name in ("movements", "outcomes", "regions", "interest"):
         np.testing.assert_array_equal(played[name], getattr(run, name))

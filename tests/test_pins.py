@@ -24,7 +24,7 @@ import pytest
 
 from icm import chapters, figures
 from icm.envs import buttons
-from icm.experiments import goal_babbling, panel_data, remedies_study
+from icm.experiments import formed_actions, goal_babbling, panel_data, remedies_study
 from icm.learners import goal_choice, maturation, sensorimotor
 
 
@@ -118,7 +118,7 @@ def test_presses_formed_uses_the_rollouts_within_its_budget_and_none_beyond(show
     # Rollout n is the teacher's press of button n - 1, so within a budget of n
     # rollouts exactly the buttons 0 .. n-1 have a press formed.
     assert shown_five.pressed[0, :5].tolist() == [0, 1, 2, 3, 4]
-    formed = goal_babbling.presses_formed(shown_five, [1, 2, 3, 4, 5])[:, 0]
+    formed = formed_actions.presses_formed(shown_five, [1, 2, 3, 4, 5])[:, 0]
     expected = np.tril(np.ones((5, 5), dtype=bool))
     assert formed.tolist() == expected.tolist()
 

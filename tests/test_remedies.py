@@ -12,7 +12,7 @@ import pytest
 from icm.envs import buttons
 from icm.envs.buttons.movements import MovementLab
 from icm import chapters, stats
-from icm.experiments import goal_babbling, remedies_study, replication
+from icm.experiments import babbling_space, goal_babbling, remedies_study, replication
 from icm.figures import forming_actions
 from icm.learners import goal_babbling as agents
 from icm.learners import goal_choice, maturation, sensorimotor
@@ -96,8 +96,8 @@ def test_the_clock_refuses_bad_input():
 
 def _agent(lab, n_rows=2, grow=False, shown=None, seed=0):
     model = sensorimotor.NearestNeighbourInverse(n_rows, 100, lab.lower, lab.upper, 3)
-    grid = goal_choice.RegionGrid(goal_babbling.GOAL_LOW, goal_babbling.GOAL_HIGH,
-                                  goal_babbling.REGION_GRID)
+    grid = goal_choice.RegionGrid(babbling_space.GOAL_LOW, babbling_space.GOAL_HIGH,
+                                  babbling_space.REGION_GRID)
     clock = maturation.JointRangeMaturation(n_rows, lab.home, lab.lower, lab.upper) \
         if grow else None
     generators = [np.random.default_rng(seed + k) for k in range(n_rows)]
@@ -133,7 +133,7 @@ def test_a_growing_agent_moves_within_its_reachable_range(lab):
         lower, upper = agent.maturation.bounds()
         movements, goals, _ = agent.produce()
         assert np.all(movements >= lower - 1e-12) and np.all(movements <= upper + 1e-12)
-        agent.perceive(movements, rng.uniform(goal_babbling.GOAL_LOW, goal_babbling.GOAL_HIGH,
+        agent.perceive(movements, rng.uniform(babbling_space.GOAL_LOW, babbling_space.GOAL_HIGH,
                                                (2, 3)))
     # Random outcomes make no progress: the clock has advanced.
     assert np.all(agent.maturation.psi > maturation.DEFAULT_START)
@@ -189,7 +189,7 @@ def test_the_teachers_demonstrations_are_the_scripted_presses(grown_and_shown, l
     # Then the random start the untaught run makes in its first rollouts.
     alone = run("learning_progress", n_seeds=2, n_rollouts=25, seed=5, progress=False,
                 maturation="joint_range")
-    boot = goal_babbling.N_BOOTSTRAP
+    boot = agents.N_BOOTSTRAP
     assert np.array_equal(result.movements[:, 2:2 + boot], alone.movements[:, :boot])
 
 
@@ -249,10 +249,10 @@ def test_the_same_seed_gives_the_same_run_whatever_the_threads(grown_and_shown):
     (lambda: run(demonstrations=((1, 2),)), "demonstrations", "1 dimension", "value"),
     (lambda: run(n_rollouts=1, demonstrations=(0, 1)), "n_rollouts", "demonstrations",
      "value"),
-    (lambda: goal_babbling.touch_shares([0.5, 0.2]), "shares", "0.5", "value"),
-    (lambda: goal_babbling.touch_shares([0.0, 0.5]), "shares", "0.0", "value"),
-    (lambda: goal_babbling.touch_shares([0.5, 1.5]), "shares", "1.5", "value"),
-    (lambda: goal_babbling.touch_shares(n_movements=0), "n_movements", "0", "value"),
+    (lambda: babbling_space.touch_shares([0.5, 0.2]), "shares", "0.5", "value"),
+    (lambda: babbling_space.touch_shares([0.0, 0.5]), "shares", "0.0", "value"),
+    (lambda: babbling_space.touch_shares([0.5, 1.5]), "shares", "1.5", "value"),
+    (lambda: babbling_space.touch_shares(n_movements=0), "n_movements", "0", "value"),
 ])
 def test_bad_input_to_the_remedies_is_refused(call, name, shown, kind):
     refused(call, name, shown, kind)
@@ -267,7 +267,7 @@ def _range_targets(lab, rng, share, n):
 
 
 def test_touch_shares_rolls_out_random_movements_within_each_range(lab):
-    reach = goal_babbling.touch_shares([0.3, 1.0], n_movements=300, seed=2, threads=1)
+    reach = babbling_space.touch_shares([0.3, 1.0], n_movements=300, seed=2, threads=1)
     assert reach["shares"] == [0.3, 1.0]
     rng = np.random.default_rng(2)
     for i, share in enumerate((0.3, 1.0)):
@@ -364,7 +364,7 @@ def test_the_study_file_is_what_the_library_computes(study):
     # That `touch_shares` performs each range's movements so is
     # test_touch_shares_rolls_out_random_movements_within_each_range's.
     reach = study["reach"]
-    assert reach["shares"] == list(goal_babbling.RANGE_SHARES)
+    assert reach["shares"] == list(babbling_space.RANGE_SHARES)
     lab, n = MovementLab(threads=1), remedies_study.REACH_MOVEMENTS
     rng = np.random.default_rng(remedies_study.REACH_SEED)
     for share in reach["shares"]:
@@ -589,9 +589,9 @@ def test_leaving_the_demonstrations_out_is_measured_on_the_robots_own_rollouts(g
     space, weight = result.settings["outcome_space"], result.settings["depth_weight"]
     start = result.n_demonstrations
     for seed in range(result.n_seeds):
-        reached = goal_babbling.outcome_vectors(result.outcomes[seed, start:],
+        reached = babbling_space.outcome_vectors(result.outcomes[seed, start:],
                                                 result.depths[seed, start:], space, weight)
-        wanted = goal_babbling.goal_outcomes(result.test_goals, space, weight)
+        wanted = babbling_space.goal_outcomes(result.test_goals, space, weight)
         nearest = [min(np.linalg.norm(r - w) for r in reached) for w in wanted]
         assert split["own"][seed] == pytest.approx(np.mean(nearest), abs=1e-12)
         assert split["own_grid"][seed] == pytest.approx(np.mean(nearest[5:]), abs=1e-12)

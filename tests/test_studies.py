@@ -200,15 +200,15 @@ def test_every_registered_study_runs_tiny(tmp_path):
 
 
 def test_the_trials_asked_for_are_the_trials_on_the_formed_presses(monkeypatch, tmp_path):
-    from icm.experiments import goal_babbling
+    from icm.experiments import formed_actions
 
-    asked, real = [], goal_babbling.run_formed_actions
+    asked, real = [], formed_actions.run_formed_actions
 
-    def recording(result, n_trials=goal_babbling.DEFAULT_TRIALS, **others):
+    def recording(result, n_trials=formed_actions.DEFAULT_TRIALS, **others):
         asked.append(n_trials)
         return real(result, n_trials=n_trials, **others)
 
-    monkeypatch.setattr(goal_babbling, "run_formed_actions", recording)
+    monkeypatch.setattr(formed_actions, "run_formed_actions", recording)
     for name, unit in [("remedies", ["growing up", 100, 0, 1]),
                        ("goal-babbling", ["learning progress", 100, 0, 1])]:
         settings = studies.check_settings(name, rollouts=12, trials=3)

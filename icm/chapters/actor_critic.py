@@ -1,5 +1,5 @@
 """The chapter "Actor-critic" (book/actor_critic.ipynb): the claims about Figure 6 it
-states in words (`CLAIMS`), checked by `icm.experiments.actor_critic.ActorCriticResult.
+states in words (`CLAIMS`), checked by `icm.experiments.actor_critic_results.ActorCriticResult.
 claims` on the chapter's run."""
 
 
@@ -22,7 +22,7 @@ def red_from_first_press(result):
     "first_median", "green_probability_then", "green_probability_end"}."""
     import numpy as np
 
-    from icm.experiments.actor_critic import ActorCriticResult
+    from icm.experiments.actor_critic_results import ActorCriticResult
     from icm.stats import share_interval
     from icm import _validate
 

@@ -8,7 +8,7 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import buttons
-from icm.experiments import goal_babbling, remedies_study, replication
+from icm.experiments import babbling_results, remedies_study, replication
 from icm.experiments.remedies_study import (REMEDY_KEYS, TEACHING, VERDICT_ROOTS,
                                             chapter_verdicts,
                                             check_study, comparisons, load_study,
@@ -34,7 +34,7 @@ def summary(study=None, roots=None):
         pressed = entry["pressed"][:, -1]  # [seed, button] at the default budget
         others = [b for b in range(buttons.N_BUTTONS) if b not in shown_buttons(label)]
         first = entry["first_press"]
-        median = goal_babbling.median_first_press(first, study["n_rollouts"])
+        median = babbling_results.median_first_press(first, study["n_rollouts"])
         out[label] = {
             "n_seeds": len(pressed),
             "all_pressed_share": float(pressed.all(axis=1).mean()),

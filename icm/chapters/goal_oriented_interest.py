@@ -1,6 +1,6 @@
 """The chapter "Goal-oriented interest" (book/goal_oriented_interest.ipynb): the
 claims of the paper about Figure 5 it states in words (`CLAIMS`), checked by
-`icm.experiments.goal_oriented.GoalOrientedResult.claims` on the chapter's run."""
+`icm.experiments.goal_oriented_results.GoalOrientedResult.claims` on the chapter's run."""
 
 
 CLAIMS = {

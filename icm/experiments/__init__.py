@@ -1,14 +1,17 @@
 """Experiments: many seeded runs of a learner on a task, returned as arrays; grids and
 sweeps of settings times seeds; the numbers of the book's panels (`panel_data`)."""
 
-from icm.experiments.actor_critic import ActorCriticResult, run_actor_critic, run_actor_critic_grid
+from icm.experiments.actor_critic import run_actor_critic, run_actor_critic_grid
+from icm.experiments.actor_critic_results import ActorCriticResult
 from icm.experiments.actor_critic import comparison_table as actor_critic_table
 from icm.experiments.curiosity import (RewardComparison, SignalComparison,
                                       run_reward_comparison, run_signal_comparison)
-from icm.experiments.goal_babbling import (FormedActionsResult, GoalBabblingResult,
-                                          run_formed_actions, run_goal_babbling)
-from icm.experiments.goal_babbling import comparison_table as goal_babbling_table
-from icm.experiments.goal_oriented import (GoalOrientedResult, comparison_table,
+from icm.experiments.babbling_results import GoalBabblingResult
+from icm.experiments.formed_actions import FormedActionsResult, run_formed_actions
+from icm.experiments.goal_babbling import run_goal_babbling
+from icm.experiments.babbling_results import comparison_table as goal_babbling_table
+from icm.experiments.goal_oriented_results import GoalOrientedResult
+from icm.experiments.goal_oriented import (comparison_table,
                                           run_goal_oriented, run_goal_oriented_grid)
 from icm.experiments.rod_toppling import RodTopplingResult, run_rod_toppling
 from icm.experiments.sweep import sweep

@@ -19,6 +19,7 @@ import numpy as np
 
 from icm import _streams, _validate
 from icm.experiments import goal_oriented as _goal_oriented
+from icm.experiments.goal_oriented_results import TASKS, GoalOrientedResult
 from icm.experiments import rod_toppling as _rod_toppling
 from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments._progress import progress_bar
@@ -100,10 +101,10 @@ def button_numbers(result):
       (mean, low, high), one per button;
     - "noisy_share": the share on the noisy button (NaN without it).
     """
-    _validate.instance("result", result, _goal_oriented.GoalOrientedResult,
+    _validate.instance("result", result, GoalOrientedResult,
                        "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
     out, per_seed = {}, {}
-    for i, task in enumerate(_goal_oriented.TASKS):
+    for i, task in enumerate(TASKS):
         trials = result.mastery_trial[:, i]
         out[f"{task}_mastery"] = _band(trials[trials >= 1])
         per_seed[f"{task}_mastered"] = (trials >= 1).astype(float)
@@ -250,7 +251,7 @@ class SignalComparison:
         is clear, the seeds compared and the family's size. {name: dict}."""
         family, bands, counts = {}, {}, {}
         for name, (arm, baseline, task) in self.PAIRED.items():
-            i = _goal_oriented.TASKS.index(task)
+            i = TASKS.index(task)
             a = self.results[(*arm, False)].mastery_trial[:, i]
             b = self.results[(*baseline, False)].mastery_trial[:, i]
             family[name] = paired_gaps(a, b)
@@ -322,7 +323,7 @@ class SignalComparison:
                 continue
             n = self.numbers(signal, per, noisy)
             cells = [signal.replace("_", " "), per]
-            for task in _goal_oriented.TASKS:
+            for task in TASKS:
                 mean, low, high = n[f"{task}_mastery"]
                 cells.append(f"{mean:.1f} [{low:.1f}, {high:.1f}] "
                              f"({percent(n[f'{task}_mastered'][0])} of seeds)")
@@ -364,7 +365,7 @@ def replicate(directions, root=None, n_seeds=REPLICATION_SEEDS):
     out = {}
     for name, direction in directions.items():
         arm, baseline, task = SignalComparison.PAIRED[name]
-        i = _goal_oriented.TASKS.index(task)
+        i = TASKS.index(task)
         a = fresh.results[(*arm, False)].mastery_trial[:, i]
         b = fresh.results[(*baseline, False)].mastery_trial[:, i]
         out[name] = replication.replicated(paired_gaps(a, b), direction)

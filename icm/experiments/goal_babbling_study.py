@@ -16,7 +16,7 @@ import numpy as np
 
 from icm import _validate
 from icm.store import ASSETS, asset_path
-from icm.experiments import goal_babbling
+from icm.experiments import formed_actions, goal_babbling
 from icm.experiments.results import percent
 from icm.stats import PANEL_RESAMPLES, bootstrap_band
 
@@ -69,7 +69,7 @@ def budgets_of(n_rollouts):
 
 def run_variant(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threads=None,
                 n_rollouts=goal_babbling.DEFAULT_N_ROLLOUTS,
-                n_trials=goal_babbling.DEFAULT_TRIALS):
+                n_trials=formed_actions.DEFAULT_TRIALS):
     """Runs one variant on seeds first_run to first_run + n_seeds - 1 of one root seed
     and returns its entry of the study: a dict of lists, one item per seed (the first k
     seeds of a root seed are the same in any larger run, so a shorter rerun checks
@@ -91,7 +91,7 @@ def run_variant(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threa
 
     Returns:
       {"pressed": [seed][budget][button] (0 or 1, budgets `BUDGETS`), "failures":
-      [seed][button] (codes of `goal_babbling.PRESS_FAILURES` at the default
+      [seed][button] (codes of `formed_actions.PRESS_FAILURES` at the default
       budget), "test_error": [seed] (final, in the run's outcome space), and for
       `LOOP_VARIANTS`
       "red_first" [seed] (0 or 1) and "as_scripted" [seed] (share of the learner's
@@ -105,12 +105,12 @@ def run_variant(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threa
     result = goal_babbling.run_goal_babbling(**arguments, n_seeds=n_seeds, seed=root,
                                              progress=progress, first_run=first_run,
                                              threads=threads, n_rollouts=n_rollouts)
-    pressed = goal_babbling.presses_formed(result, budgets_of(n_rollouts))
+    pressed = formed_actions.presses_formed(result, budgets_of(n_rollouts))
     entry = {"pressed": np.moveaxis(pressed, 0, 1).astype(int).tolist(),
-             "failures": goal_babbling.press_failures(result).tolist(),
+             "failures": formed_actions.press_failures(result).tolist(),
              "test_error": result.final_test_error().tolist()}
     if label in LOOP_VARIANTS:
-        loop = goal_babbling.run_formed_actions(result, n_trials=n_trials, seed=root,
+        loop = formed_actions.run_formed_actions(result, n_trials=n_trials, seed=root,
                                                 progress=progress, first_run=first_run)
         entry["red_first"] = loop.red_first().astype(int).tolist()
         entry["as_scripted"] = loop.as_scripted_per_seed.tolist()
@@ -207,16 +207,16 @@ def _tuning(study, label):
 
 def failure_counts(study, label):
     """What became of the press formed for each button, counted over the tuning seeds
-    of variant `label`: {name in `goal_babbling.PRESS_FAILURES`: count}."""
+    of variant `label`: {name in `formed_actions.PRESS_FAILURES`: count}."""
     label = _validate.one_of("label", label, tuple(study["runs"]))
     codes = np.array(_tuning(study, label)["failures"])
     return {name: int((codes == i).sum()) for i, name in
-            enumerate(goal_babbling.PRESS_FAILURES)}
+            enumerate(formed_actions.PRESS_FAILURES)}
 
 
 def failures_table(study, label):
     """A Markdown table of what became of the press formed for each button (rows:
-    `goal_babbling.PRESS_FAILURES`, columns: buttons), over the tuning seeds of
+    `formed_actions.PRESS_FAILURES`, columns: buttons), over the tuning seeds of
     variant `label`."""
     label = _validate.one_of("label", label, tuple(study["runs"]))
     codes = np.array(_tuning(study, label)["failures"])  # [seed, button]
@@ -224,7 +224,7 @@ def failures_table(study, label):
     lines = ["| the press formed for the button | " + " | ".join(
         f"button {b}" for b in range(n_buttons)) + " | all |",
              "|---|" + "---|" * (n_buttons + 1)]
-    for i, name in enumerate(goal_babbling.PRESS_FAILURES):
+    for i, name in enumerate(formed_actions.PRESS_FAILURES):
         counts = (codes == i).sum(axis=0)
         lines.append(f"| {name} | " + " | ".join(str(c) for c in counts)
                      + f" | {counts.sum()} |")

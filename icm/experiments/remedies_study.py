@@ -20,7 +20,8 @@ import numpy as np
 from icm import _validate
 from icm.envs import buttons
 from icm.store import ASSETS, asset_path
-from icm.experiments import goal_babbling, goal_babbling_study, replication
+from icm.experiments import (babbling_results, babbling_space, formed_actions, goal_babbling,
+                             goal_babbling_study, replication)
 from icm.stats import POWER_SIMULATIONS, corrected_verdicts, paired_power
 
 STUDY_FILE = "remedies_study.json"
@@ -63,16 +64,16 @@ REACH_SEED = 0
 
 def run_reach(n_movements=REACH_MOVEMENTS):
     """How often random movements touch the console for each reachable range of
-    `goal_babbling.RANGE_SHARES` (`goal_babbling.touch_shares` with `n_movements`
+    `babbling_space.RANGE_SHARES` (`babbling_space.touch_shares` with `n_movements`
     movements per share, `REACH_MOVEMENTS` in the study, seed `REACH_SEED`): the
     study's "reach"."""
-    return goal_babbling.touch_shares(goal_babbling.RANGE_SHARES, n_movements, REACH_SEED)
+    return babbling_space.touch_shares(babbling_space.RANGE_SHARES, n_movements, REACH_SEED)
 
 
 def coverage_edges():
     """The edges of a coverage map's cells: (x edges, y edges), `COVERAGE_CELL` apart
-    over the goal space (`goal_babbling.GOAL_LOW` to `GOAL_HIGH`)."""
-    low, high = goal_babbling.GOAL_LOW, goal_babbling.GOAL_HIGH
+    over the goal space (`babbling_space.GOAL_LOW` to `GOAL_HIGH`)."""
+    low, high = babbling_space.GOAL_LOW, babbling_space.GOAL_HIGH
     return tuple(np.linspace(low[i], high[i], int(round((high[i] - low[i]) / COVERAGE_CELL)) + 1)
                  for i in (0, 1))
 
@@ -98,7 +99,7 @@ budgets_of = goal_babbling_study.budgets_of
 
 def run_condition(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, threads=None,
                   n_rollouts=goal_babbling.DEFAULT_N_ROLLOUTS,
-                  n_trials=goal_babbling.DEFAULT_TRIALS):
+                  n_trials=formed_actions.DEFAULT_TRIALS):
     """Runs one condition on seeds first_run to first_run + n_seeds - 1 of one root seed
     and returns its entry of the study (the first k seeds of a root seed are the same
     in any larger run, so a shorter rerun checks them, and a study can be run one seed
@@ -135,8 +136,8 @@ def run_condition(label, root, n_seeds=N_SEEDS, progress=False, first_run=0, thr
                                              progress=progress, first_run=first_run,
                                              threads=threads, n_rollouts=n_rollouts)
     budgets = budgets_of(n_rollouts)
-    pressed = goal_babbling.presses_formed(result, budgets)  # [budget, seed, button]
-    loop = goal_babbling.run_formed_actions(result, n_trials=n_trials, seed=root,
+    pressed = formed_actions.presses_formed(result, budgets)  # [budget, seed, button]
+    loop = formed_actions.run_formed_actions(result, n_trials=n_trials, seed=root,
                                             progress=progress, first_run=first_run)
     return {"pressed": np.moveaxis(pressed, 0, 1).astype(int).tolist(),
             "first_press": result.first_presses().tolist(),
@@ -506,12 +507,12 @@ def test_error_split(result):
     movements the robot remembers: each test goal's nearest outcome among its own
     rollouts only) and "own_grid" (that, on the test goals that are not press goals
     alone). Lists of floats (m), one per seed."""
-    _validate.instance("result", result, goal_babbling.GoalBabblingResult)
+    _validate.instance("result", result, babbling_results.GoalBabblingResult)
     space, weight = result.settings["outcome_space"], result.settings["depth_weight"]
     start = result.n_demonstrations
-    reached = goal_babbling.outcome_vectors(result.outcomes[:, start:],
+    reached = babbling_space.outcome_vectors(result.outcomes[:, start:],
                                             result.depths[:, start:], space, weight)
-    wanted = goal_babbling.goal_outcomes(result.test_goals, space, weight)
+    wanted = babbling_space.goal_outcomes(result.test_goals, space, weight)
     distance = np.sqrt(((reached[:, :, None, :] - wanted[None, None]) ** 2).sum(axis=3))
     nearest = distance.min(axis=1)  # [seed, goal]
     return {"all": result.final_test_error().tolist(),

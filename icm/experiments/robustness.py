@@ -28,7 +28,8 @@ from icm import _validate
 from icm.envs import buttons, rods
 from icm.experiments._progress import progress_bar
 from icm.experiments.actor_critic import run_actor_critic
-from icm.experiments.goal_oriented import CHAPTER_TRIALS, TASKS, run_goal_oriented
+from icm.experiments.goal_oriented import CHAPTER_TRIALS, run_goal_oriented
+from icm.experiments.goal_oriented_results import TASKS
 from icm.experiments.results import in_seeds
 from icm.experiments.rod_toppling import run_rod_toppling
 from icm.experiments.sweep import sweep

@@ -37,7 +37,7 @@ import tempfile
 import time
 
 from icm import _validate
-from icm.experiments import goal_babbling, goal_babbling_study, remedies_study
+from icm.experiments import formed_actions, goal_babbling, goal_babbling_study, remedies_study
 from icm.experiments.sweep import append_unit, read_journal, run_units, start_journal
 
 
@@ -305,7 +305,7 @@ def _curiosity_assemble(settings, units, results):
 STUDIES = {}
 """The registered studies, by name."""
 
-FORMED_TRIALS = (goal_babbling.DEFAULT_TRIALS, 1,
+FORMED_TRIALS = (formed_actions.DEFAULT_TRIALS, 1,
                  "trials of the goal-oriented learner on each seed's formed presses")
 """The option "trials" of the studies of formed presses (remedies, goal-babbling)."""
 

@@ -182,7 +182,7 @@ def noisy_share_curves(runs, title=None):
         raise _validate.ArgumentTypeError(
             f"runs must be a non-empty dict {{label: GoalOrientedResult}}, got "
             f"{_validate.show(runs)}")
-    from icm.experiments.goal_oriented import GoalOrientedResult
+    from icm.experiments.goal_oriented_results import GoalOrientedResult
 
     fig, ax = new_figure(width=6.0, height=3.4)
     for label, result in runs.items():

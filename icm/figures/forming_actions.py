@@ -9,10 +9,11 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import buttons
-from icm.experiments import goal_babbling as _babbling
-from icm.experiments.goal_babbling import GoalBabblingResult
+from icm.experiments import babbling_results, babbling_space
+from icm.experiments.babbling_results import GoalBabblingResult
 from icm.experiments.results import check_results, percent
 from icm.learners import goal_choice
+from icm.learners.goal_babbling import N_BOOTSTRAP
 from icm.figures._common import (LINESTYLES, MARKERS, check_result, figure_and_axes, legend_below,
                                  new_figure, plot_mean_band)
 
@@ -67,8 +68,8 @@ def _draw_console(ax, geometry):
                                                linewidth=0.8, zorder=0))
         ax.text(cap[1], cap[0] - half[0] - 0.012, str(b), ha="center", va="top",
                 fontsize=7, color="#555555")
-    ax.set_xlim(_babbling.GOAL_HIGH[1], _babbling.GOAL_LOW[1])  # robot's left on the left
-    ax.set_ylim(_babbling.GOAL_LOW[0], _babbling.GOAL_HIGH[0])
+    ax.set_xlim(babbling_space.GOAL_HIGH[1], babbling_space.GOAL_LOW[1])  # robot's left on the left
+    ax.set_ylim(babbling_space.GOAL_LOW[0], babbling_space.GOAL_HIGH[0])
     ax.set_aspect("equal")
     ax.set_xticks([])
     ax.set_yticks([])
@@ -86,7 +87,7 @@ def coverage_figure(results, early=0.2):
     """
     check_results("results", results, GoalBabblingResult)
     early = _validate.real("early", early, 0.0, 1.0, low_open=True, high_open=True)
-    geometry = _babbling.console_geometry()
+    geometry = babbling_space.console_geometry()
     fig, axes = new_figure(width=7.6, height=2.35 * len(results) + 0.4, ncols=2,
                            nrows=len(results), squeeze=False)
     for row, (label, result) in zip(axes, results.items()):
@@ -132,12 +133,12 @@ def goal_choice_figure(result, n_stretches=8):
                          f"interest ({', '.join(n for n, s in goal_choice.STRATEGIES.items() if s.by_interest)}), "
                          f"got {result.strategy!r}")
     n_stretches = _validate.integer_at_least("n_stretches", n_stretches, 1)
-    start = min(_babbling.N_BOOTSTRAP, result.n_rollouts - 1)
+    start = min(N_BOOTSTRAP, result.n_rollouts - 1)
     if result.n_rollouts - start < n_stretches:
         raise ValueError(f"n_stretches must be at most the {result.n_rollouts - start} "
                          f"rollouts with goals, got {n_stretches}")
-    order = list(reversed(range(len(_babbling.COLUMN_NAMES))))  # the robot's left on top
-    names = [_babbling.COLUMN_NAMES[c] for c in order]
+    order = list(reversed(range(len(babbling_space.COLUMN_NAMES))))  # the robot's left on top
+    names = [babbling_space.COLUMN_NAMES[c] for c in order]
     # One above the other at the page's width: side by side, the labels would be shrunk
     # to unreadable text in the book.
     fig, (left, right) = new_figure(width=7.4, height=6.4, nrows=2)
@@ -389,7 +390,7 @@ def first_press_figure(study, labels):
                     title=f"{' or '.join(map(str, sorted(n_seeds)))} seeds each")
     medians = "; ".join(
         f"{label}: " + ", ".join(_median_word(m) for m in
-                                 _babbling.median_first_press(firsts[label], n_rollouts))
+                                 babbling_results.median_first_press(firsts[label], n_rollouts))
         for label in labels)
     return fig.describe(
         "When the robot first pressed each button itself, one panel per button: the "
@@ -419,7 +420,7 @@ def coverage_maps_figure(study, labels):
     norm = matplotlib.colors.LogNorm(vmin=1, vmax=top)
     fig, axes = new_figure(width=7.6, height=1.9 * len(labels) + 1.0, ncols=2,
                            nrows=len(labels), squeeze=False)
-    geometry = _babbling.console_geometry()
+    geometry = babbling_space.console_geometry()
     centre, half = geometry["console_centre"], geometry["console_half"]
     caps = geometry["caps"]
     mesh = None
