@@ -13,7 +13,7 @@ loads MuJoCo), so `import icm` is quick.
 import importlib
 
 __version__ = "0.1.0"
-__all__ = ["envs", "exercises", "experiments", "figures", "learners", "stats", "viewer",
+__all__ = ["chapters", "envs", "exercises", "experiments", "figures", "learners", "stats", "viewer",
            "widgets"]
 
 

@@ -10,7 +10,8 @@ import pathlib
 import sys
 
 from icm import experiments
-from icm.experiments import babbling_results, babbling_space, goal_babbling, rod_toppling
+from icm.chapters.forming_actions.strategies import strategy_table
+from icm.experiments import babbling_space, goal_babbling, rod_toppling
 from icm.learners import actor_critic, goal_oriented, q_learning
 from icm.learners.goal_babbling import GoalBabblingSettings
 
@@ -208,7 +209,7 @@ def _goal_babbling(args):
             outcome_space=args.outcome_space, threads=args.threads,
             demonstrations=args.demonstrations, **_settings_of(args))
     maturation = _settings_of(args)["maturation"]
-    print(babbling_results.comparison_table(results))
+    print(strategy_table(results))
     if maturation != "none" or args.demonstrations:
         shown = ", ".join(map(str, args.demonstrations))
         plural = "s" if len(args.demonstrations) > 1 else ""

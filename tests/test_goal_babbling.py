@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import icm
+import icm.chapters
 from icm.envs import buttons, icub
 from icm.experiments import (babbling_results, babbling_space, formed_actions, goal_babbling,
                              goal_babbling_study, remedies_study)
@@ -479,7 +480,7 @@ def test_figures_draw(small):
         assert len(figure.png()) > 10_000
     record = forming_actions.record_learned_press(small, seed=1, button=2)
     assert record["frame"].shape == (240, 320, 3) and record["frame"].std() > 1
-    assert "| random motor | 2 | 30 |" in babbling_results.comparison_table(results)
+    assert "| random motor | 2 | 30 |" in icm.chapters.forming_actions.strategies.strategy_table(results)
 
 
 # --- the claim -----------------------------------------------------------------------------
@@ -713,10 +714,10 @@ def test_the_studys_verdicts_are_phrased_from_its_numbers(study):
                                               "test_error": [0.02] * 8, **loop(8, 0, 0.9)}
                                      for r in goal_babbling_study.TUNING_ROOTS
                                      + goal_babbling_study.HELD_OUT_ROOTS}}
-        verdicts = goal_babbling_study.verdicts(fake)
+        verdicts = icm.chapters.forming_actions.strategies.verdicts(fake)
         assert words in verdicts["margin_verdict"]
         assert verdicts["n_held_seeds"] == 16 and verdicts["loop_red_first"] == 1.0
-        assert verdicts["n_family"] == len(remedies_study.chapter_family(babbling=fake))
+        assert verdicts["n_family"] == len(icm.chapters.forming_actions.family.chapter_family(babbling=fake))
         assert verdicts["target_red_first"] == verdicts["target_as_scripted"] == "met"
         met = "met" if lp is pressed else "not met"
         assert verdicts["target_presses_tuning"] == verdicts["target_presses_held_out"] == met
@@ -728,12 +729,12 @@ def test_the_studys_verdicts_are_phrased_from_its_numbers(study):
         for r, entry in fake["runs"]["learning progress"].items()}
     for r in goal_babbling_study.TUNING_ROOTS:
         fake["runs"]["random goal babbling"][str(r)]["pressed"] = missed(8)
-    assert "no clear difference" in goal_babbling_study.verdicts(fake)["margin_verdict"]
+    assert "no clear difference" in icm.chapters.forming_actions.strategies.verdicts(fake)["margin_verdict"]
     counts = goal_babbling_study.failure_counts(study, "learning progress")
     assert sum(counts.values()) == 5 * goal_babbling_study.N_SEEDS * 2
-    table = goal_babbling_study.failures_table(study, "learning progress")
+    table = icm.chapters.forming_actions.strategies.failures_table(study, "learning progress")
     assert table.count("\n") == 1 + len(formed_actions.PRESS_FAILURES)
-    assert "| learning progress | 100, 200 | 20 |" in goal_babbling_study.study_table(study)
+    assert "| learning progress | 100, 200 | 20 |" in icm.chapters.forming_actions.strategies.study_table(study)
 
 
 def test_the_presses_formed_figure_draws_and_refuses_bad_input(study):

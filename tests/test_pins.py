@@ -150,12 +150,12 @@ def test_the_others_pressed_early_count_a_first_press_at_the_bound_itself():
 def test_a_shown_button_pressed_as_soon_as_without_a_teacher_is_not_sooner():
     baseline = [[300, 300, 300, 300, 300]]
     sooner = {label: [[100] * buttons.N_BUTTONS] for label in remedies_study.TEACHING}
-    sentence = chapters.forming_actions.shown_sooner_sentence(
+    sentence = chapters.forming_actions.remedies.shown_sooner_sentence(
         _study({"learning progress": baseline, **sooner}))
     assert sentence.startswith("sooner than learning progress alone in all")
     tied = copy.deepcopy(sooner)
     tied["shown button 2"] = [[100, 100, 300, 100, 100]]  # button 2, the one shown: a tie
-    sentence = chapters.forming_actions.shown_sooner_sentence(
+    sentence = chapters.forming_actions.remedies.shown_sooner_sentence(
         _study({"learning progress": baseline, **tied}))
     assert sentence.startswith("not sooner in shown button 2, button 2"), sentence
 

@@ -229,11 +229,11 @@ def test_interaction_is_the_contrast_of_the_shares(small):
 
 
 def test_tables_name_every_setting_and_claim(small):
-    dependencies = chapters.robustness.dependency_table([small])
+    dependencies = chapters.robustness.maps.dependency_table([small])
     for text in ("weight", "presses", "reading", "red mastered first", "always"):
         assert text in dependencies
     assert dependencies.count("\n") == 1 + 3 * 4
-    interactions = chapters.robustness.interaction_table([small])
+    interactions = chapters.robustness.maps.interaction_table([small])
     assert interactions.count("\n") == 1 + 3 * 4
 
 
@@ -264,8 +264,8 @@ def test_the_map_draws_every_pair_and_claim_with_marks_and_the_default(small):
     (lambda r: r.pair_table("red_first", ("reading", "action_weight")), "pair",
      "('reading', 'action_weight')", "value"),
     (lambda r: r.holding_values("red_first", "epsilon"), "setting", "'epsilon'", "value"),
-    (lambda r: chapters.robustness.dependency_table([]), "results", "[]", "type"),
-    (lambda r: chapters.robustness.interaction_table(["x"]), "results[0]", "'x'", "type"),
+    (lambda r: chapters.robustness.maps.dependency_table([]), "results", "[]", "type"),
+    (lambda r: chapters.robustness.maps.interaction_table(["x"]), "results[0]", "'x'", "type"),
     (lambda r: robustness_map("x"), "result", "'x'", "type"),
     (lambda r: robustness.check_point("goal_oriented", "red_first", epsilon=0.1), "setting",
      "'epsilon'", "value"),
@@ -439,16 +439,17 @@ def test_a_reading_that_changes_a_verdict_is_named_and_the_others_are_not():
     changed = _fake_readings(0.2)
     assert [r.key for r in changed.changes()] == [("short_history", "zero")]
     assert changed.changed(("short_history", "zero")) == ["interest_later"]
-    text = changed.describe()
+    text = chapters.robustness.readings.describe_readings(changed)
     assert text.startswith(f"Of the {len(changed.readings)} other readings, 1 changes")
     assert "zero" in text and "interest moves to green later\" fails (20.0%" in text
     assert "witnessed" not in text and "earliest" not in text
-    table = changed.table()
+    table = chapters.robustness.readings.readings_table(changed)
     assert table.count("\n") == 2 + len(changed.readings)
     assert table.count("**") == 2 and "**20.0% ✗**" in table
     same = _fake_readings(1.0)
-    assert same.changes() == [] and same.describe().startswith("None of the")
-    assert "**" not in same.table()
+    assert same.changes() == [] and chapters.robustness.readings.describe_readings(
+        same).startswith("None of the")
+    assert "**" not in chapters.robustness.readings.readings_table(same)
 
 
 @pytest.mark.parametrize("call, name, shown, kind", [
@@ -485,8 +486,8 @@ def test_the_rods_measure_the_moves_off_the_grid_in_both_readings():
 
 def _maps(seed):
     """The chapter's three maps on root `seed`, each with the chapter's seeds at every
-    point (`chapters.robustness.MAP_SEEDS`: 1,000 for the actor-critic)."""
-    return {name: robustness.run_robustness(name, n_seeds=chapters.robustness.MAP_SEEDS[name],
+    point (`chapters.robustness.maps.MAP_SEEDS`: 1,000 for the actor-critic)."""
+    return {name: robustness.run_robustness(name, n_seeds=chapters.robustness.maps.MAP_SEEDS[name],
                                             seed=seed, progress=False)
             for name in robustness.STUDIES}
 
@@ -497,9 +498,9 @@ def maps():
 
 
 def test_the_chapters_claims_about_its_maps_hold_on_our_seeds(maps):
-    found = chapters.robustness.chapter_claims(maps["goal_oriented"], maps["actor_critic"],
+    found = chapters.robustness.maps.chapter_claims(maps["goal_oriented"], maps["actor_critic"],
                                       maps["rod_toppling"])
-    assert set(found) == set(chapters.robustness.CHAPTER_CLAIMS) and all(found.values()), found
+    assert set(found) == set(chapters.robustness.maps.CHAPTER_CLAIMS) and all(found.values()), found
 
 
 def _with_claim_set(result, claim, value, **where):
@@ -520,11 +521,11 @@ def _with_claim_set(result, claim, value, **where):
 def test_a_map_that_contradicts_the_chapter_fails_its_claims(maps):
     goal, critic, rods = maps["goal_oriented"], maps["actor_critic"], maps["rod_toppling"]
     broken = _with_claim_set(goal, "red_first", True, action_weight=1.0)  # red first at 1
-    found = chapters.robustness.chapter_claims(broken, critic, rods)
+    found = chapters.robustness.maps.chapter_claims(broken, critic, rods)
     assert not found["weight_threshold"] and found["presses_not_needed"]
     broken = _with_claim_set(rods, "blue_found", False, initial_q=1.0)
-    assert not chapters.robustness.chapter_claims(goal, critic, broken)["rods_blue_needs_drive"]
-    refused(lambda: chapters.robustness.chapter_claims(critic, goal, rods), "goal", "actor_critic",
+    assert not chapters.robustness.maps.chapter_claims(goal, critic, broken)["rods_blue_needs_drive"]
+    refused(lambda: chapters.robustness.maps.chapter_claims(critic, goal, rods), "goal", "actor_critic",
             "value")
 
 
@@ -535,14 +536,15 @@ def test_holds_from_and_shares_along(maps):
     rods = maps["rod_toppling"]
     held = rods.holding_values("red_first", "initial_q")
     assert held and held[0] > 0 and rods.holds_from("red_first", "initial_q") is None
-    text = goal.shares_along("red_first", "action_weight", presses_per_trial=1)
+    text = chapters.robustness.maps.shares_along(goal, "red_first", "action_weight",
+                                           presses_per_trial=1)
     parts = text.split(", ")
     assert len(parts) == len(goal.study.setting("action_weight").values)
     assert parts[-1] == f"{goal.share('red_first', presses_per_trial=1)[0]:.1%} at 10"
 
 
 def test_the_studies_table_lists_every_setting_and_claim():
-    table = chapters.robustness.studies_table()
+    table = chapters.robustness.maps.studies_table()
     assert table.count("\n") == 1 + len(robustness.STUDIES)
     for study in robustness.STUDIES.values():
         for item in study.settings + study.claims:
@@ -552,23 +554,24 @@ def test_the_studies_table_lists_every_setting_and_claim():
 def test_the_readings_summary_names_what_changes_a_verdict():
     changed, same = _fake_readings(0.2), _fake_readings(1.0)
     total = 2 * len(changed.readings)
-    text = chapters.robustness.readings_summary([changed, same])
+    text = chapters.robustness.readings.readings_summary([changed, same])
     assert text.startswith(f"1 of the {total} other readings changes a claim's verdict")
     assert "read as zero" in text and text.endswith(f"the other {total - 1} change none")
-    assert chapters.robustness.readings_summary([same]).startswith("none of the")
-    refused(lambda: chapters.robustness.readings_summary([]), "results", "[]", "type")
+    assert chapters.robustness.readings.readings_summary([same]).startswith("none of the")
+    refused(lambda: chapters.robustness.readings.readings_summary([]), "results", "[]", "type")
 
 
 def test_the_chapters_numbers_come_from_its_maps(maps):
     goal, critic, rods = maps["goal_oriented"], maps["actor_critic"], maps["rod_toppling"]
-    numbers, clauses = chapters.robustness.chapter_numbers(goal, critic, rods)
+    numbers, clauses = chapters.robustness.maps.chapter_numbers(goal, critic, rods)
     assert numbers["goal_lowest_weight"] == goal.holds_from("red_first", "action_weight")
     assert numbers["goal_highest_failing_weight"] < numbers["goal_lowest_weight"]
     assert numbers["goal_red_first"] == goal.summary()["red_first"]
     assert numbers["critic_green_printed_fewest"] == critic.share(
         "green_learned", variant="printed_td", presses_per_trial=1)[0]
     assert numbers["rods_q_lowest"] <= numbers["rods_q_highest"]
-    assert clauses["rods_red_first_by_q"] == rods.shares_along("red_first", "initial_q")
+    assert clauses["rods_red_first_by_q"] == chapters.robustness.maps.shares_along(
+        rods, "red_first", "initial_q")
     # "In at least X% of the seeds" quotes the lowest lower end of the points'
     # intervals (the share the seeds vouch for), never the sample's 100%.
     lowest = float(rods.points().query("initial_q > 0").blue_found_low.min())
@@ -584,21 +587,22 @@ def test_the_chapters_numbers_come_from_its_maps(maps):
     assert clauses["critic_red_first_weakest"] == ", ".join(
         f"{name} = {robustness.show_value(weakest[name])}"
         for name in ("action_weight", "presses_per_trial", "variant"))
-    refused(lambda: chapters.robustness.chapter_numbers(goal, goal, rods), "critic",
+    refused(lambda: chapters.robustness.maps.chapter_numbers(goal, goal, rods), "critic",
             "goal_oriented", "value")
 
 
 def test_the_readings_numbers_come_from_the_runs():
     found = {name: robustness_readings.run_readings(name, n_seeds=10, seed=SEED, progress=False)
              for name in robustness.STUDIES}
-    numbers, clauses = chapters.robustness.readings_numbers(found)
+    numbers, clauses = chapters.robustness.readings.readings_numbers(found)
     book = found["rod_toppling"].run()
     assert numbers["edge_share"] == book.edge_share() > 0
     assert numbers["time_limit_share"] == book.time_limit_share()
     assert numbers["no_limit_longest"] >= numbers["book_longest"]
     assert numbers["edge_ended_share"] > 0
-    assert clauses["readings_actor_critic"] == found["actor_critic"].describe()
-    refused(lambda: chapters.robustness.readings_numbers(
+    assert clauses["readings_actor_critic"] == \
+        chapters.robustness.readings.describe_readings(found["actor_critic"])
+    refused(lambda: chapters.robustness.readings.readings_numbers(
         {"goal_oriented": found["goal_oriented"]}), "found", "goal_oriented", "type")
 
 
@@ -607,22 +611,23 @@ def test_the_readings_numbers_come_from_the_runs():
 def test_the_replication_is_what_the_library_computes():
     # assets/replications.json's "robustness" entry is the chapter's three maps run again
     # on the fresh root, every claim rechecked there (python -m icm.chapters.robustness).
-    from icm.experiments import replication
+    from icm.chapters import replication
+    from icm.experiments.seeding import REPLICATION_ROOTS
     stored = replication.load_replications()["robustness"]
-    assert stored["root"] == replication.REPLICATION_ROOTS["robustness"]
+    assert stored["root"] == REPLICATION_ROOTS["robustness"]
     assert stored["root"] not in (0, SEED, OTHER_SEED)
-    assert stored["n_seeds"] == chapters.robustness.MAP_SEEDS
-    assert chapters.robustness.run_replication() == stored
-    assert set(stored["claims"]) == set(chapters.robustness.CHAPTER_CLAIMS)
+    assert stored["n_seeds"] == chapters.robustness.maps.MAP_SEEDS
+    assert chapters.robustness.maps.run_replication() == stored
+    assert set(stored["claims"]) == set(chapters.robustness.maps.CHAPTER_CLAIMS)
 
 
 def test_a_claim_that_did_not_replicate_is_said_so_beside_it():
-    from icm.experiments import replication
+    from icm.chapters import replication
     stored = replication.load_replications()["robustness"]
-    sentences = chapters.robustness.replication_sentences(stored)
+    sentences = chapters.robustness.maps.replication_sentences(stored)
     failed = [name for name, held in stored["claims"].items() if not held]
     for name in failed:
-        assert chapters.robustness.CHAPTER_CLAIMS[name] in sentences["summary"]
+        assert chapters.robustness.maps.CHAPTER_CLAIMS[name] in sentences["summary"]
     assert ("Not replicated" in sentences["critic_everywhere"]) == (
         "critic_red_everywhere" in failed)
     # A bold claim of the chapter that did not replicate has the sentence beside it.
@@ -635,17 +640,17 @@ def test_a_claim_that_did_not_replicate_is_said_so_beside_it():
             assert "replication_" in text, bold
     # Made up: every claim held, or the actor-critic's did not.
     held = {**stored, "claims": dict.fromkeys(stored["claims"], True)}
-    assert "all of them" in chapters.robustness.replication_sentences(held)["summary"]
-    assert "held again" in chapters.robustness.replication_sentences(held)["critic_everywhere"]
+    assert "all of them" in chapters.robustness.maps.replication_sentences(held)["summary"]
+    assert "held again" in chapters.robustness.maps.replication_sentences(held)["critic_everywhere"]
     lost = {**held, "claims": {**held["claims"], "critic_red_everywhere": False}}
-    assert "Not replicated" in chapters.robustness.replication_sentences(lost)[
+    assert "Not replicated" in chapters.robustness.maps.replication_sentences(lost)[
         "critic_everywhere"]
     # The rods' counts are said as they are, with "none" for a count of zero.
     counts = stored["rods_toppled_first"]
     assert sum(counts.values()) == robustness.STUDIES["rod_toppling"].setting(
         "initial_q").values.__len__() * len(robustness.STUDIES["rod_toppling"].setting(
             "epsilon").values)
-    rods = chapters.robustness.replication_sentences(
+    rods = chapters.robustness.maps.replication_sentences(
         {**stored, "rods_toppled_first": {"holds": 14, "unclear": 6, "fails": 0}})["rods_toppled"]
     assert rods.endswith("it holds at 14, is unclear at 6 and fails at none")
 
@@ -654,15 +659,15 @@ def test_a_claim_that_did_not_replicate_is_said_so_beside_it():
 
 def test_seeds_needed_is_the_fewest_whose_interval_clears_the_threshold():
     for n in (50, 200, 1000):
-        needed = chapters.robustness.seeds_needed(n)
+        needed = chapters.robustness.maps.seeds_needed(n)
         assert stats.share_interval(needed, n)[0] >= robustness.CLAIM_SHARE
         assert stats.share_interval(needed - 1, n)[0] < robustness.CLAIM_SHARE
-    assert chapters.robustness.seeds_needed(200) == 189  # the chapter's question 6.2
-    assert chapters.robustness.seeds_needed(10) is None  # 10 of 10: 72% to 100%
+    assert chapters.robustness.maps.seeds_needed(200) == 189  # the chapter's question 6.2
+    assert chapters.robustness.maps.seeds_needed(10) is None  # 10 of 10: 72% to 100%
 
 
 def test_the_chance_to_hold_grows_with_the_seeds_and_the_share():
-    chance = chapters.robustness.chance_to_hold
+    chance = chapters.robustness.maps.chance_to_hold
     assert chance(0.95, 200) < chance(0.95, 1000) < 1
     assert chance(0.93, 200) < chance(0.95, 200) < chance(0.97, 200)
     assert chance(0.9, 1000) < 0.05  # a share at the threshold seldom clears it
@@ -671,7 +676,7 @@ def test_the_chance_to_hold_grows_with_the_seeds_and_the_share():
     held = np.random.default_rng(SEED).binomial(200, 0.95, size=20_000)
     assert np.mean(held >= 189) == pytest.approx(chance(0.95, 200), abs=0.01)
     refused(lambda: chance(1.5, 200), "share", "1.5", "value")
-    refused(lambda: chapters.robustness.seeds_needed(0), "n_seeds", "0", "value")
+    refused(lambda: chapters.robustness.maps.seeds_needed(0), "n_seeds", "0", "value")
 
 
 def test_the_first_episode_a_quiet_move_loses_a_little_unless_untried_moves_are_worth_nothing():
@@ -683,11 +688,11 @@ def test_the_first_episode_a_quiet_move_loses_a_little_unless_untried_moves_are_
         # Equation 3 with no reward and untried moves ahead: q + alpha (gamma q - q).
         assert after == pytest.approx(q + book.alpha * (book.gamma * q - q))
         assert (after < q) if q > 0 else (after == 0)
-    checks, numbers = chapters.robustness.first_episode([0.0, 0.1])
+    checks, numbers = chapters.robustness.readings.first_episode([0.0, 0.1])
     assert checks == {"quiet_move_loses": True, "red_nearer": True}
     assert numbers["quiet_move_after"] == robustness_readings.value_after_a_quiet_move(
         book.initial_q) < numbers["quiet_move_before"] == book.initial_q
-    refused(lambda: chapters.robustness.first_episode([]), "initial_q_values", "[]", "type")
+    refused(lambda: chapters.robustness.readings.first_episode([]), "initial_q_values", "[]", "type")
 
 
 @pytest.mark.parametrize("rod", ["red", "blue"])
@@ -722,7 +727,7 @@ def test_the_claims_about_all_points_hold_on_a_second_root():
     # tests' own. (Some of the chapter's other claims, about one point near its
     # threshold, did not hold on every root tried: see MAP_SEEDS and the report.)
     found = _maps(OTHER_SEED)
-    claims = chapters.robustness.chapter_claims(found["goal_oriented"],
+    claims = chapters.robustness.maps.chapter_claims(found["goal_oriented"],
                                                 found["actor_critic"], found["rod_toppling"])
     about_all_points = ("weight_above_settles_red", "critic_red_everywhere",
                         "rods_toppled_first_everywhere", "rods_blue_needs_drive",

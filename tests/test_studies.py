@@ -166,7 +166,7 @@ def test_every_registered_study_runs_tiny(tmp_path):
     remedies = json.loads((tmp_path / "remedies.json").read_text())
     assert remedies["n_seeds"] == 1 and remedies["budgets"] == [12]
     assert remedies["n_rollouts"] == 12 and remedies["n_trials"] == 3
-    chapters.forming_actions.summary(remedies)
+    chapters.forming_actions.remedies.summary(remedies)
     batched = remedies_study.run_condition("growing up", 300, n_seeds=1, n_rollouts=12,
                                            n_trials=3)
     assert remedies["runs"]["growing up"]["300"] == json.loads(json.dumps(batched))

@@ -14,9 +14,8 @@ from icm.envs import buttons
 from icm.experiments import _grid, loop
 from icm.experiments._memory import FIXED_BYTES, check_memory
 from icm.experiments.loop import Transition
-from icm.experiments.actor_critic_results import LATE_TRIALS, TASKS, ActorCriticResult
+from icm.experiments.actor_critic_results import TASKS, ActorCriticResult
 from icm.experiments.seeding import run_seeds
-from icm.experiments.results import check_results, measures_table, percent
 from icm.learners import action_selection, actor_critic
 from icm.stats import first_from_which
 
@@ -419,42 +418,5 @@ def play(env, agent, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRI
         if bar is not None:
             bar.close()
     return summary.result(settings)
-
-
-def comparison_table(results):
-    """A Markdown table of the numbers that tell actor-critic runs apart, one column per
-    run.
-
-    Args:
-      results: a dict {column label: ActorCriticResult}.
-
-    Returns:
-      A Markdown string (display it with `IPython.display.Markdown`); the trials
-      marked † are means over the seeds whose error does reach 0.
-    """
-    check_results("results", results, ActorCriticResult)
-    summaries = {id(r): r.summary() for r in results.values()}
-
-    def shown(value, fmt):  # fmt: a format spec, or a function such as `percent`
-        return fmt(value) if callable(fmt) else f"{value:{fmt}}"
-
-    def number(key, fmt):
-        return lambda r: shown(summaries[id(r)][key], fmt)
-
-    def pair(key, fmt):
-        return lambda r: (f"{shown(summaries[id(r)]['red_' + key], fmt)} / "
-                          f"{shown(summaries[id(r)]['green_' + key], fmt)}")
-
-    table = measures_table(results, [
-        ("seeds", lambda r: str(r.n_seeds)),
-        ("error 0 from trial (mean†): red / green", pair("zero_mean", ".1f")),
-        ("green learned", number("green_zero_share", percent)),
-        ("red first", number("red_first", percent)),
-        ("green below red at some trial", number("green_below_red", percent)),
-        (f"presses opening red / green, last {LATE_TRIALS} trials",
-         pair("late_practice_share", percent)),
-        ("largest abs(V)", number("max_abs_value", ".3g")),
-    ])
-    return table + "\n\n† mean over the seeds whose error reaches 0 for good within the run."
 
 

@@ -91,16 +91,6 @@ class ActorCriticResult:
         last_below = np.where(below, trials, 0).max(axis=1)
         return bool(np.all(last_below <= first_press))
 
-    def claims(self):
-        """{claim name: whether it holds in this run}, for each of
-        `icm.chapters.actor_critic.CLAIMS` (checked on the book's run when it is built, and
-        by the tests on their own seeds)."""
-        s = self.summary()
-        return {"red_sooner": s["red_zero_mean"] < s["green_zero_mean"],
-                "red_first_mostly": s["red_first"] > 0.5,
-                "green_below_only_before_red_press":
-                    self.green_below_red_only_before_red_press()}
-
     def green_below_red_fraction(self):
         """Share of seeds in which the green error is below the red one at some trial
         (the paper's "familiarity with the more complex task would temporarily

@@ -17,8 +17,7 @@ import numpy as np
 from icm import _validate
 from icm.store import ASSETS, asset_path
 from icm.experiments import formed_actions, goal_babbling
-from icm.experiments.results import percent
-from icm.stats import PANEL_RESAMPLES, bootstrap_band
+
 
 STUDY_FILE = "goal_babbling_study.json"
 """The file in assets/ that holds the study."""
@@ -137,10 +136,10 @@ def summary(study=None):
         out[label] = {}
         groups = dict(by_root)
         tuning = [r for r in by_root if int(r) in TUNING_ROOTS]
-        groups["tuning"] = _pool([by_root[r] for r in tuning])
+        groups["tuning"] = pool([by_root[r] for r in tuning])
         held = [r for r in by_root if int(r) in HELD_OUT_ROOTS]
         if held:
-            groups["held_out"] = _pool([by_root[r] for r in held])
+            groups["held_out"] = pool([by_root[r] for r in held])
         for name, entry in groups.items():
             pressed = np.array(entry["pressed"])[:, -1]  # [seed, button] at the budget
             row = {"n_seeds": len(pressed), "all_pressed_share": float(pressed.all(1).mean()),
@@ -153,7 +152,9 @@ def summary(study=None):
     return out
 
 
-def _pool(entries):
+def pool(entries):
+    """Entries of consecutive seed blocks (a variant's roots) joined into one: each
+    per-seed list the blocks' lists one after the other."""
     pooled = {}
     for entry in entries:
         for key, values in entry.items():
@@ -176,166 +177,17 @@ if __name__ == "__main__":
     main()
 
 
-def study_table(study=None):
-    """A Markdown table of `summary`: one row per variant on the tuning root seeds,
-    then the held-out rows.
-
-    Args:
-      study: the study (default `load_study()`).
-    """
-    rows = summary(study)
-    lines = ["| variant | root seeds | seeds | all five presses formed | presses formed (of 5) "
-             "| test error, cm (in its outcome space) | red mastered first "
-             "| presses with the scripted effect |",
-             "|---|---|---|---|---|---|---|---|"]
-    for group, roots in (("tuning", TUNING_ROOTS), ("held_out", HELD_OUT_ROOTS)):
-        for label, by_group in rows.items():
-            if group not in by_group:
-                continue
-            row = by_group[group]
-            loop = (f"{percent(row['red_first_share'])} | {percent(row['as_scripted'], 1)}"
-                    if "red_first_share" in row else "not run | not run")
-            lines.append(f"| {label} | {', '.join(map(str, roots))} | {row['n_seeds']} "
-                         f"| {percent(row['all_pressed_share'])} | {row['buttons_pressed']:.2f} "
-                         f"| {100 * row['test_error']:.2f} | {loop} |")
-    return "\n".join(lines)
-
-
-def _tuning(study, label):
-    return _pool([study["runs"][label][str(root)] for root in TUNING_ROOTS])
+def tuning(study, label):
+    """Variant `label`'s entries on the tuning root seeds of `study`, pooled (`pool`)."""
+    return pool([study["runs"][label][str(root)] for root in TUNING_ROOTS])
 
 
 def failure_counts(study, label):
     """What became of the press formed for each button, counted over the tuning seeds
     of variant `label`: {name in `formed_actions.PRESS_FAILURES`: count}."""
     label = _validate.one_of("label", label, tuple(study["runs"]))
-    codes = np.array(_tuning(study, label)["failures"])
+    codes = np.array(tuning(study, label)["failures"])
     return {name: int((codes == i).sum()) for i, name in
             enumerate(formed_actions.PRESS_FAILURES)}
 
 
-def failures_table(study, label):
-    """A Markdown table of what became of the press formed for each button (rows:
-    `formed_actions.PRESS_FAILURES`, columns: buttons), over the tuning seeds of
-    variant `label`."""
-    label = _validate.one_of("label", label, tuple(study["runs"]))
-    codes = np.array(_tuning(study, label)["failures"])  # [seed, button]
-    n_buttons = codes.shape[1]
-    lines = ["| the press formed for the button | " + " | ".join(
-        f"button {b}" for b in range(n_buttons)) + " | all |",
-             "|---|" + "---|" * (n_buttons + 1)]
-    for i, name in enumerate(formed_actions.PRESS_FAILURES):
-        counts = (codes == i).sum(axis=0)
-        lines.append(f"| {name} | " + " | ".join(str(c) for c in counts)
-                     + f" | {counts.sum()} |")
-    return "\n".join(lines)
-
-
-TARGETS = {"all_pressed_share": 0.9, "red_first_share": 0.9, "as_scripted": 0.95}
-"""The chapter's targets: all five presses formed in at least 90% of the seeds, red
-mastered first in at least 90% with the formed presses, and at least 95% of their
-presses with the scripted press's effect."""
-
-
-OPTIONS = ("LWLR inverse model", "competence progress", "splitting regions")
-"""The options from the field that the study compares with the default learner."""
-
-
-def _join(labels):
-    return labels[0] if len(labels) == 1 else ", ".join(labels[:-1]) + " and " + labels[-1]
-
-
-def comparisons(study=None):
-    """The paired comparisons of learning progress with random goal babbling that the
-    chapter "Forming actions" decides, on the held-out seeds only (the learner's
-    settings were chosen on the tuning seeds): {"lp_rg_all_pressed": per-seed
-    differences in all five presses formed (1 or 0), "lp_rg_test_error": in the final
-    test error (m)}; learning progress minus random goal babbling."""
-    study = load_study() if study is None else study
-    lp, rg = (_pool([study["runs"][label][str(r)] for r in HELD_OUT_ROOTS])
-              for label in ("learning progress", "random goal babbling"))
-    all_pressed = lambda entry: np.array(entry["pressed"])[:, -1].all(axis=1).astype(float)
-    return {"lp_rg_all_pressed": all_pressed(lp) - all_pressed(rg),
-            "lp_rg_test_error": (np.array(lp["test_error"], dtype=float)
-                                 - np.array(rg["test_error"], dtype=float))}
-
-
-def verdicts(study=None, corrected=None):
-    """The numbers and words the chapter's comparisons are phrased from, a dict: for
-    learning progress ("lp") and random goal babbling ("rg") on the held-out seeds,
-    the share with all five presses formed, their paired difference with its 95%
-    bootstrap band, a sentence saying whether the margin is clear in the chapter's
-    family (`corrected`: `remedies_study.chapter_verdicts()`, computed when None),
-    the same for their test errors, the closing-the-loop shares, sentences saying
-    whether the `OPTIONS` and the simulated return home did better than the default
-    learner and whether, on the held-out seeds, its share was still rising between
-    the last two budgets, and "met" or "not met" for each of `TARGETS`."""
-    study = load_study() if study is None else study
-    if corrected is None:
-        from icm.experiments import remedies_study  # it imports this module
-
-        corrected = remedies_study.chapter_verdicts(babbling=study)
-    lp, rg = (_pool(list(study["runs"][label].values()))
-              for label in ("learning progress", "random goal babbling"))
-    held_lp, held_rg = (_pool([study["runs"][label][str(r)] for r in HELD_OUT_ROOTS])
-                        for label in ("learning progress", "random goal babbling"))
-    differences = comparisons(study)
-    mean, low, high = bootstrap_band(differences["lp_rg_all_pressed"][:, None],
-                                     resamples=PANEL_RESAMPLES)
-    clear = corrected["lp_rg_all_pressed"]["clear"]
-    n_family = corrected["lp_rg_all_pressed"]["n_family"]
-    if clear and mean[0] > 0:
-        margin = "the margin of learning progress over random goal babbling is clear"
-    elif clear:
-        margin = "random goal babbling does clearly better than learning progress"
-    else:
-        margin = "no clear difference between the two strategies"
-    error = differences["lp_rg_test_error"]
-    error_clear = corrected["lp_rg_test_error"]["clear"]
-    if error_clear:
-        error_verdict = ("clearly lower with learning progress" if error.mean() < 0 else
-                         "clearly lower with random goal babbling")
-    else:
-        error_verdict = "no clear difference"
-    rows = summary(study)["learning progress"]
-    red_first = float(np.mean(lp["red_first"]))
-    as_scripted = float(np.mean(lp["as_scripted"]))
-    word = lambda value, target: "met" if value >= target else "not met"
-    rows_all = summary(study)
-    share = lambda label: rows_all[label]["tuning"]["all_pressed_share"]
-    better = [label for label in OPTIONS
-              if label in rows_all and share(label) > share("learning progress")]
-    options = ("none of them formed all five presses in more of these seeds than the "
-               "learner without them" if not better else
-               f"{_join(better)} formed all five presses in more of these seeds than the "
-               f"learner without {'it' if len(better) == 1 else 'them'}")
-    compare = lambda label: ("better than" if share(label) > share("learning progress")
-                             else "no better than")
-    retract = (f"{compare('return home simulated')} without the return"
-               if "return home simulated" in rows_all else None)
-    by_budget = np.array(held_lp["pressed"]).all(axis=2).mean(axis=0)  # [budget]
-    trend = ("still rising at the default budget" if by_budget[-1] > by_budget[-2]
-             else "no longer rising at the default budget")
-    error_mean, error_low, error_high = bootstrap_band(error[:, None],
-                                                       resamples=PANEL_RESAMPLES)
-    return {"n_held_seeds": len(differences["lp_rg_all_pressed"]),
-            "held_difference": float(mean[0]), "held_difference_low": float(low[0]),
-            "held_difference_high": float(high[0]), "margin_verdict": margin,
-            "margin_p_holm": corrected["lp_rg_all_pressed"]["p_holm"],
-            "n_family": n_family,
-            "held_lp_error_cm": 100 * float(np.mean(held_lp["test_error"])),
-            "held_rg_error_cm": 100 * float(np.mean(held_rg["test_error"])),
-            "held_error_difference_cm": 100 * float(error_mean[0]),
-            "held_error_difference_low_cm": 100 * float(error_low[0]),
-            "held_error_difference_high_cm": 100 * float(error_high[0]),
-            "error_verdict": error_verdict,
-            "n_loop_seeds": len(lp["red_first"]), "loop_red_first": red_first,
-            "loop_as_scripted": as_scripted,
-            "options_verdict": options, "retract_verdict": retract,
-            "held_out_trend": trend,
-            "target_presses_tuning": word(rows["tuning"]["all_pressed_share"],
-                                          TARGETS["all_pressed_share"]),
-            "target_presses_held_out": word(rows["held_out"]["all_pressed_share"],
-                                            TARGETS["all_pressed_share"]),
-            "target_red_first": word(red_first, TARGETS["red_first_share"]),
-            "target_as_scripted": word(as_scripted, TARGETS["as_scripted"])}

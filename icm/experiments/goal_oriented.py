@@ -11,7 +11,6 @@ from icm import _streams, _validate
 from icm._settings import with_settings
 from icm.envs import buttons
 from icm.experiments import _grid, loop
-from icm.experiments.results import check_results, measures_table, percent
 from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES, check_memory
 from icm.experiments.loop import Transition
 from icm.experiments.goal_oriented_results import TASKS, GoalOrientedResult
@@ -489,32 +488,5 @@ def trace(n_trials=2, n_seeds=1, seed=0):
     loop.play(ConsoleTrials(env, buttons.DEFAULT_PRESSES_PER_TRIAL), Chooser(agent, True),
               settings["n_trials"], [record])
     return pd.DataFrame(rows).sort_values(["seed", "trial", "press"], ignore_index=True)
-
-
-def comparison_table(results):
-    """A Markdown table of the numbers that tell runs apart, one column per run.
-
-    Args:
-      results: a dict {column label: GoalOrientedResult}.
-
-    Returns:
-      A Markdown string (display it with `IPython.display.Markdown`).
-    """
-    check_results("results", results, GoalOrientedResult)
-    summaries = {id(r): r.summary() for r in results.values()}
-
-    def pair(key, fmt):
-        return lambda r: (f"{summaries[id(r)]['red_' + key]:{fmt}} / "
-                          f"{summaries[id(r)]['green_' + key]:{fmt}}")
-
-    return measures_table(results, [
-        ("seeds", lambda r: str(r.n_seeds)),
-        ("mastered, mean trial: red / green", pair("mastery_mean", ".1f")),
-        ("red mastered first", lambda r: percent(summaries[id(r)]['red_first'])),
-        ("peak interest: red / green", pair("peak_interest", ".3f")),
-        ("centre of interest, trial: red / green", pair("interest_centre", ".1f")),
-        ("interest below 10% of its peak from trial: red / green", pair("fade_trial", "")),
-        ("most practised at trial: red / green", pair("practice_peak_trial", "")),
-    ])
 
 

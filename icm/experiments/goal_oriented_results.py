@@ -76,33 +76,6 @@ class GoalOrientedResult:
         task = _validate.one_of("task", task, TASKS)
         return int(np.argmax(self.mean_interest()[:, TASKS.index(task)])) + 1
 
-    def claims(self):
-        """{claim name: whether it holds in this run}, for each of
-        `icm.chapters.goal_oriented_interest.CLAIMS`: what the chapter states in words,
-        checked on the book's run when it is built (and by the tests on their own
-        seeds)."""
-        s = self.summary()
-        return {
-            "red_first_mostly": s["red_first"] > 0.5,
-            "red_sooner": s["red_mastery_mean"] < s["green_mastery_mean"],
-            "red_fades_first": 0 < s["red_fade_trial"] < s["green_fade_trial"]
-            or (s["red_fade_trial"] > 0 > s["green_fade_trial"]),
-            "green_stays_longer": s["green_interest_centre"] > s["red_interest_centre"],
-        }
-
-    def describe_peaks(self):
-        """In words, whether the mean interest in green peaks after the mean interest
-        in red, as the paper's "interest rise slower" would have it: a clause that
-        the chapter quotes, phrased from the data."""
-        red, green = self.peak_trial("red"), self.peak_trial("green")
-        if green > red:
-            return (f"the mean curves agree, green's peaking at trial {green}, after red's "
-                    f"at trial {red}")
-        if green == red:
-            return f"the mean curves do not show it: both peak at trial {red}"
-        return (f"the mean curves show the opposite, green's peaking at trial {green}, "
-                f"before red's at trial {red}")
-
     def fade_trial(self, task, fraction=None):
         """The first trial after its peak at which the mean interest in `task` falls
         below `fraction` (in (0, 1]) of that peak; -1 if it never does."""

@@ -21,8 +21,8 @@ from icm import _validate
 from icm.envs import buttons
 from icm.store import ASSETS, asset_path
 from icm.experiments import (babbling_results, babbling_space, formed_actions, goal_babbling,
-                             goal_babbling_study, replication)
-from icm.stats import POWER_SIMULATIONS, corrected_verdicts, paired_power
+                             goal_babbling_study)
+from icm.experiments.seeding import REPLICATION_ROOTS
 
 STUDY_FILE = "remedies_study.json"
 """The file in assets/ that holds the study."""
@@ -277,59 +277,6 @@ def seed_values(study, label, measure, others_of=None, roots=None):
     return entry["test_error"].astype(float)
 
 
-VERDICT_ROOTS = goal_babbling_study.HELD_OUT_ROOTS
-"""The root seeds on which the chapter's comparisons are decided: the held-out ones.
-Every setting the chapter "Forming actions" compares (the learner's, the clock's, the
-teacher's) was chosen on the tuning roots, which would flatter it."""
-
-
-def comparisons(study=None, roots=VERDICT_ROOTS):
-    """The remedies' paired comparisons with learning progress alone, over the seeds of
-    `roots` (default `VERDICT_ROOTS`): {"{key}_{measure}": {"label", "measure", "arm",
-    "baseline"}} (`REMEDY_KEYS`, `PAIRED_MEASURES`; per-seed values of the remedy and
-    of learning progress alone, on the same seeds), the measures of the buttons not
-    shown left out where the teacher shows all five."""
-    study = load_study() if study is None else check_study(study)
-    out = {}
-    for label, key in REMEDY_KEYS.items():
-        for measure in PAIRED_MEASURES:
-            if measure.startswith("others") and len(shown_buttons(label)) == buttons.N_BUTTONS:
-                continue  # no button left unshown
-            out[f"{key}_{measure}"] = {
-                "label": label, "measure": measure,
-                "arm": seed_values(study, label, measure, label, roots),
-                "baseline": seed_values(study, "learning progress", measure, label, roots)}
-    return out
-
-
-def chapter_family(study=None, babbling=None):
-    """Every paired comparison the chapter "Forming actions" calls clear or not, as per-seed
-    differences on the held-out root seeds: the remedies' (`comparisons`) and those of
-    `goal_babbling_study.comparisons` ({name: differences}). `chapter_verdicts`
-    corrects them together."""
-    family = {name: c["arm"] - c["baseline"] for name, c in comparisons(study).items()}
-    babbling = goal_babbling_study.load_study() if babbling is None else babbling
-    family.update(goal_babbling_study.comparisons(babbling))
-    return family
-
-
-def chapter_verdicts(study=None, babbling=None):
-    """`icm.stats.corrected_verdicts` of `chapter_family`: Holm's correction at a
-    family-wise 5%, on sign-flip permutation p-values ({name: {"p", "p_holm",
-    "clear", "mean", "n_family"}})."""
-    return corrected_verdicts(chapter_family(study, babbling))
-
-
-REPLICATION_SEEDS = 40
-"""Seeds of a replication (`replicate`) as assets/replications.json and `FRESH_FILE`
-keep it, per condition, on the fresh root. Its power under the effect the held-out
-seeds measured (`replication_power`: the one-sided sign-flip test the replication
-uses, on differences drawn from the measured ones, ties kept) is about 0.97 to 1 for
-the teacher's lower test errors, but only about 0.55 and 0.33 for growing up's two
-verdicts (test error, buttons pressed early) and 0.04 for the early presses with the
-end buttons shown: with its many tied counts, 8 seeds can almost never reject. Those
-three did not replicate, which says little. `POWERED_SEEDS` is the size that reaches a
-power of 0.9 for every verdict."""
 POWERED_SEEDS = 40
 """Seeds per condition at which every clear verdict's replication has a power of at
 least 0.9 (about 19, 30 and 34 are needed for the three weak ones of
@@ -348,20 +295,6 @@ def unit_cpu_seconds():
     return float(np.median([c for c in runs[-1]["unit_cpu_seconds"] if c > 0]))
 
 
-def replication_power(name, study=None, n_seeds=REPLICATION_SEEDS, simulations=None):
-    """The power of a replication of comparison `name` (a key of `comparisons`) on
-    `n_seeds` fresh seeds, under the effect the held-out seeds measured
-    (`icm.stats.paired_power`, one-sided in the direction the study found;
-    `simulations` default `stats.POWER_SIMULATIONS`)."""
-    study = load_study() if study is None else check_study(study)
-    found = comparisons(study)
-    name = _validate.one_of("name", name, tuple(found))
-    differences = found[name]["arm"] - found[name]["baseline"]
-    direction = "less" if differences.mean() < 0 else "greater"
-    return paired_power(differences, n_seeds, direction,
-                        simulations=simulations or POWER_SIMULATIONS)
-
-
 CLAIMED = ("learning progress", "growing up") + TEACHING
 """The conditions the chapter's claims compare (all but the two random strategies),
 whose runs on the fresh root `FRESH_FILE` keeps."""
@@ -374,33 +307,11 @@ it, then assets/replications.json from it; the tests rerun the last seed of each
 condition and expect the same numbers."""
 
 
-def run_fresh_seeds(root=None, n_seeds=REPLICATION_SEEDS, n_jobs=-1):
-    """Runs every condition of `CLAIMED` on the first `n_seeds` seeds of a fresh root
-    (default the chapter's `replication.REPLICATION_ROOTS`), one seed at a time (on
-    `n_jobs` processes, joblib; the numbers do not depend on it): what `FRESH_FILE`
-    keeps, {"root", "n_seeds", "runs": {label: [`run_condition` entry of each seed]}}.
-    About 5.5 CPU-seconds per seed of each condition (the chapter's 40: 220)."""
-    from joblib import Parallel, delayed
-
-    root = replication.REPLICATION_ROOTS["forming_actions"] if root is None else root
-    root = _validate.seed("root", root)
-    n_seeds = _validate.integer_at_least("n_seeds", n_seeds, 1)
-    n_jobs = _validate.n_jobs(n_jobs)
-    units = [(label, i) for label in CLAIMED for i in range(n_seeds)]
-    entries = Parallel(n_jobs=n_jobs)(
-        delayed(run_condition)(label, root, 1, first_run=i, threads=1)
-        for label, i in units)
-    runs = {label: [] for label in CLAIMED}
-    for (label, _), entry in zip(units, entries):
-        runs[label].append(entry)
-    return {"root": root, "n_seeds": n_seeds, "runs": runs}
-
-
 def replication_units(settings):
     """The units of the study "remedies-replication" (`icm.experiments.studies`): one
     seed of one condition of `CLAIMED` on the chapter's fresh root, [label, root, i, 1]
     for i below settings["seeds"]."""
-    root = replication.REPLICATION_ROOTS["forming_actions"]
+    root = REPLICATION_ROOTS["forming_actions"]
     return [[label, root, i, 1] for label in CLAIMED for i in range(settings["seeds"])]
 
 
@@ -416,7 +327,7 @@ def assemble_replication(settings, units, results):
     {label: [entry of each seed, in order]}}."""
     runs = {label: [r for u, r in sorted(zip(units, results), key=lambda p: p[0][2])
                     if u[0] == label] for label in CLAIMED}
-    return {"root": replication.REPLICATION_ROOTS["forming_actions"],
+    return {"root": REPLICATION_ROOTS["forming_actions"],
             "n_seeds": settings["seeds"], "runs": runs}
 
 
@@ -430,68 +341,6 @@ def load_fresh_runs():
     return {"n_seeds": kept["n_seeds"], "roots": [kept["root"]],
             "runs": {label: {str(kept["root"]): join_entries(entries)}
                      for label, entries in kept["runs"].items()}}
-
-
-def fresh_runs(labels, root=None, n_seeds=REPLICATION_SEEDS):
-    """The conditions `labels` run with `run_condition` on the first `n_seeds` seeds of a
-    fresh root (default the chapter's `replication.REPLICATION_ROOTS`), as a study of
-    that one root: what `replicate` compares (a test computes it once for every
-    verdict it replicates)."""
-    root = replication.REPLICATION_ROOTS["forming_actions"] if root is None else root
-    for label in labels:
-        _validate.one_of("labels[i]", label, tuple(CONDITIONS))
-    return {"n_seeds": n_seeds, "roots": [root],
-            "runs": {label: {str(root): run_condition(label, root, n_seeds)}
-                     for label in labels}}
-
-
-def replicate(names, study=None, root=None, n_seeds=REPLICATION_SEEDS, fresh=None):
-    """Reruns the comparisons `names` (keys of `comparisons`) on the first `n_seeds`
-    seeds of a fresh root (default the chapter's `replication.REPLICATION_ROOTS`), each
-    condition and learning progress alone with `run_condition`, and tests each in the
-    direction the study found (`study`, default `load_study()`, over `VERDICT_ROOTS`):
-    {name: `replication.replicated` dict}. `fresh`: those runs when computed before
-    (`fresh_runs` of at least learning progress and the names' conditions, on `root`
-    with `n_seeds`); None computes them."""
-    study = load_study() if study is None else check_study(study)
-    root = replication.REPLICATION_ROOTS["forming_actions"] if root is None else root
-    found = comparisons(study)
-    for name in names:
-        _validate.one_of("names[i]", name, tuple(found))
-    labels = ["learning progress"] + sorted({found[n]["label"] for n in names})
-    if fresh is None:
-        fresh = fresh_runs(labels, root, n_seeds)
-    missing = [label for label in labels if str(root) not in fresh["runs"].get(label, {})]
-    if missing or fresh["n_seeds"] != n_seeds:
-        raise ValueError(f"fresh must hold {n_seeds} seeds of root {root} for "
-                         f"{', '.join(labels)}; it has {fresh['n_seeds']} seeds and lacks "
-                         f"{', '.join(missing) or 'nothing'}")
-    fresh = {**study, "n_seeds": n_seeds, "runs": fresh["runs"]}
-    out = {}
-    for name in names:
-        label, measure = found[name]["label"], found[name]["measure"]
-        differences = (seed_values(fresh, label, measure, label, [root])
-                       - seed_values(fresh, "learning progress", measure, label, [root]))
-        direction = "less" if (found[name]["arm"] - found[name]["baseline"]).mean() < 0 \
-            else "greater"
-        out[name] = replication.replicated(differences, direction)
-    return out
-
-
-def run_replications(study=None, babbling=None, fresh=None):
-    """The replications of every verdict `chapter_verdicts` calls clear among the
-    remedies' comparisons (`replicate`), each with its power (`replication_power`,
-    "power"), as assets/replications.json keeps them: {"root", "n_seeds", "verdicts":
-    {name: ...}}, from the fresh runs `fresh` (default
-    those `FRESH_FILE` keeps, `load_fresh_runs`)."""
-    corrected = chapter_verdicts(study, babbling)
-    clear = [name for name in comparisons(study) if corrected[name]["clear"]]
-    fresh = load_fresh_runs() if fresh is None else fresh
-    outcomes = replicate(clear, study, fresh=fresh)
-    for name, outcome in outcomes.items():
-        outcome["power"] = replication_power(name, study)
-    return {"root": replication.REPLICATION_ROOTS["forming_actions"],
-            "n_seeds": REPLICATION_SEEDS, "verdicts": outcomes}
 
 
 TEST_ERROR_FILE = "remedies_test_error.json"
@@ -520,7 +369,8 @@ def test_error_split(result):
             "own_grid": nearest[:, buttons.N_BUTTONS:].mean(axis=1).tolist()}
 
 
-def run_test_error_split(roots=VERDICT_ROOTS, n_seeds=N_SEEDS, progress=False):
+def run_test_error_split(roots=goal_babbling_study.HELD_OUT_ROOTS, n_seeds=N_SEEDS,
+                         progress=False):
     """`test_error_split` of every condition of `SPLIT_CONDITIONS` on the first `n_seeds`
     seeds of each of `roots` (the runs of `run_condition`, the same seeds):
     {"n_seeds", "runs": {label: {root: split}}}."""
@@ -535,12 +385,6 @@ def run_test_error_split(roots=VERDICT_ROOTS, n_seeds=N_SEEDS, progress=False):
 def load_test_error_split():
     """`run_test_error_split()` as assets/remedies_test_error.json keeps it."""
     return json.loads(asset_path(TEST_ERROR_FILE).read_text())
-
-
-REMEDY_KEYS = {"growing up": "grow", "shown button 2": "shown1",
-               "shown buttons 0 and 4": "shown2", "shown all five": "shown5"}
-"""The short names of the remedies in `comparisons` (and the numbers of
-`icm.chapters.forming_actions.verdicts`)."""
 
 
 if __name__ == "__main__":

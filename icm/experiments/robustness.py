@@ -30,7 +30,6 @@ from icm.experiments._progress import progress_bar
 from icm.experiments.actor_critic import run_actor_critic
 from icm.experiments.goal_oriented import CHAPTER_TRIALS, run_goal_oriented
 from icm.experiments.goal_oriented_results import TASKS
-from icm.experiments.results import in_seeds
 from icm.experiments.rod_toppling import run_rod_toppling
 from icm.experiments.sweep import sweep
 from icm.stats import VERDICTS, bootstrap_band, comes_first, share_interval, verdict
@@ -368,14 +367,6 @@ class RobustnessResult:
             if held == values[i:]:
                 return values[i]
         return None
-
-    def shares_along(self, claim, setting, **point):
-        """In words, the share of seeds in which `claim` held at each value of
-        `setting` (the other settings at `point`, or at their defaults), e.g. "51% at
-        1, 49% at 1.5, 97% at 3": a clause for the chapter (Markdown)."""
-        setting = self.study.setting(setting)
-        return ", ".join(f"{self.share(claim, **{**point, setting.name: v})[0]:.1%} at "
-                         f"{show_value(v)}" for v in setting.values)
 
     def seed_table(self, claim, pair):
         """[seed, second setting's value, first setting's value], whether `claim`

@@ -130,52 +130,6 @@ class ReadingsResult:
         """The readings that change the verdict of at least one claim."""
         return [r for r in self.readings if self.changed(r)]
 
-    def table(self):
-        """A Markdown table: the book's reading, then one row per other reading, with
-        the share of seeds in which each claim held and its verdict (✓ holds, ✗
-        fails, ? unclear; in bold where it differs from the book's)."""
-        marks = {"holds": "✓", "fails": "✗", "unclear": "?"}
-        claims = self.study.claims
-        lines = ["| choice | reading | " + " | ".join(
-                     f"{c.text} (≥ {c.threshold:.0%})" for c in claims) + " |",
-                 "|---|---|" + "---|" * len(claims)]
-
-        def cells(reading):
-            out = []
-            for c in claims:
-                share, verdict_ = self.share(c.name, reading)[0], self.verdict(c.name, reading)
-                cell = f"{share:.1%} {marks[verdict_]}"
-                if reading is not None and verdict_ != self.verdict(c.name):
-                    cell = f"**{cell}**"
-                out.append(cell)
-            return out
-
-        lines.append("| the book's | all as in the book | " + " | ".join(cells(None)) + " |")
-        for r in self.readings:
-            lines.append(f"| {r.label} (book: {show_value(r.default)}) | {show_value(r.value)} | "
-                         + " | ".join(cells(r)) + " |")
-        return "\n".join(lines)
-
-    def describe(self):
-        """In words, which of the other readings change a claim's verdict, and how: a
-        clause for the chapter, computed from the data."""
-        changed = self.changes()
-        n = len(self.readings)
-        if not changed:
-            return (f"None of the {n} other readings changes the verdict of a claim: "
-                    f"each claim holds, fails or stays unclear as with the book's")
-        parts = []
-        for r in changed:
-            what = ", ".join(f"\"{self.study.claim(c).text}\" {self.verdict(c, r)} "
-                             f"({self.share(c, r)[0]:.1%} of the seeds; with the book's "
-                             f"{show_value(r.default)}, it {self.verdict(c)}, "
-                             f"{self.share(c)[0]:.1%})" for c in self.changed(r))
-            parts.append(f"with {r.label} read as {show_value(r.value)}, {what}")
-        rest = n - len(changed)
-        changes = "changes" if len(changed) == 1 else "change"
-        return (f"Of the {n} other readings, {len(changed)} {changes} a claim's verdict: "
-                + "; ".join(parts) + f". The other {rest} change none")
-
 
 def run_readings(study, n_seeds=200, seed=0, progress=True):
     """Runs a study's learner with the book's readings and with each other reading

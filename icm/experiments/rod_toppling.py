@@ -1,8 +1,8 @@
 """Q-learning paid by a linear predictor's errors on the rods, over many seeds (paper
 sections 2.2, 3.3 and 4.2, Figure 7); with other intrinsic rewards (`reward=`) and the
-wobbly rod (`wobbly_rod=True`) for the chapter "Which curiosity?". The episodes' loop
-and summary are in `icm.experiments.rod_episodes` (its names are importable here
-too)."""
+wobbly rod (`wobbly_rod=True`) for the chapter "Which curiosity?". The episodes'
+world, learners and record for the one loop, and their summary, are in
+`icm.experiments.rod_episodes`."""
 
 import dataclasses
 
@@ -14,10 +14,10 @@ from icm.envs import rods
 from icm.experiments._memory import check_memory
 from icm.experiments import loop
 from icm.experiments.seeding import run_seeds
-from icm.experiments.rod_episodes import (  # noqa: F401 (re-exported: the loop's names)
-    LOOP_ROW_BYTES, MOMENTS, N_ACTIONS, N_STATES, RODS, WELL_PREDICTED_ERROR, memory_needed,
-    play_episodes, summarize, toppling_pairs)
-from icm.learners import interest, q_learning
+from icm.experiments.rod_episodes import (MOMENTS, N_ACTIONS, N_STATES, RODS,
+                                          WELL_PREDICTED_ERROR, memory_needed, play_episodes,
+                                          summarize, toppling_pairs)
+from icm.learners import q_learning
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
                        first_from_which)
 
@@ -231,28 +231,6 @@ class RodTopplingResult:
         story = self.tells_the_papers_story(reading)
         return int(np.argmax(story)) if story.any() else -1
 
-    def describe_order(self, run, reading="all"):
-        """In words, when red was predicted well (in `reading`) and blue first toppled
-        in one run (a seed index), in the order they came: e.g. "blue is first
-        toppled at episode 29, before red is predicted well at episode 43"."""
-        run = _validate.integer_in_range("run", run, 0, self.n_seeds - 1)
-        red = int(self.well_predicted(reading)[run, 0])
-        blue = int(self.first_topple("blue")[run])
-        red_text = f"red is predicted well at episode {red}"
-        blue_text = f"blue is first toppled at episode {blue}"
-        if red < 1 and blue < 1:
-            return (f"neither is red predicted well nor blue toppled in "
-                    f"{self.n_episodes} episodes")
-        if red < 1:
-            return f"{blue_text}, and red is never predicted well in {self.n_episodes} episodes"
-        if blue < 1:
-            return f"{red_text}, and blue is never toppled in {self.n_episodes} episodes"
-        if red < blue:
-            return f"{red_text}, before blue is first toppled, at episode {blue}"
-        if blue < red:
-            return f"{blue_text}, before {red_text}"
-        return f"red is predicted well and blue first toppled in the same episode, {red}"
-
     def seed_summaries(self):
         """One dict per seed of the numbers a sweep compares: the episode from which
         each rod is predicted well (the issue's reading "all"; -1 if never), the gap
@@ -289,22 +267,6 @@ class RodTopplingResult:
         out["none_share"] = float(np.mean(self.toppled == -1))
         out["mean_episode_length"] = float(self.episode_length.mean())
         return out
-
-    def claims(self):
-        """{claim name: whether it holds in this run}, for each of
-        `icm.chapters.rod_toppling.CLAIMS` (checked on the book's run when it is built, and
-        by the tests on their own seeds)."""
-        s = self.summary()
-        return {
-            "red_toppled_first": s["red_toppled_first"] > 0.5
-            and s["first_red_median"] < s["first_blue_median"],
-            "red_learned_first": s["red_first_toppled"] > 0.5
-            and s["red_well_median_toppled"] < s["blue_well_median_toppled"],
-            "red_learned_first_all": s["red_first"] > 0.5
-            and s["red_well_median"] < s["blue_well_median"],
-            "then_blue": s["blue_share_second_half"] > s["blue_share_first_10"],
-            "red_in_the_way": s["red_share_second_half"] > s["blue_share_second_half"],
-        }
 
 
 def _median_of_found(episodes):

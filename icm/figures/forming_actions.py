@@ -11,7 +11,8 @@ from icm import _validate
 from icm.envs import buttons
 from icm.experiments import babbling_results, babbling_space
 from icm.experiments.babbling_results import GoalBabblingResult
-from icm.experiments.results import check_results, percent
+from icm.chapters.words import percent
+from icm.experiments.results import check_results
 from icm.learners import goal_choice
 from icm.learners.goal_babbling import N_BOOTSTRAP
 from icm.figures._common import (LINESTYLES, MARKERS, check_result, figure_and_axes, legend_below,

@@ -7,7 +7,7 @@ import matplotlib.colors
 import matplotlib.patches
 import numpy as np
 
-from icm.experiments.results import percent
+from icm.chapters.words import percent
 from icm.experiments.robustness import RobustnessResult
 from icm.figures._common import Figure, check_result, check_title
 

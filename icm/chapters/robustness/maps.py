@@ -1,18 +1,16 @@
-"""The chapter "What the result depends on" (book/robustness.ipynb): its claims in
-words (`CHAPTER_CLAIMS`, `BOLD_CLAIMS`) and their check on the book's maps
-(`chapter_claims`), its Markdown tables (`studies_table`, `dependency_table`,
-`interaction_table`) and the numbers and clauses its text quotes (`chapter_numbers`,
-`readings_numbers`), from the results of `icm.experiments.robustness` and
-`icm.experiments.robustness_readings`.
+"""The chapter "What the result depends on" (book/robustness.ipynb), its maps: the
+claims about them in words (`CHAPTER_CLAIMS`) and their check on the book's maps
+(`chapter_claims`), the Markdown tables (`studies_table`, `dependency_table`,
+`interaction_table`), the numbers and clauses the text quotes (`chapter_numbers`,
+`shares_along`), and the maps' replication on a fresh root (`run_replication`,
+`replication_sentences`), from the results of `icm.experiments.robustness`.
 """
 
 from icm import _validate
-from icm.experiments.results import in_seeds
-from icm.experiments.robustness import (CLAIM_SHARE, NOT_MEASURED, STUDIES, RobustnessResult,
+from icm.chapters.words import in_seeds
+from icm.experiments.robustness import (CLAIM_SHARE, STUDIES, RobustnessResult,
                                         check_study, show_value)
 from icm.stats import share_interval
-from icm.experiments.robustness_readings import (ReadingsResult, fewest_moves_to_topple,
-                                                 value_after_a_quiet_move)
 
 
 MAP_SEEDS = {"goal_oriented": 200, "actor_critic": 1000, "rod_toppling": 200}
@@ -70,39 +68,6 @@ def chance_to_hold(share, n_seeds, threshold=CLAIM_SHARE):
     if needed is None:
         return 0.0
     return float(binom.sf(needed - 1, n_seeds, share))
-
-
-FIRST_EPISODE_CLAIMS = {
-    "quiet_move_loses": "in the first episode, a tried move that toppled nothing is worth "
-                        "less than its starting value when that value is above zero, and "
-                        "still zero when it is zero",
-    "red_nearer": "the nearest red pair is fewer moves from the start than the nearest "
-                  "blue pair",
-}
-"""What the chapter says of the rods' first episode (`first_episode`)."""
-
-
-def first_episode(initial_q_values):
-    """What the chapter says of the rods' first episode, for the initial values of Q its
-    map sweeps: ({claim name of `FIRST_EPISODE_CLAIMS`: whether it holds}, numbers: the
-    value of a quiet move after one try at the book's initial Q, "quiet_move_before" and
-    "quiet_move_after", and the fewest moves that topple each rod, "red_moves" and
-    "blue_moves").
-
-    Args:
-      initial_q_values: the initial values of Q the map sweeps (a list of numbers >= 0).
-    """
-    if not isinstance(initial_q_values, (list, tuple)) or not initial_q_values:
-        raise _validate.ArgumentTypeError(f"initial_q_values must be a non-empty list of "
-                                          f"numbers, got {_validate.show(initial_q_values)}")
-    after = {q: value_after_a_quiet_move(q) for q in initial_q_values}
-    book = STUDIES["rod_toppling"].setting("initial_q").default
-    red, blue = fewest_moves_to_topple("red"), fewest_moves_to_topple("blue")
-    claims = {"quiet_move_loses": all((a < q) if q > 0 else (a == 0) for q, a in after.items()),
-              "red_nearer": red < blue}
-    numbers = {"quiet_move_before": book, "quiet_move_after": value_after_a_quiet_move(book),
-               "red_moves": red, "blue_moves": blue}
-    return claims, numbers
 
 
 def studies_table(studies=None):
@@ -183,31 +148,6 @@ def _check_results(results):
     return results
 
 
-def readings_summary(results):
-    """In words, over several `ReadingsResult` objects, which other readings change a
-    claim's verdict and how many change none: a clause for the chapter (Markdown).
-
-    Args:
-      results: a list of `ReadingsResult` objects.
-    """
-    if not isinstance(results, (list, tuple)) or not results:
-        raise _validate.ArgumentTypeError(f"results must be a non-empty list of "
-                                          f"ReadingsResult, got {_validate.show(results)}")
-    for i, result in enumerate(results):
-        _validate.instance(f"results[{i}]", result, ReadingsResult)
-    changed = [(result, r) for result in results for r in result.changes()]
-    total = sum(len(result.readings) for result in results)
-    if not changed:
-        return f"none of the {total} other readings changes a claim's verdict"
-    named = "; ".join(f"{r.label} read as {show_value(r.value)} ({result.study.title}: "
-                      + ", ".join(f"{result.study.claim(c).text} {result.verdict(c, r)}"
-                                  for c in result.changed(r)) + ")"
-                      for result, r in changed)
-    verb = "changes" if len(changed) == 1 else "change"
-    return (f"{len(changed)} of the {total} other readings {verb} a claim's verdict: "
-            f"{named}; the other {total - len(changed)} change none")
-
-
 CHAPTER_CLAIMS = {
     "weight_threshold": "red first fails at every action weight below a threshold and "
                         "holds at every weight from it",
@@ -245,31 +185,6 @@ CHAPTER_CLAIMS = {
 }
 """The claims of the chapter "What the result depends on" about its maps
 (`chapter_claims`)."""
-
-
-BOLD_CLAIMS = {
-    "Above the threshold, red comes first at every point of the maps, whatever the "
-    "presses and the reading.": ("weight_above_settles_red", "all"),
-    "Red is predicted well first at every point of these maps": ("critic_red_everywhere",
-                                                                 "all"),
-}
-"""The bold claims of the chapter "What the result depends on" that use a word of
-strength (book/_ext/claim_words.py), each with the claim of `CHAPTER_CLAIMS` that
-checks it and the kind of that check: "all", every point's verdict "holds" (a claim
-that must hold at every point of a map is the conjunction of the points' own tests,
-which needs no correction for their number: it fails if any one fails)."""
-
-STRONG_WORDS = {
-    **{text: (name, kind, "points") for text, (name, kind) in BOLD_CLAIMS.items()},
-    "Red toppled first fails at no point of the map": ("rods_toppled_first_everywhere",
-                                                        "all", "points"),
-    "it holds at every point with an initial Q": ("rods_blue_needs_drive", "all", "points"),
-}
-"""The chapter's sentences that say a word of strength about its maps, in the form the
-reading of all prose takes (book/_ext/claim_words.py: {a fragment of the sentence: (claim
-name, kind, the set an "all" claim is over)}): each claim about all the points of a map
-is over the map's points (a finite set, each point decided by its own interval), never
-over seeds. `BOLD_CLAIMS` holds the bold ones in the older form."""
 
 
 def _every(result, claim, verdict_, **where):
@@ -389,7 +304,7 @@ def chapter_numbers(goal, critic, rods_result):
         presses_low=min(presses), presses_high=max(presses),
         goal_green_one_press=goal.share("green_mastered", presses_per_trial=min(presses))[0],
         goal_presses_in_run=min(presses) * goal.study.fixed["n_trials"])
-    clauses["goal_red_first_by_weight"] = goal.shares_along("red_first", "action_weight")
+    clauses["goal_red_first_by_weight"] = shares_along(goal, "red_first", "action_weight")
     # The actor-critic.
     weakest = critic.study.setting("action_weight").values[0]
     fewest = critic.study.setting("presses_per_trial").values[0]
@@ -415,9 +330,9 @@ def chapter_numbers(goal, critic, rods_result):
         rods_blue_positive_q_min=float(rods_result.points().query("initial_q > 0")
                                        .blue_found.min()))
     clauses.update(
-        rods_red_first_by_q=rods_result.shares_along("red_first", "initial_q"),
-        rods_red_first_by_epsilon=rods_result.shares_along("red_first", "epsilon"),
-        rods_blue_q_none_by_epsilon=rods_result.shares_along("blue_found", "epsilon",
+        rods_red_first_by_q=shares_along(rods_result, "red_first", "initial_q"),
+        rods_red_first_by_epsilon=shares_along(rods_result, "red_first", "epsilon"),
+        rods_blue_q_none_by_epsilon=shares_along(rods_result, "blue_found", "epsilon",
                                                              initial_q=qs[0]))
     clauses["rods_toppled_first_points"] = verdict_counts(rods_result, "red_toppled_first")
     lowest = rods_result.points().sort_values("red_toppled_first", kind="stable").iloc[0]
@@ -440,6 +355,16 @@ def chapter_numbers(goal, critic, rods_result):
     return numbers, clauses
 
 
+def shares_along(result, claim, setting, **point):
+    """In words, the share of seeds in which `claim` held in `result` (a
+    `RobustnessResult`) at each value of `setting` (the other settings at `point`, or at
+    their defaults), e.g. "51% at 1, 49% at 1.5, 97% at 3": a clause for the chapter
+    (Markdown)."""
+    setting = result.study.setting(setting)
+    return ", ".join(f"{result.share(claim, **{**point, setting.name: v})[0]:.1%} at "
+                     f"{show_value(v)}" for v in setting.values)
+
+
 def weakest_point(result, claim):
     """In words, the point of a map where `claim` held in the fewest seeds, e.g.
     "action_weight = 10, presses_per_trial = 1, variant = printed_td"."""
@@ -457,48 +382,10 @@ def verdict_counts(result, claim):
             f"{counts['unclear'] or 'none'} and fails at {counts['fails'] or 'none'}")
 
 
-def readings_numbers(found):
-    """The numbers and clauses the chapter "What the result depends on" quotes from
-    its other readings, by the names its text uses.
-
-    Args:
-      found: {study name: `ReadingsResult`}, for the three studies.
-
-    Returns:
-      (numbers, clauses), as `chapter_numbers`: per study its `describe()`; over
-      all of them `readings_summary`; for the rods, the book's run, the run without a
-      limit on moves and the run whose moves off the grid end the episode: the share
-      of episodes that end on the time limit, of moves that run into the edge, of
-      episodes that end there, the mean and the longest episode, and Figure 7's
-      story and order (`RodTopplingResult.tells_the_papers_story`, `in_paper_order`).
-    """
-    if not isinstance(found, dict) or set(found) != set(STUDIES):
-        raise _validate.ArgumentTypeError(f"found must be a dict of ReadingsResult by "
-                                          f"study name ({', '.join(STUDIES)}), got "
-                                          f"{_validate.show(found)}")
-    for name, result in found.items():
-        _validate.instance(f"found[{name!r}]", result, ReadingsResult)
-    clauses = {f"readings_{name}": result.describe() for name, result in found.items()}
-    clauses["readings_summary"] = readings_summary(list(found.values()))
-    clauses["not_measured_epsilon"] = NOT_MEASURED[("actor_critic", "epsilon")]
-    rod_runs = found["rod_toppling"]
-    book = rod_runs.run()
-    numbers = {"max_moves": book.settings["max_moves"],
-               "time_limit_share": book.time_limit_share(), "edge_share": book.edge_share(),
-               "edge_ended_share": rod_runs.run(("off_grid", "end")).edge_ended_share()}
-    for name, run in (("book", book), ("no_limit", rod_runs.run(("max_moves", None))),
-                      ("off_grid_ends", rod_runs.run(("off_grid", "end")))):
-        numbers[f"{name}_length"] = float(run.episode_length.mean())
-        numbers[f"{name}_longest"] = int(run.episode_length.max())
-        numbers[f"{name}_order"] = run.red_before_blue_begins()
-        numbers[f"{name}_story"] = float(run.tells_the_papers_story().mean())
-    return numbers, clauses
-
-
 def run_replication(progress=False):
     """The chapter's claims (`chapter_claims`) rechecked on its three maps run again on a
     root seed that no study, chapter or other test uses
-    (`icm.experiments.replication.REPLICATION_ROOTS["robustness"]`), with as many seeds
+    (`icm.experiments.seeding.REPLICATION_ROOTS["robustness"]`), with as many seeds
     at every point as the chapter's maps (`MAP_SEEDS`).
 
     Returns:
@@ -509,9 +396,10 @@ def run_replication(progress=False):
       {verdict: points} of "red toppled first" on the rods' map (the chapter says it
       fails at no point, and how many points it holds at)}.
     """
-    from icm.experiments import replication, robustness
+    from icm.experiments import robustness
+    from icm.experiments.seeding import REPLICATION_ROOTS
 
-    root = replication.REPLICATION_ROOTS["robustness"]
+    root = REPLICATION_ROOTS["robustness"]
     maps = {name: robustness.run_robustness(name, n_seeds=MAP_SEEDS[name], seed=root,
                                             progress=progress)
             for name in ("goal_oriented", "actor_critic", "rod_toppling")}
@@ -565,22 +453,3 @@ def replication_sentences(stored):
             f"unclear at {counts['unclear'] or 'none'} and fails at "
             f"{counts['fails'] or 'none'}")
     return {"summary": summary, "critic_everywhere": critic, "rods_toppled": rods}
-
-
-def main():
-    """`python -m icm.chapters.robustness`: runs `run_replication` and writes it into
-    assets/replications.json under "robustness" (the other chapters' entries kept)."""
-    import json
-
-    from icm.store import ASSETS
-    from icm.experiments import replication
-
-    out = replication.load_replications()
-    out["robustness"] = run_replication(progress=True)
-    path = ASSETS / replication.REPLICATION_FILE
-    path.write_text(json.dumps(out, indent=1) + "\n")
-    print(f"wrote {path}")
-
-
-if __name__ == "__main__":
-    main()

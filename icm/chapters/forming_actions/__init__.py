@@ -1,0 +1,27 @@
+"""The chapter "Forming actions" (book/forming_actions.ipynb) in words: its first half,
+the strategies and variants of goal babbling (`strategies`); its second half, the
+remedies, growing up and being shown (`remedies`); and its one family of paired
+comparisons over both, decided together and replicated on a fresh root (`family`).
+The runs are `icm.experiments.goal_babbling`'s, the stored studies
+`icm.experiments.goal_babbling_study`'s and `remedies_study`'s.
+"""
+
+from icm.chapters.forming_actions import family, remedies, strategies
+
+STRONG_WORDS = {
+    "we call a difference clear only when it survives Holm's correction":
+        ("clear_is_holm", "corrected"),
+    "Each clear verdict was rerun on a root seed no study uses":
+        ("clear_is_holm", "corrected"),
+    "cm), and not only because the": ("shown1_lower_without_demonstrations", "causal"),
+    "{glue:text}`rem_shown_sooner`":
+        ("shown_sooner_held_out", "all", "cases: each shown button in each condition "
+                                          "with a teacher, medians of the held-out seeds"),
+}
+"""The chapter's sentences with a word of strength beside a result, and the checks that
+carry them (book/_ext/claim_words.py): {a fragment of the sentence: (claim name the
+chapter checks when built, kind[, the set an "all" claim is over])}. The shown buttons'
+"in all 8 cases" (a glued phrase) is over the 8 cases, each a comparison of medians of
+the held-out seeds, which the sentence says."""
+
+__all__ = ["STRONG_WORDS", "family", "remedies", "strategies"]

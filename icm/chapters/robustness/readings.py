@@ -1,0 +1,163 @@
+"""The chapter "What the result depends on" (book/robustness.ipynb), its other readings:
+what the choices the paper does not make and the maps do not sweep do to the claims
+(`readings_table`, `describe_readings`, `readings_summary`, `readings_numbers`, of runs,
+each a `icm.experiments.robustness_readings.ReadingsResult`), and what the rods' first
+episode is made of (`first_episode`, `FIRST_EPISODE_CLAIMS`).
+"""
+
+from icm import _validate
+from icm.experiments.robustness import NOT_MEASURED, STUDIES, show_value
+from icm.experiments.robustness_readings import (ReadingsResult, fewest_moves_to_topple,
+                                                 value_after_a_quiet_move)
+
+
+def _readings(found):
+    return _validate.instance("found", found, ReadingsResult,
+                              "a ReadingsResult (from icm.experiments.robustness_readings."
+                              "run_readings)")
+
+
+def readings_table(found):
+    """A Markdown table of `found` (a `ReadingsResult`): the book's reading, then one row
+    per other reading, with the share of seeds in which each claim held and its verdict
+    (✓ holds, ✗ fails, ? unclear; in bold where it differs from the book's)."""
+    found = _readings(found)
+    marks = {"holds": "✓", "fails": "✗", "unclear": "?"}
+    claims = found.study.claims
+    lines = ["| choice | reading | " + " | ".join(
+                 f"{c.text} (≥ {c.threshold:.0%})" for c in claims) + " |",
+             "|---|---|" + "---|" * len(claims)]
+
+    def cells(reading):
+        out = []
+        for c in claims:
+            share, verdict_ = found.share(c.name, reading)[0], found.verdict(c.name, reading)
+            cell = f"{share:.1%} {marks[verdict_]}"
+            if reading is not None and verdict_ != found.verdict(c.name):
+                cell = f"**{cell}**"
+            out.append(cell)
+        return out
+
+    lines.append("| the book's | all as in the book | " + " | ".join(cells(None)) + " |")
+    for r in found.readings:
+        lines.append(f"| {r.label} (book: {show_value(r.default)}) | {show_value(r.value)} | "
+                     + " | ".join(cells(r)) + " |")
+    return "\n".join(lines)
+
+
+def describe_readings(found):
+    """In words, which of the other readings of `found` (a `ReadingsResult`) change a
+    claim's verdict, and how: a clause for the chapter, computed from the data."""
+    found = _readings(found)
+    changed = found.changes()
+    n = len(found.readings)
+    if not changed:
+        return (f"None of the {n} other readings changes the verdict of a claim: "
+                f"each claim holds, fails or stays unclear as with the book's")
+    parts = []
+    for r in changed:
+        what = ", ".join(f"\"{found.study.claim(c).text}\" {found.verdict(c, r)} "
+                         f"({found.share(c, r)[0]:.1%} of the seeds; with the book's "
+                         f"{show_value(r.default)}, it {found.verdict(c)}, "
+                         f"{found.share(c)[0]:.1%})" for c in found.changed(r))
+        parts.append(f"with {r.label} read as {show_value(r.value)}, {what}")
+    rest = n - len(changed)
+    changes = "changes" if len(changed) == 1 else "change"
+    return (f"Of the {n} other readings, {len(changed)} {changes} a claim's verdict: "
+            + "; ".join(parts) + f". The other {rest} change none")
+
+
+FIRST_EPISODE_CLAIMS = {
+    "quiet_move_loses": "in the first episode, a tried move that toppled nothing is worth "
+                        "less than its starting value when that value is above zero, and "
+                        "still zero when it is zero",
+    "red_nearer": "the nearest red pair is fewer moves from the start than the nearest "
+                  "blue pair",
+}
+"""What the chapter says of the rods' first episode (`first_episode`)."""
+
+
+def first_episode(initial_q_values):
+    """What the chapter says of the rods' first episode, for the initial values of Q its
+    map sweeps: ({claim name of `FIRST_EPISODE_CLAIMS`: whether it holds}, numbers: the
+    value of a quiet move after one try at the book's initial Q, "quiet_move_before" and
+    "quiet_move_after", and the fewest moves that topple each rod, "red_moves" and
+    "blue_moves").
+
+    Args:
+      initial_q_values: the initial values of Q the map sweeps (a list of numbers >= 0).
+    """
+    if not isinstance(initial_q_values, (list, tuple)) or not initial_q_values:
+        raise _validate.ArgumentTypeError(f"initial_q_values must be a non-empty list of "
+                                          f"numbers, got {_validate.show(initial_q_values)}")
+    after = {q: value_after_a_quiet_move(q) for q in initial_q_values}
+    book = STUDIES["rod_toppling"].setting("initial_q").default
+    red, blue = fewest_moves_to_topple("red"), fewest_moves_to_topple("blue")
+    claims = {"quiet_move_loses": all((a < q) if q > 0 else (a == 0) for q, a in after.items()),
+              "red_nearer": red < blue}
+    numbers = {"quiet_move_before": book, "quiet_move_after": value_after_a_quiet_move(book),
+               "red_moves": red, "blue_moves": blue}
+    return claims, numbers
+
+
+def readings_summary(results):
+    """In words, over several `ReadingsResult` objects, which other readings change a
+    claim's verdict and how many change none: a clause for the chapter (Markdown).
+
+    Args:
+      results: a list of `ReadingsResult` objects.
+    """
+    if not isinstance(results, (list, tuple)) or not results:
+        raise _validate.ArgumentTypeError(f"results must be a non-empty list of "
+                                          f"ReadingsResult, got {_validate.show(results)}")
+    for i, result in enumerate(results):
+        _validate.instance(f"results[{i}]", result, ReadingsResult)
+    changed = [(result, r) for result in results for r in result.changes()]
+    total = sum(len(result.readings) for result in results)
+    if not changed:
+        return f"none of the {total} other readings changes a claim's verdict"
+    named = "; ".join(f"{r.label} read as {show_value(r.value)} ({result.study.title}: "
+                      + ", ".join(f"{result.study.claim(c).text} {result.verdict(c, r)}"
+                                  for c in result.changed(r)) + ")"
+                      for result, r in changed)
+    verb = "changes" if len(changed) == 1 else "change"
+    return (f"{len(changed)} of the {total} other readings {verb} a claim's verdict: "
+            f"{named}; the other {total - len(changed)} change none")
+
+
+def readings_numbers(found):
+    """The numbers and clauses the chapter "What the result depends on" quotes from
+    its other readings, by the names its text uses.
+
+    Args:
+      found: {study name: `ReadingsResult`}, for the three studies.
+
+    Returns:
+      (numbers, clauses), as `maps.chapter_numbers`: per study `describe_readings`; over
+      all of them `readings_summary`; for the rods, the book's run, the run without a
+      limit on moves and the run whose moves off the grid end the episode: the share
+      of episodes that end on the time limit, of moves that run into the edge, of
+      episodes that end there, the mean and the longest episode, and Figure 7's
+      story and order (`RodTopplingResult.tells_the_papers_story`, `in_paper_order`).
+    """
+    if not isinstance(found, dict) or set(found) != set(STUDIES):
+        raise _validate.ArgumentTypeError(f"found must be a dict of ReadingsResult by "
+                                          f"study name ({', '.join(STUDIES)}), got "
+                                          f"{_validate.show(found)}")
+    for name, result in found.items():
+        _validate.instance(f"found[{name!r}]", result, ReadingsResult)
+    clauses = {f"readings_{name}": describe_readings(result) for name, result in found.items()}
+    clauses["readings_summary"] = readings_summary(list(found.values()))
+    clauses["not_measured_epsilon"] = NOT_MEASURED[("actor_critic", "epsilon")]
+    rod_runs = found["rod_toppling"]
+    book = rod_runs.run()
+    numbers = {"max_moves": book.settings["max_moves"],
+               "time_limit_share": book.time_limit_share(), "edge_share": book.edge_share(),
+               "edge_ended_share": rod_runs.run(("off_grid", "end")).edge_ended_share()}
+    for name, run in (("book", book), ("no_limit", rod_runs.run(("max_moves", None))),
+                      ("off_grid_ends", rod_runs.run(("off_grid", "end")))):
+        numbers[f"{name}_length"] = float(run.episode_length.mean())
+        numbers[f"{name}_longest"] = int(run.episode_length.max())
+        numbers[f"{name}_order"] = run.red_before_blue_begins()
+        numbers[f"{name}_story"] = float(run.tells_the_papers_story().mean())
+    return numbers, clauses
