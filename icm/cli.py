@@ -261,8 +261,8 @@ COMMANDS = {
 
 
 def _add_study_command(subparsers):
-    """`python -m icm study NAME ...`: runs a long study (`icm.experiments.studies`)."""
-    from icm.experiments import studies
+    """`python -m icm study NAME ...`: runs a long study (`icm.studies`)."""
+    from icm import studies
 
     text = ("Run a long study (every local core with joblib, or a Dask cluster) and write "
             "its JSON file; a run killed half-way continues from its journal "
@@ -304,7 +304,7 @@ def _add_study_command(subparsers):
 
 def run_study_command(args, parser):
     """Runs `python -m icm study` with parsed `args`; returns the exit status."""
-    from icm.experiments import studies
+    from icm import studies
 
     study = studies.STUDIES[args.name]
     options = {o: getattr(args, o) for o in study.options}

@@ -138,7 +138,7 @@ def test_summary_holds_the_numbers_the_book_quotes(default_run):
 def test_progress_bar_is_tqdm_when_on_and_absent_when_off():
     from tqdm.auto import tqdm
 
-    from icm.experiments._progress import progress_bar
+    from icm.experiments.progress import progress_bar
 
     items = range(3)
     assert isinstance(progress_bar(items, 3, "runs", True), tqdm)

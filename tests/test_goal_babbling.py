@@ -13,8 +13,10 @@ import pytest
 import icm
 import icm.chapters
 from icm.envs import buttons, icub
-from icm.experiments import (babbling_results, babbling_space, formed_actions, goal_babbling,
-                             goal_babbling_study, remedies_study)
+from icm.experiments import babbling_results, babbling_space, formed_actions, goal_babbling
+from icm.studies.forming_actions import arms
+from icm.studies.forming_actions import remedies as remedies_study
+from icm.studies.forming_actions import strategies as goal_babbling_study
 from icm.envs.buttons.movements import MovementLab, first_press, lowest_capsule_point
 from icm.figures import forming_actions
 from icm.learners import goal_babbling as learners_goal_babbling
@@ -672,24 +674,24 @@ def study():
 
 def test_the_study_file_holds_every_variant_on_its_root_seeds(study):
     st = goal_babbling_study
-    assert study["budgets"] == list(st.BUDGETS) and study["n_seeds"] == st.N_SEEDS
-    assert study["n_rollouts"] == goal_babbling.DEFAULT_N_ROLLOUTS == st.BUDGETS[-1]
+    assert study["budgets"] == list(arms.BUDGETS) and study["n_seeds"] == st.N_SEEDS
+    assert study["n_rollouts"] == goal_babbling.DEFAULT_N_ROLLOUTS == arms.BUDGETS[-1]
     assert list(study["runs"]) == list(st.VARIANTS)
     for label, by_root in study["runs"].items():
-        roots = st.TUNING_ROOTS + (st.HELD_OUT_ROOTS if label in st.HELD_OUT_VARIANTS else ())
+        roots = arms.TUNING_ROOTS + (arms.HELD_OUT_ROOTS if label in st.HELD_OUT_VARIANTS else ())
         assert sorted(map(int, by_root)) == sorted(roots)
         for entry in by_root.values():
-            assert np.array(entry["pressed"]).shape == (st.N_SEEDS, len(st.BUDGETS), 5)
+            assert np.array(entry["pressed"]).shape == (st.N_SEEDS, len(arms.BUDGETS), 5)
             assert np.array(entry["failures"]).shape == (st.N_SEEDS, 5)
             assert ("red_first" in entry) == (label in st.LOOP_VARIANTS)
     # The study's root seeds are none of the tests' (3, 5, 7, 8, 11 here).
-    assert not {3, 5, 7, 8, 11} & set(st.TUNING_ROOTS + st.HELD_OUT_ROOTS)
+    assert not {3, 5, 7, 8, 11} & set(arms.TUNING_ROOTS + arms.HELD_OUT_ROOTS)
 
 
 def test_the_study_file_is_what_the_library_computes(study):
     # Seed i of a root seed is the same in any run: rerun the second seed of two
     # variants alone and expect the file's numbers (python -m
-    # icm.experiments.goal_babbling_study writes it again after a change).
+    # icm.studies.forming_actions.strategies writes it again after a change).
     for label, root in [("learning progress", 100), ("where the finger stopped only", 200)]:
         entry = goal_babbling_study.run_variant(label, root, n_seeds=1, first_run=1)
         cached = study["runs"][label][str(root)]
@@ -708,12 +710,12 @@ def test_the_studys_verdicts_are_phrased_from_its_numbers(study):
         fake["runs"] = {
             "learning progress": {str(r): {"pressed": lp(8), "failures": [[0] * 5] * 8,
                                            "test_error": [0.01] * 8, **loop(8, 1, 0.97)}
-                                  for r in goal_babbling_study.TUNING_ROOTS
-                                  + goal_babbling_study.HELD_OUT_ROOTS},
+                                  for r in arms.TUNING_ROOTS
+                                  + arms.HELD_OUT_ROOTS},
             "random goal babbling": {str(r): {"pressed": rg(8), "failures": [[0] * 5] * 8,
                                               "test_error": [0.02] * 8, **loop(8, 0, 0.9)}
-                                     for r in goal_babbling_study.TUNING_ROOTS
-                                     + goal_babbling_study.HELD_OUT_ROOTS}}
+                                     for r in arms.TUNING_ROOTS
+                                     + arms.HELD_OUT_ROOTS}}
         verdicts = icm.chapters.forming_actions.strategies.verdicts(fake)
         assert words in verdicts["margin_verdict"]
         assert verdicts["n_held_seeds"] == 16 and verdicts["loop_red_first"] == 1.0
@@ -722,12 +724,12 @@ def test_the_studys_verdicts_are_phrased_from_its_numbers(study):
         met = "met" if lp is pressed else "not met"
         assert verdicts["target_presses_tuning"] == verdicts["target_presses_held_out"] == met
     # The held-out rule: a margin on the tuning seeds alone is no clear margin.
-    for r in goal_babbling_study.HELD_OUT_ROOTS:
+    for r in arms.HELD_OUT_ROOTS:
         fake["runs"]["random goal babbling"][str(r)]["pressed"] = pressed(8)
     fake["runs"]["learning progress"] = {
         r: {**entry, "pressed": pressed(8)}
         for r, entry in fake["runs"]["learning progress"].items()}
-    for r in goal_babbling_study.TUNING_ROOTS:
+    for r in arms.TUNING_ROOTS:
         fake["runs"]["random goal babbling"][str(r)]["pressed"] = missed(8)
     assert "no clear difference" in icm.chapters.forming_actions.strategies.verdicts(fake)["margin_verdict"]
     counts = goal_babbling_study.failure_counts(study, "learning progress")

@@ -1,5 +1,5 @@
 """The paper's two remedies on goal babbling (icm.learners.maturation, the teacher's
-demonstrations of icm.learners.goal_babbling, icm.experiments.remedies_study): the
+demonstrations of icm.learners.goal_babbling, icm.studies.forming_actions.remedies): the
 maturational clock, the demonstrations, the options off, bad input, determinism, the
 study file and the chapter's verdicts (its claims on fresh seeds, and the replication:
 tests/test_remedies_replication.py)."""
@@ -13,7 +13,9 @@ from icm.envs import buttons
 from icm.envs.buttons.movements import MovementLab
 from icm import chapters, stats
 from icm.chapters import replication
-from icm.experiments import babbling_space, goal_babbling, remedies_study
+from icm.experiments import babbling_space, goal_babbling
+from icm.studies.forming_actions import arms
+from icm.studies.forming_actions import remedies as remedies_study
 from icm.experiments.seeding import REPLICATION_ROOTS
 from icm.figures import forming_actions
 from icm.learners import goal_babbling as agents
@@ -325,16 +327,16 @@ def test_the_remedies_figures_draw_readably_and_refuse_bad_input(study):
 
 def test_the_study_file_holds_every_condition_on_every_root(study):
     st = remedies_study
-    assert study["budgets"] == list(st.BUDGETS) and study["n_seeds"] == st.N_SEEDS
+    assert study["budgets"] == list(arms.BUDGETS) and study["n_seeds"] == st.N_SEEDS
     assert study["n_rollouts"] == goal_babbling.DEFAULT_N_ROLLOUTS
     assert list(study["runs"]) == list(st.CONDITIONS)
-    x_edges, y_edges = st.coverage_edges()
+    x_edges, y_edges = arms.coverage_edges()
     for label, by_root in study["runs"].items():
         assert sorted(map(int, by_root)) == sorted(st.ROOTS)
         for entry in by_root.values():
-            assert np.array(entry["pressed"]).shape == (st.N_SEEDS, len(st.BUDGETS), 5)
+            assert np.array(entry["pressed"]).shape == (st.N_SEEDS, len(arms.BUDGETS), 5)
             assert np.array(entry["first_press"]).shape == (st.N_SEEDS, 5)
-            assert np.array(entry["maturity"]).shape == (st.N_SEEDS, len(st.BUDGETS))
+            assert np.array(entry["maturity"]).shape == (st.N_SEEDS, len(arms.BUDGETS))
             for stretch in ("early", "all"):
                 counts = np.array(entry["coverage"][stretch])
                 assert counts.shape == (len(x_edges) - 1, len(y_edges) - 1)
@@ -348,7 +350,7 @@ def test_the_study_file_holds_every_condition_on_every_root(study):
 def test_the_study_file_is_what_the_library_computes(study):
     # Seed i of a root seed is the same in any run: rerun the second seed of two
     # conditions alone and expect the file's numbers (python -m
-    # icm.experiments.remedies_study writes it again after a change); the coverage,
+    # icm.studies.forming_actions.remedies writes it again after a change); the coverage,
     # summed over the seeds, holds at least that seed's.
     for label, root in [("growing up", 100), ("shown buttons 0 and 4", 300)]:
         entry = remedies_study.run_condition(label, root, n_seeds=1, first_run=1)

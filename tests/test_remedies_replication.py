@@ -20,9 +20,10 @@ import pytest
 from icm import chapters
 from icm.store import asset_path
 from icm.chapters import replication
-from icm.experiments import remedies_study
+from icm.studies.forming_actions import arms
+from icm.studies.forming_actions import remedies as remedies_study
 from icm.experiments.seeding import REPLICATION_ROOTS
-from icm.experiments.studies import join_entries
+from icm.studies.forming_actions.arms import join_entries
 
 
 @pytest.fixture(scope="module")

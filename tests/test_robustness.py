@@ -14,8 +14,10 @@ import pytest
 from conftest import ROOT
 from test_bad_input import refused
 from icm import chapters, stats
-from icm.experiments import (robustness, robustness_readings, run_actor_critic,
-                             run_goal_oriented, run_rod_toppling, sweep)
+from icm.experiments import run_actor_critic, run_goal_oriented, run_rod_toppling, sweep
+from icm.studies import readings as robustness_readings
+from icm.studies import maps as maps_module
+from icm.studies import robustness
 from icm.figures import Figure, robustness_map
 
 SEED = 1
@@ -515,7 +517,7 @@ def _with_claim_set(result, claim, value, **where):
             match &= np.asarray(column == wanted)
         frame.loc[match, claim] = value
         frames[pair] = frame
-    return robustness.RobustnessResult(result.study, result.settings, frames)
+    return maps_module.RobustnessResult(result.study, result.settings, frames)
 
 
 def test_a_map_that_contradicts_the_chapter_fails_its_claims(maps):
@@ -680,7 +682,7 @@ def test_the_chance_to_hold_grows_with_the_seeds_and_the_share():
 
 
 def test_the_first_episode_a_quiet_move_loses_a_little_unless_untried_moves_are_worth_nothing():
-    from icm.experiments import robustness_readings
+    from icm.studies import readings as robustness_readings
     from icm.learners.q_learning import QLearnerSettings
     book = QLearnerSettings()
     for q in (0.0, 0.1, 1.0):
@@ -700,7 +702,7 @@ def test_the_fewest_moves_to_topple_a_rod_are_those_of_the_table(rod):
     # Every sequence of moves from the start, played on the tabular twin: the shortest
     # that topples `rod` is as long as the breadth-first search says.
     from icm.envs import load, rods
-    from icm.experiments import robustness_readings
+    from icm.studies import readings as robustness_readings
     fewest = robustness_readings.fewest_moves_to_topple(rod)
     env = load("rods")
     index = rods.ROD_NAMES.index(rod)

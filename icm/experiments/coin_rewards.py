@@ -7,7 +7,7 @@ import numpy as np
 
 from icm import _streams, _validate
 from icm.experiments._memory import FIXED_BYTES, check_memory
-from icm.experiments._progress import progress_bar
+from icm.experiments.progress import progress_bar
 from icm.experiments.curiosity import check_choices
 from icm.learners import interest, predictors, q_learning
 

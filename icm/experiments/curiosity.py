@@ -22,7 +22,7 @@ from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments.goal_oriented_results import TASKS, GoalOrientedResult
 from icm.experiments import rod_toppling as _rod_toppling
 from icm.experiments._memory import FIXED_BYTES, check_memory
-from icm.experiments._progress import progress_bar
+from icm.experiments.progress import progress_bar
 from icm.learners import goal_oriented, interest, predictors, q_learning
 from icm.stats import (bootstrap_band, comes_first, corrected_verdicts, paired_gaps,
                        share_interval)

@@ -29,7 +29,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from icm import _validate
-from icm.experiments._progress import progress_bar
+from icm.experiments.progress import progress_bar
 
 
 class Transition(NamedTuple):
@@ -137,7 +137,7 @@ def play(world, learner, n_episodes, observers=()):
 
 
 def progress(total, description, enabled, unit, per=1):
-    """An observer that moves a progress bar (`icm.experiments._progress.progress_bar`)
+    """An observer that moves a progress bar (`icm.experiments.progress.progress_bar`)
     on by the episodes that end, `per` row-episodes a unit (the rows of a lockstep world,
     whose bar counts trials), or None when `enabled` is False. Its `close()` closes the
     bar."""

@@ -39,7 +39,7 @@ from icm.experiments import actor_critic as _actor_critic
 from icm.experiments import actor_critic_results, goal_oriented_results
 from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments import rod_toppling as _rod_toppling
-from icm.experiments._progress import progress_bar
+from icm.experiments.progress import progress_bar
 from icm.stats import PANEL_RESAMPLES, bootstrap_band, every_nth
 
 

@@ -15,6 +15,8 @@ from icm.chapters.words import percent
 from icm.experiments.results import check_results
 from icm.learners import goal_choice
 from icm.learners.goal_babbling import N_BOOTSTRAP
+from icm.studies.forming_actions import arms
+from icm.studies.forming_actions import remedies as remedies_study
 from icm.figures._common import (LINESTYLES, MARKERS, check_result, figure_and_axes, legend_below,
                                  new_figure, plot_mean_band)
 
@@ -245,7 +247,7 @@ STUDY_COLOURS = {"learning progress": "#e66101", "where the finger stopped only"
                  "depth weight 1": "#fdb863", "depth weight 3": "#b35806",
                  "LWLR inverse model": "#1b9e77", "competence progress": "#a6761d",
                  "splitting regions": "#7570b3", "return home simulated": "#e7298a"}
-"""One colour per variant of the study (`icm.experiments.goal_babbling_study`)."""
+"""One colour per variant of the study (`icm.studies.forming_actions.strategies`)."""
 
 
 def presses_formed_figure(study, labels, roots="tuning", ax=None):
@@ -253,17 +255,15 @@ def presses_formed_figure(study, labels, roots="tuning", ax=None):
     over the study's seeds with its 95% band, one curve per variant.
 
     Args:
-      study: the study (`icm.experiments.goal_babbling_study.load_study()`).
+      study: the study (`icm.studies.forming_actions.strategies.load_study()`).
       labels: the variants to draw, a non-empty list of the study's labels.
       roots: "tuning" (the study's `TUNING_ROOTS`) or "held_out" (`HELD_OUT_ROOTS`,
         run by `HELD_OUT_VARIANTS` only).
       ax: a matplotlib Axes to draw on, or None for a new figure.
     """
-    from icm.experiments import goal_babbling_study
-
     if not isinstance(study, dict) or "runs" not in study or "budgets" not in study:
-        raise _validate.ArgumentTypeError(f"study must be a study dict (from icm.experiments."
-                                          f"goal_babbling_study.load_study), got "
+        raise _validate.ArgumentTypeError(f"study must be a study dict (from icm.studies."
+                                          f"forming_actions.strategies.load_study), got "
                                           f"{_validate.show(study)}")
     if isinstance(labels, str) or not isinstance(labels, (list, tuple)) or not labels:
         raise _validate.ArgumentTypeError(f"labels must be a non-empty list of the study's "
@@ -271,8 +271,7 @@ def presses_formed_figure(study, labels, roots="tuning", ax=None):
     for label in labels:
         _validate.one_of("labels[i]", label, tuple(study["runs"]))
     roots = _validate.one_of("roots", roots, ("tuning", "held_out"))
-    root_seeds = goal_babbling_study.TUNING_ROOTS if roots == "tuning" else \
-        goal_babbling_study.HELD_OUT_ROOTS
+    root_seeds = arms.TUNING_ROOTS if roots == "tuning" else arms.HELD_OUT_ROOTS
     for label in labels:
         missing = [r for r in root_seeds if str(r) not in study["runs"][label]]
         if missing:
@@ -302,7 +301,7 @@ REMEDY_COLOURS = {"random motor babbling": "#7f7f7f", "random goal babbling": "#
                   "learning progress": "#e66101", "growing up": "#1b9e77",
                   "shown button 2": "#c2a5cf", "shown buttons 0 and 4": "#9970ab",
                   "shown all five": "#40004b"}
-"""One colour per condition of `icm.experiments.remedies_study` (the teacher's in
+"""One colour per condition of `icm.studies.forming_actions.remedies` (the teacher's in
 purples, darker for more buttons shown)."""
 REMEDY_STYLES = {"random motor babbling": (":", "x"), "random goal babbling": ("-.", "^"),
                  "learning progress": ("-", "o"), "growing up": ("--", "s"),
@@ -317,15 +316,12 @@ logarithmic scale from 10 to the budget."""
 
 
 def _check_remedy_labels(study, labels):
-    from icm.experiments import remedies_study
-
     remedies_study.check_study(study)
     if isinstance(labels, str) or not isinstance(labels, (list, tuple)) or not labels:
         raise _validate.ArgumentTypeError(f"labels must be a non-empty list of the study's "
                                           f"conditions, got {_validate.show(labels)}")
     for label in labels:
         _validate.one_of("labels[i]", label, tuple(study["runs"]))
-    return remedies_study
 
 
 def _median_word(median):
@@ -341,12 +337,12 @@ def first_press_figure(study, labels):
     in that condition.
 
     Args:
-      study: the study (`icm.experiments.remedies_study.load_study()`).
+      study: the study (`icm.studies.forming_actions.remedies.load_study()`).
       labels: the conditions to draw, a non-empty list of the study's labels.
     """
     import matplotlib.lines
 
-    remedies_study = _check_remedy_labels(study, labels)
+    _check_remedy_labels(study, labels)
     n_rollouts = study["n_rollouts"]
     x = np.unique(np.round(np.geomspace(10, n_rollouts, FIRST_PRESS_POINTS)))
     fig, axes = new_figure(width=7.6, height=5.6, ncols=3, nrows=2, sharey=True)
@@ -402,19 +398,19 @@ def first_press_figure(study, labels):
 def coverage_maps_figure(study, labels):
     """Where the robot's own rollouts (demonstrations left out) ended with the finger on
     the console or a cap, seen from above (robot at the bottom, its left on the
-    left): one row per condition, the first `remedies_study.EARLY` rollouts on the
+    left): one row per condition, the first `arms.EARLY` rollouts on the
     left and all of them on the right; the count per square centimetre over all the
     study's seeds, on a logarithmic colour scale shared by every map. Outlines: the
     console and its caps, numbered under the maps; crosses: the press goals.
 
     Args:
-      study: the study (`icm.experiments.remedies_study.load_study()`).
+      study: the study (`icm.studies.forming_actions.remedies.load_study()`).
       labels: the conditions to draw, a non-empty list of the study's labels.
     """
     import matplotlib.colors
 
-    remedies_study = _check_remedy_labels(study, labels)
-    x_edges, y_edges = remedies_study.coverage_edges()
+    _check_remedy_labels(study, labels)
+    x_edges, y_edges = arms.coverage_edges()
     pooled = {label: remedies_study.pooled(study, label) for label in labels}
     counts = [pooled[label]["coverage"] for label in labels]
     top = max(1, max(int(c[stretch].max()) for c in counts for stretch in c))
@@ -446,7 +442,7 @@ def coverage_maps_figure(study, labels):
             ax.set_xticks(caps[:, 1], [str(b) for b in range(len(caps))])
             ax.tick_params(axis="x", length=0)
             ax.set_yticks([])
-            when = f"first {remedies_study.EARLY}" if stretch == "early" else \
+            when = f"first {arms.EARLY}" if stretch == "early" else \
                 f"all {n_rollouts}"
             ax.set_title(f"{label}: {when}")
     bar = fig.colorbar(mesh, ax=axes, location="bottom", shrink=0.7, aspect=30,
@@ -461,7 +457,7 @@ def coverage_maps_figure(study, labels):
         shown = len(remedies_study.shown_buttons(label))
         parts.append(
             f"{label}: {int(entry['coverage']['early'].sum())} of the first "
-            f"{n_seeds * (remedies_study.EARLY - shown)} own rollouts of its {n_seeds} seeds "
+            f"{n_seeds * (arms.EARLY - shown)} own rollouts of its {n_seeds} seeds "
             f"ended on the console, {int(entry['coverage']['all'].sum())} of all "
             f"{n_seeds * (n_rollouts - shown)}")
     return fig.describe(

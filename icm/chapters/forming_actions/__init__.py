@@ -3,7 +3,7 @@ the strategies and variants of goal babbling (`strategies`); its second half, th
 remedies, growing up and being shown (`remedies`); and its one family of paired
 comparisons over both, decided together and replicated on a fresh root (`family`).
 The runs are `icm.experiments.goal_babbling`'s, the stored studies
-`icm.experiments.goal_babbling_study`'s and `remedies_study`'s.
+`icm.studies.forming_actions`' (`strategies` and `remedies`).
 """
 
 from icm.chapters.forming_actions import family, remedies, strategies

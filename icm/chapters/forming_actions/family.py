@@ -13,14 +13,16 @@ from icm import _validate
 from icm.chapters import replication, verdicts
 from icm.chapters.words import percent
 from icm.envs import buttons
-from icm.experiments import goal_babbling_study, remedies_study
-from icm.experiments.remedies_study import (CONDITIONS, PAIRED_MEASURES, check_study,
+from icm.studies.forming_actions import remedies as remedies_study
+from icm.studies.forming_actions import strategies as strategies_study
+from icm.studies.forming_actions.arms import HELD_OUT_ROOTS
+from icm.studies.forming_actions.remedies import (CONDITIONS, PAIRED_MEASURES, check_study,
                                             load_fresh_runs, load_study, run_condition,
                                             seed_values, shown_buttons)
 from icm.experiments.seeding import REPLICATION_ROOTS
 from icm.stats import POWER_SIMULATIONS, corrected_verdicts, paired_power
 
-VERDICT_ROOTS = goal_babbling_study.HELD_OUT_ROOTS
+VERDICT_ROOTS = HELD_OUT_ROOTS
 """The root seeds on which the chapter's comparisons are decided: the held-out ones.
 Every setting the chapter "Forming actions" compares (the learner's, the clock's, the
 teacher's) was chosen on the tuning roots, which would flatter it."""
@@ -53,12 +55,12 @@ def strategy_comparisons(study=None):
     """The paired comparisons of learning progress with random goal babbling that the
     chapter decides, on the held-out seeds only (the learner's settings were chosen on
     the tuning seeds), from the goal-babbling study (`study`, default
-    `goal_babbling_study.load_study()`): {"lp_rg_all_pressed": per-seed differences in
+    `strategies_study.load_study()`): {"lp_rg_all_pressed": per-seed differences in
     all five presses formed (1 or 0), "lp_rg_test_error": in the final test error (m)};
     learning progress minus random goal babbling (`icm.chapters.verdicts.differences`)."""
-    study = goal_babbling_study.load_study() if study is None else study
-    lp, rg = (goal_babbling_study.pool([study["runs"][label][str(r)]
-                                        for r in goal_babbling_study.HELD_OUT_ROOTS])
+    study = strategies_study.load_study() if study is None else study
+    lp, rg = (strategies_study.pool([study["runs"][label][str(r)]
+                                        for r in HELD_OUT_ROOTS])
               for label in ("learning progress", "random goal babbling"))
     all_pressed = lambda entry: np.array(entry["pressed"])[:, -1].all(axis=1).astype(float)
     return {"lp_rg_all_pressed": verdicts.differences(all_pressed(lp), all_pressed(rg)),
@@ -177,7 +179,7 @@ MEASURE_WORDS = {"all_pressed": "all five presses formed",
                  "others_formed": "presses formed of the buttons not shown",
                  "others_pressed_early": "buttons pressed early",
                  "test_error": "test error"}
-"""The measures of `icm.experiments.remedies_study.PAIRED_MEASURES` in the words of a sentence."""
+"""The measures of `icm.studies.forming_actions.remedies.PAIRED_MEASURES` in the words of a sentence."""
 
 
 def replication_power_sentence(study=None, replications=None, simulations=500):

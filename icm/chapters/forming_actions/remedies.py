@@ -1,6 +1,6 @@
 """The chapter "Forming actions" (book/forming_actions.ipynb), its second half "Growing
 up, and being shown": the summaries, Markdown tables, verdicts and sentences its text
-quotes about the two remedies, read from the runs of `icm.experiments.remedies_study`
+quotes about the two remedies, read from the runs of `icm.studies.forming_actions.remedies`
 (kept in assets/remedies_study.json and assets/remedies_test_error.json); its paired
 comparisons are decided with the chapter's whole family
 (`icm.chapters.forming_actions.family`).
@@ -16,7 +16,7 @@ from icm.chapters.forming_actions.family import (REMEDY_KEYS, VERDICT_ROOTS,
 from icm.chapters.words import percent
 from icm.envs import buttons
 from icm.experiments import babbling_results
-from icm.experiments.remedies_study import (TEACHING, check_study, load_study,
+from icm.studies.forming_actions.remedies import (TEACHING, check_study, load_study,
                                             load_test_error_split, pooled, seed_values,
                                             shown_buttons)
 from icm.stats import PANEL_RESAMPLES, at_bound, bootstrap_band, share_interval

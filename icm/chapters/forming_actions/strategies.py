@@ -1,6 +1,6 @@
 """The chapter "Forming actions" (book/forming_actions.ipynb), its first half: the three
 strategies and the variants of the goal-babbling learner, read from the longer runs of
-`icm.experiments.goal_babbling_study` (assets/goal_babbling_study.json): its table of
+`icm.studies.forming_actions.strategies` (assets/goal_babbling_study.json): its table of
 variants (`study_table`), what became of the presses a variant formed
 (`failures_table`), its targets (`TARGETS`) and the numbers and words its comparisons
 are phrased from (`verdicts`; the comparisons themselves are decided with the
@@ -16,8 +16,8 @@ from icm.chapters.words import percent
 from icm.experiments import formed_actions
 from icm.experiments.babbling_results import GoalBabblingResult
 from icm.experiments.results import check_results
-from icm.experiments.goal_babbling_study import (HELD_OUT_ROOTS, TUNING_ROOTS, load_study,
-                                                 pool, summary, tuning)
+from icm.studies.forming_actions.arms import HELD_OUT_ROOTS, TUNING_ROOTS
+from icm.studies.forming_actions.strategies import load_study, pool, summary, tuning
 from icm.stats import PANEL_RESAMPLES
 
 

@@ -3,12 +3,13 @@ claims about them in words (`CHAPTER_CLAIMS`) and their check on the book's maps
 (`chapter_claims`), the Markdown tables (`studies_table`, `dependency_table`,
 `interaction_table`), the numbers and clauses the text quotes (`chapter_numbers`,
 `shares_along`), and the maps' replication on a fresh root (`run_replication`,
-`replication_sentences`), from the results of `icm.experiments.robustness`.
+`replication_sentences`), from the results of `icm.studies.robustness`.
 """
 
 from icm import _validate
 from icm.chapters.words import in_seeds
-from icm.experiments.robustness import (CLAIM_SHARE, STUDIES, RobustnessResult,
+from icm.studies.maps import RobustnessResult
+from icm.studies.robustness import (CLAIM_SHARE, STUDIES,
                                         check_study, show_value)
 from icm.stats import share_interval
 
@@ -396,7 +397,7 @@ def run_replication(progress=False):
       {verdict: points} of "red toppled first" on the rods' map (the chapter says it
       fails at no point, and how many points it holds at)}.
     """
-    from icm.experiments import robustness
+    from icm.studies import robustness
     from icm.experiments.seeding import REPLICATION_ROOTS
 
     root = REPLICATION_ROOTS["robustness"]

@@ -1,19 +1,19 @@
 """The chapter "What the result depends on" (book/robustness.ipynb), its other readings:
 what the choices the paper does not make and the maps do not sweep do to the claims
 (`readings_table`, `describe_readings`, `readings_summary`, `readings_numbers`, of runs,
-each a `icm.experiments.robustness_readings.ReadingsResult`), and what the rods' first
+each a `icm.studies.readings.ReadingsResult`), and what the rods' first
 episode is made of (`first_episode`, `FIRST_EPISODE_CLAIMS`).
 """
 
 from icm import _validate
-from icm.experiments.robustness import NOT_MEASURED, STUDIES, show_value
-from icm.experiments.robustness_readings import (ReadingsResult, fewest_moves_to_topple,
+from icm.studies.robustness import NOT_MEASURED, STUDIES, show_value
+from icm.studies.readings import (ReadingsResult, fewest_moves_to_topple,
                                                  value_after_a_quiet_move)
 
 
 def _readings(found):
     return _validate.instance("found", found, ReadingsResult,
-                              "a ReadingsResult (from icm.experiments.robustness_readings."
+                              "a ReadingsResult (from icm.studies.readings."
                               "run_readings)")
 
 

@@ -2,7 +2,7 @@
 one at a time (`run_readings`): for each, every other reading its `Setting` declares
 (`icm._settings.Setting.other_readings`: an unpublished choice's other choices, or the
 other values it lists), run on the same seeds as the book's reading, with the same
-claims as the maps (`icm.experiments.robustness.STUDIES`), kept in a `ReadingsResult`; and what the rods' first episode is made of, which the
+claims as the maps (`icm.studies.robustness.STUDIES`), kept in a `ReadingsResult`; and what the rods' first episode is made of, which the
 chapter reads from the learner and the topple map (`fewest_moves_to_topple`,
 `value_after_a_quiet_move`).
 """
@@ -14,9 +14,9 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import rods
-from icm.experiments._progress import progress_bar
-from icm.experiments.robustness import (NOT_MEASURED, STUDY_WORLDS, WORLD_SETTINGS, Study,
-                                        check_study, show_value)
+from icm.experiments.progress import progress_bar
+from icm.studies.robustness import (NOT_MEASURED, STUDY_WORLDS, WORLD_SETTINGS, Study,
+                                    check_study)
 from icm.learners.q_learning import QLearner, QLearnerSettings
 from icm.stats import share_interval, verdict
 
