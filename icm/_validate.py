@@ -308,6 +308,63 @@ def integer_array(name, value, ndim=None):
     return array.astype(np.int64)
 
 
+def integer_values(name, value, allowed="an integer or an array of integers"):
+    """`value`, an integer or an array of them, as an int64 array (0-d for one integer):
+    Python or numpy integers only. Bools (also inside a list, where numpy would turn
+    them into 0 and 1), floats (even whole ones), text and other objects raise
+    `ArgumentTypeError`, whose message says `allowed`."""
+    if isinstance(value, (str, bytes)):
+        raise _type_error(name, allowed, value)
+    try:
+        array = np.asarray(value)
+    except (TypeError, ValueError):  # ragged nested sequences
+        raise _type_error(name, allowed, value) from None
+    if array.dtype.kind not in "iu":
+        raise _type_error(name, allowed, value)
+    if not isinstance(value, np.ndarray) and array.ndim > 0 and any(
+            isinstance(v, (bool, np.bool_)) for v in np.asarray(value, dtype=object).ravel()):
+        raise _type_error(name, allowed, value)
+    return array.astype(np.int64)
+
+
+def event_numbers(name, value):
+    """`value` as an int64 array (0-d for one number) of event numbers: the trial or
+    episode at which something happened, counted from 1, or -1 where it never did.
+    Integers only (`integer_values`); empty input, 0 and negatives other than -1 raise
+    ValueError, the message showing the first value refused."""
+    allowed = "event numbers: integers from 1 (a trial or an episode), or -1 for never"
+    array = integer_values(name, value, allowed)
+    if array.size == 0:
+        raise ValueError(f"{name} must hold at least one event number, got none: "
+                         f"{show(value)}")
+    refused = array[(array < 1) & (array != -1)]
+    if refused.size:
+        raise ValueError(f"{name} must hold {allowed}, got {int(refused.flat[0])} in "
+                         f"{show(value)}")
+    return array
+
+
+def broadcastable(name, value, other_name, other):
+    """Raises ValueError, naming both, if the arrays `value` and `other` (of the
+    arguments `name` and `other_name`) have shapes that do not broadcast together."""
+    try:
+        np.broadcast_shapes(np.shape(value), np.shape(other))
+    except ValueError:
+        raise ValueError(f"{name} and {other_name} must have shapes that broadcast "
+                         f"together (element-wise), got {np.shape(value)} and "
+                         f"{np.shape(other)}") from None
+
+
+def finite_results(name, value, *results):
+    """Raises ValueError, naming `name` and showing `value`, if any of `results` (sums,
+    means or spreads computed from `value`) is not finite: numbers near the largest
+    float (about 1e308; 1e154 for squares) overflow, and a band or a p-value of
+    infinities means nothing."""
+    if not all(np.all(np.isfinite(result)) for result in results):
+        raise ValueError(f"{name} must be small enough for their sums and squares to stay "
+                         f"finite (NaN and infinity have no meaning here), got {show(value)}")
+
+
 def available_memory():
     """Bytes of memory this machine can still give (Linux: MemAvailable)."""
     try:

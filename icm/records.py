@@ -3,17 +3,33 @@ read through `read_json` (or a model's `model_validate`), whose error names the 
 the line where there is one, and the field that is wrong.
 
 Files read here: a submitted notebook (what the grader needs of it), an assignment's
-manifest (written by `icm.course.assign`), a class roster (CSV rows).
+manifest (written by `icm.course.assign`, which checks it with the same model before
+it writes it), a class roster (CSV rows). Every file read back, these and the built
+book's pages (`read_text`), is read through `read_bytes`: a regular file of a bounded
+size, refused naming the file otherwise (a named pipe would never end; a huge file
+would fill the memory).
 """
 
+import errno
 import json
+import os
+import pathlib
 import re
+import stat
 
 import pydantic
 from pydantic import BaseModel, ConfigDict, Field
 
 MAX_JSON_BYTES = 64 * 2 ** 20
 """The largest JSON file read back (a notebook with its outputs included)."""
+MAX_PAGE_BYTES = 64 * 2 ** 20
+"""The largest page of the built book read back (its largest pages are a few MiB)."""
+
+
+MAX_JSON_CONTAINERS = 1_000_000
+"""The most lists and objects (brackets [ and {) a JSON file read back may hold: each
+takes 56 bytes or more once read, so a file of empty lists would take over 20 times its
+size in memory."""
 
 
 class RecordError(ValueError):
@@ -53,6 +69,9 @@ def parse_json(data, model, name):
     """
     if len(data) > MAX_JSON_BYTES:
         raise RecordError(f"{name}: larger than {MAX_JSON_BYTES // 2 ** 20} MiB")
+    brackets = (b"[", b"{") if isinstance(data, bytes) else ("[", "{")
+    if sum(data.count(bracket) for bracket in brackets) > MAX_JSON_CONTAINERS:
+        raise RecordError(f"{name}: more than {MAX_JSON_CONTAINERS:,} lists and objects")
     try:
         content = json.loads(data)
     except RecursionError:
@@ -67,8 +86,95 @@ def parse_json(data, model, name):
         raise RecordError(f"{name}: nested too deeply") from None
 
 
+def read_bytes(path, limit=MAX_JSON_BYTES, follow=True):
+    """A file's bytes: a regular file of at most `limit` bytes, opened without waiting
+    (a named pipe put in its place is refused, never waited on).
+
+    Args:
+      path: the file.
+      limit: the most bytes read.
+      follow: whether a symbolic link is followed (False: refused).
+
+    Returns:
+      The bytes.
+
+    Raises:
+      RecordError: for a file missing, a link (unless `follow`), not a regular file (a
+        folder, a named pipe), larger than `limit` or unreadable, naming it.
+    """
+    path = pathlib.Path(path)
+    flags = os.O_RDONLY | os.O_NONBLOCK | (0 if follow else os.O_NOFOLLOW)
+    try:
+        handle = os.open(path, flags)
+    except FileNotFoundError:
+        raise RecordError(f"{path}: does not exist") from None
+    except OSError as error:
+        if error.errno == errno.ELOOP and not follow:
+            raise RecordError(f"{path}: a symbolic link, not a file") from None
+        if error.errno == errno.EISDIR:
+            raise RecordError(f"{path}: not a file but a folder") from None
+        raise RecordError(f"{path}: cannot be read ({error.strerror})") from None
+    info = os.fstat(handle)
+    if not stat.S_ISREG(info.st_mode) or info.st_size > limit:
+        os.close(handle)
+        if not stat.S_ISREG(info.st_mode):
+            raise RecordError(f"{path}: not a file" + (" but a folder" if
+                                                        stat.S_ISDIR(info.st_mode) else ""))
+        raise RecordError(f"{path}: larger than {limit / 2 ** 20:g} MiB")
+    with os.fdopen(handle, "rb") as file:
+        try:
+            data = file.read(limit + 1)
+        except OSError as error:
+            raise RecordError(f"{path}: cannot be read ({error.strerror})") from None
+    if len(data) > limit:  # (grown since)
+        raise RecordError(f"{path}: larger than {limit / 2 ** 20:g} MiB")
+    return data
+
+
+def input_folder(path, what, hint=""):
+    """A folder a command reads, refused naming it if it is missing or not a folder.
+
+    Args:
+      path: the folder.
+      what: how the message names it, e.g. "the built book's folder".
+      hint: what to do when it is missing, e.g. "build it first (make book)".
+
+    Returns:
+      The folder, a `pathlib.Path`.
+
+    Raises:
+      RecordError: naming the folder.
+    """
+    path = pathlib.Path(path)
+    if not path.exists():
+        raise RecordError(f"{what} {path} does not exist" + (f": {hint}" if hint else ""))
+    if not path.is_dir():
+        raise RecordError(f"{what} {path} is not a folder")
+    return path
+
+
+def read_text(path, limit=MAX_PAGE_BYTES):
+    """A UTF-8 text file (see `read_bytes`).
+
+    Args:
+      path: the file.
+      limit: the most bytes read.
+
+    Returns:
+      The text.
+
+    Raises:
+      RecordError: for a file that `read_bytes` refuses or that is not UTF-8, naming it.
+    """
+    data = read_bytes(path, limit)
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise RecordError(f"{path}: not UTF-8 text (byte {error.start})") from None
+
+
 def read_json(path, model):
-    """Reads a JSON file into `model` (see `parse_json`).
+    """Reads a JSON file into `model` (see `read_bytes` and `parse_json`).
 
     Args:
       path: a `pathlib.Path`.
@@ -80,11 +186,7 @@ def read_json(path, model):
     Raises:
       RecordError: naming the file.
     """
-    try:
-        data = path.read_bytes()
-    except OSError as error:
-        raise RecordError(f"{path}: cannot be read ({error.strerror})") from None
-    return parse_json(data, model, str(path))
+    return parse_json(read_bytes(path), model, str(path))
 
 
 # --- a submitted notebook ------------------------------------------------------------

@@ -136,11 +136,14 @@ def pytest_collection_modifyitems(config, items):
     no test can forget its marker: `book` for every test that reads the built book,
     `browser` for every test that drives Chromium. `make test-quick` leaves out both
     (and `launch`)."""
+    book_ceiling = book_test_ceiling(config)
     for item in items:
         names = getattr(item, "fixturenames", ())
         module = getattr(getattr(item, "module", None), "__name__", "")
         if "built_book" in names:
             item.add_marker(pytest.mark.book)
+            if book_ceiling:
+                item.add_marker(pytest.mark.timeout(book_ceiling))
         if item.nodeid.startswith(SLOW) or set(SLOW_FIXTURES) & set(names):
             item.add_marker(pytest.mark.slow)
         if "browser" in names or (module in ("test_browser", "test_pdf")
@@ -150,6 +153,31 @@ def pytest_collection_modifyitems(config, items):
 
 def _needs_book(item):
     return "built_book" in getattr(item, "fixturenames", ())
+
+
+BOOK_BUILD_SECONDS = 1800
+"""How long a test that reads the built book may wait for its build, beyond the
+ceiling every test has (pyproject.toml: `timeout`, pytest-timeout's, setup and teardown
+included): the first such test of a worker waits in its setup (`built_book`) for the
+build that started with the run. The build executes every notebook afresh (its target:
+150 s on an idle machine, `make bench`), then writes the HTML (66 CPU-seconds), on
+cores the unit tests share; it guards itself (a cell stalled for 60 s fails, and so does
+a runaway one: book/_ext/execute_book.py). Half an hour is about eight times what it
+takes on an idle machine, and a third of CI's 90 minutes (in a make test of
+2026-12-05, on a machine ten times slower than a quiet one, seven of the eight
+notebooks executed in 188 s of wall time, before the eighth failed on main's data)."""
+
+
+def book_test_ceiling(config):
+    """The time limit of a test that reads the built book: the ceiling of every test
+    plus `BOOK_BUILD_SECONDS` (no limit if the run has none: `--timeout 0`, or
+    `-p no:timeout`)."""
+    if not config.pluginmanager.hasplugin("timeout"):
+        return 0
+    from pytest_timeout import get_env_settings  # the option, PYTEST_TIMEOUT or the ini
+
+    ceiling = get_env_settings(config).timeout or 0
+    return ceiling + BOOK_BUILD_SECONDS if ceiling > 0 else 0
 
 
 TAIL_SHARE = 0.1
@@ -306,7 +334,14 @@ def _book_built_in_the_background(request, tmp_path_factory):
     if request.session.shouldfail or request.session.shouldstop:
         build.stop()  # the run stops early (-x, Ctrl-C): no need for the book
     elif build.process is not None:
-        build.wait()  # other workers may still need it
+        # Other workers may still need it: this process waits for it to end, after its
+        # last test (pytest_sessionfinish), not in that test's teardown, where the wait
+        # would count against the test's time limit.
+        _BUILDS_TO_AWAIT.append(build)
+
+
+_BUILDS_TO_AWAIT = []
+"""The book's build, if this process started it and the run needs it to finish."""
 
 
 @pytest.fixture(scope="session")
@@ -417,11 +452,14 @@ def _whole_suite(config):
 
 
 def pytest_sessionfinish(session, exitstatus):
-    """Writes the run's durations, slowest first, with the reference workload timed
+    """Waits for the book's build if this process started it (`_BUILDS_TO_AWAIT`), then
+    writes the run's durations, slowest first, with the reference workload timed
     now (`make bench` prints the ten slowest): `_build/icm-test-durations.json`. Only
     a run of the whole suite that ran at least 100 tests writes it: a part (`make
     test-quick`, a file, --collect-only) would replace the record of the whole, which
     orders the next run's modules."""
+    while _BUILDS_TO_AWAIT:
+        _BUILDS_TO_AWAIT.pop().wait()
     if hasattr(session.config, "workerinput") or not _whole_suite(session.config) \
             or len(_DURATIONS) < 100:
         return

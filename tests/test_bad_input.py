@@ -443,6 +443,169 @@ def test_statistics(call, name, shown, kind):
     refused(call, name, shown, kind)
 
 
+EVENTS = np.array([3, -1, 5])
+"""Event numbers of three seeds (trials from 1; -1: never)."""
+
+
+# Issue 48: every argument of every public function of icm.stats, each way it can be
+# wrong: empty, NaN or infinite where a number is needed, a level or a rate outside
+# (0, 1), too few resamples, successes above n, event numbers that are neither >= 1
+# nor -1, numbers too large for their sums to stay finite, and the wrong type.
+@pytest.mark.parametrize("call, name, shown, kind", [
+    # mean_band(values, level)
+    (lambda: stats.mean_band(np.ones((3, 0))), "values", "(3, 0)", "value"),
+    (lambda: stats.mean_band(7.0), "values", "()", "value"),
+    (lambda: stats.mean_band([[1e308], [1e308]]), "values", "1.e+308", "value"),
+    (lambda: stats.mean_band([[1.0]], level=NAN), "level", "nan", "value"),
+    (lambda: stats.mean_band([[1.0]], level=0.0), "level", "0.0", "value"),
+    (lambda: stats.mean_band([[1.0]], level="0.9"), "level", "'0.9'", "type"),
+    (lambda: stats.mean_band([[True]]), "values", "True", "type"),
+    # first_from_which(condition)
+    (lambda: stats.first_from_which(np.array(True)), "condition", "()", "value"),
+    (lambda: stats.first_from_which(np.zeros((2, 0), bool)), "condition", "(2, 0)", "value"),
+    (lambda: stats.first_from_which("yes"), "condition", "'yes'", "type"),
+    # first_below(curve, fraction, after)
+    (lambda: stats.first_below([], 0.5), "curve", "none", "value"),
+    (lambda: stats.first_below([[1.0, 0.2]], 0.5), "curve", "[[1.0, 0.2]]", "value"),
+    (lambda: stats.first_below([1.0, INF], 0.5), "curve", "inf", "value"),
+    (lambda: stats.first_below([1.0, 0.2], NAN), "fraction", "nan", "value"),
+    (lambda: stats.first_below([1.0, 0.2], -0.1), "fraction", "-0.1", "value"),
+    (lambda: stats.first_below([1.0, 0.2], "half"), "fraction", "'half'", "type"),
+    (lambda: stats.first_below([1.0, 0.2], 0.5, after=2), "after", "2", "value"),
+    (lambda: stats.first_below([1.0, 0.2], 0.5, after=-1), "after", "-1", "value"),
+    (lambda: stats.first_below([1.0, 0.2], 0.5, after=1.0), "after", "1.0", "type"),
+    (lambda: stats.first_below([1.0, 0.2], 0.5, after=True), "after", "True", "type"),
+    # comes_first(first, second): event numbers from 1, -1 for never
+    (lambda: stats.comes_first(0, 2), "first", "0", "value"),
+    (lambda: stats.comes_first(-2, 2), "first", "-2", "value"),
+    (lambda: stats.comes_first(3, 0), "second", "0", "value"),
+    (lambda: stats.comes_first(EVENTS, np.array([1, -5, 2])), "second", "-5", "value"),
+    (lambda: stats.comes_first(np.array([], int), 2), "first", "none", "value"),
+    (lambda: stats.comes_first(np.array([1, 2]), np.array([1, 2, 3])), "first and second",
+     "(2,) and (3,)", "value"),
+    (lambda: stats.comes_first(True, 2), "first", "True", "type"),
+    (lambda: stats.comes_first([True, 2], 2), "first", "[True, 2]", "type"),
+    (lambda: stats.comes_first(3, 2.0), "second", "2.0", "type"),
+    (lambda: stats.comes_first(3, "4"), "second", "'4'", "type"),
+    # paired_gaps(arm, baseline)
+    (lambda: stats.paired_gaps(np.array([3, 0, 5]), EVENTS), "arm", "0", "value"),
+    (lambda: stats.paired_gaps(EVENTS, np.array([3, -4, 5])), "baseline", "-4", "value"),
+    (lambda: stats.paired_gaps(np.array([], int), np.array([], int)), "arm", "none", "value"),
+    (lambda: stats.paired_gaps(EVENTS, EVENTS[:2]), "arm and baseline", "3 and 2", "value"),
+    (lambda: stats.paired_gaps(EVENTS[None], EVENTS[None]), "arm", "(1, 3)", "value"),
+    (lambda: stats.paired_gaps(EVENTS, [3.0, -1.0, 5.0]), "baseline", "3.0", "type"),
+    (lambda: stats.paired_gaps(EVENTS, EVENTS > 0), "baseline", "True", "type"),
+    # bootstrap_band(values, level, resamples, seed)
+    (lambda: stats.bootstrap_band(np.ones((0, 2))), "values", "(0, 2)", "value"),
+    (lambda: stats.bootstrap_band(np.ones((4, 0))), "values", "(4, 0)", "value"),
+    (lambda: stats.bootstrap_band([1.0, NAN]), "values", "nan", "value"),
+    (lambda: stats.bootstrap_band([[1e308], [1e308]]), "values", "1.e+308", "value"),
+    (lambda: stats.bootstrap_band(["a"]), "values", "'a'", "type"),
+    (lambda: stats.bootstrap_band([1.0], level=1.5), "level", "1.5", "value"),
+    (lambda: stats.bootstrap_band([1.0], level=NAN), "level", "nan", "value"),
+    (lambda: stats.bootstrap_band([1.0], level=True), "level", "True", "type"),
+    (lambda: stats.bootstrap_band([1.0], resamples=0), "resamples", "0", "value"),
+    (lambda: stats.bootstrap_band([1.0], resamples=99), "resamples", "99", "value"),
+    (lambda: stats.bootstrap_band([1.0], resamples=500.0), "resamples", "500.0", "type"),
+    (lambda: stats.bootstrap_band([1.0], seed=-1), "seed", "-1", "value"),
+    (lambda: stats.bootstrap_band([1.0], seed=2**63), "seed", str(2**63), "value"),
+    (lambda: stats.bootstrap_band([1.0], seed="0"), "seed", "'0'", "type"),
+    # every_nth(n, every)
+    (lambda: stats.every_nth(0, 2), "n", "0", "value"),
+    (lambda: stats.every_nth(5, 0), "every", "0", "value"),
+    (lambda: stats.every_nth(5.0, 2), "n", "5.0", "type"),
+    (lambda: stats.every_nth(5, None), "every", "None", "type"),
+    # paired_p_value(differences, seed, alternative)
+    (lambda: stats.paired_p_value([]), "differences", "none", "value"),
+    (lambda: stats.paired_p_value([1.0, NAN]), "differences", "nan", "value"),
+    (lambda: stats.paired_p_value([1.0, -INF]), "differences", "inf", "value"),
+    (lambda: stats.paired_p_value([[1.0, 2.0]]), "differences", "[[1.0, 2.0]]", "value"),
+    (lambda: stats.paired_p_value([1e308] * 17), "differences", "1.e+308", "value"),
+    (lambda: stats.paired_p_value("1.0"), "differences", "'1.0'", "type"),
+    (lambda: stats.paired_p_value([1.0], seed=-1), "seed", "-1", "value"),
+    (lambda: stats.paired_p_value([1.0], seed=0.0), "seed", "0.0", "type"),
+    (lambda: stats.paired_p_value([1.0], alternative="up"), "alternative", "'up'", "value"),
+    (lambda: stats.paired_p_value([1.0], alternative=1), "alternative", "1", "type"),
+    # corrected_verdicts(family, rate, seed)
+    (lambda: stats.corrected_verdicts({}), "family", "{}", "type"),
+    (lambda: stats.corrected_verdicts([0.1]), "family", "[0.1]", "type"),
+    (lambda: stats.corrected_verdicts({"a": NAN}), "family['a']", "nan", "value"),
+    (lambda: stats.corrected_verdicts({"a": 0.1, "b": 1.5}), "family['b']", "1.5", "value"),
+    (lambda: stats.corrected_verdicts({"a": -0.1}), "family['a']", "-0.1", "value"),
+    (lambda: stats.corrected_verdicts({"a": []}), "family['a']", "none", "value"),
+    (lambda: stats.corrected_verdicts({"a": [1.0, INF]}), "family['a']", "inf", "value"),
+    (lambda: stats.corrected_verdicts({"a": [[1.0]]}), "family['a']", "[[1.0]]", "value"),
+    (lambda: stats.corrected_verdicts({"a": [1e308, 1e308]}), "family['a']", "1.e+308",
+     "value"),
+    (lambda: stats.corrected_verdicts({"a": "0.1"}), "family['a']", "'0.1'", "type"),
+    (lambda: stats.corrected_verdicts({"a": None}), "family['a']", "None", "type"),
+    (lambda: stats.corrected_verdicts({"a": 0.1}, rate=0.0), "rate", "0.0", "value"),
+    (lambda: stats.corrected_verdicts({"a": 0.1}, rate=1.0), "rate", "1.0", "value"),
+    (lambda: stats.corrected_verdicts({"a": 0.1}, rate=NAN), "rate", "nan", "value"),
+    (lambda: stats.corrected_verdicts({"a": 0.1}, rate="5%"), "rate", "'5%'", "type"),
+    (lambda: stats.corrected_verdicts({"a": 0.1}, seed=-1), "seed", "-1", "value"),
+    (lambda: stats.corrected_verdicts({"a": 0.1}, seed=1.5), "seed", "1.5", "type"),
+    # at_bound(values, low, high)
+    (lambda: stats.at_bound([]), "values", "none", "value"),
+    (lambda: stats.at_bound([0.5, NAN]), "values", "nan", "value"),
+    (lambda: stats.at_bound([0.5, 1.5]), "values", "1.5", "value"),
+    (lambda: stats.at_bound([0.5, -0.5]), "values", "-0.5", "value"),
+    (lambda: stats.at_bound(["a"]), "values", "'a'", "type"),
+    (lambda: stats.at_bound([0.5], low=NAN), "low", "nan", "value"),
+    (lambda: stats.at_bound([0.5], high=INF), "high", "inf", "value"),
+    (lambda: stats.at_bound([0.5], low=1.0), "low must be below high", "1.0", "value"),
+    (lambda: stats.at_bound([0.5], low="0"), "low", "'0'", "type"),
+    (lambda: stats.at_bound([0.5], high=None), "high", "None", "type"),
+    # share_interval(successes, n, level): more in tests/test_robustness.py
+    (lambda: stats.share_interval(5, 4), "successes", "5", "value"),
+    (lambda: stats.share_interval(np.array([1, 5]), np.array([4, 4])), "successes", "5",
+     "value"),
+    (lambda: stats.share_interval(1, np.array([4, 0])), "n", "0", "value"),
+    (lambda: stats.share_interval(np.array([], int), 4), "successes", "none", "value"),
+    (lambda: stats.share_interval(np.array([1, 2]), np.array([4, 4, 4])), "successes and n",
+     "(2,) and (3,)", "value"),
+    (lambda: stats.share_interval(True, 4), "successes", "True", "type"),
+    (lambda: stats.share_interval([True, 3], 4), "successes", "[True, 3]", "type"),
+    (lambda: stats.share_interval(1, 4.0), "n", "4.0", "type"),
+    (lambda: stats.share_interval(1, 4, level=NAN), "level", "nan", "value"),
+    (lambda: stats.share_interval(1, 4, level=0.0), "level", "0.0", "value"),
+    (lambda: stats.share_interval(1, 4, level=None), "level", "None", "type"),
+    # verdict(low, high, threshold): more in test_robustness_verdicts_need_shares_...
+    (lambda: stats.verdict(0.5, 0.6, NAN), "threshold", "nan", "value"),
+    (lambda: stats.verdict(0.5, "0.6", 0.9), "high", "'0.6'", "type"),
+    (lambda: stats.verdict(-0.1, 0.6, 0.9), "low", "-0.1", "value"),
+    # paired_power(differences, n_seeds, alternative, rate, simulations, seed)
+    (lambda: stats.paired_power([], 5, "less"), "differences", "none", "value"),
+    (lambda: stats.paired_power([1.0, NAN], 5, "less"), "differences", "nan", "value"),
+    (lambda: stats.paired_power([1e308], 2, "less"), "differences", "1.e+308", "value"),
+    (lambda: stats.paired_power([1.0], 0, "less"), "n_seeds", "0", "value"),
+    (lambda: stats.paired_power([1.0], 1.5, "less"), "n_seeds", "1.5", "type"),
+    (lambda: stats.paired_power([1.0], 5, "two-sided"), "alternative", "'two-sided'", "value"),
+    (lambda: stats.paired_power([1.0], 5, "less", rate=0.0), "rate", "0.0", "value"),
+    (lambda: stats.paired_power([1.0], 5, "less", rate=NAN), "rate", "nan", "value"),
+    (lambda: stats.paired_power([1.0], 5, "less", simulations=0), "simulations", "0", "value"),
+    (lambda: stats.paired_power([1.0], 5, "less", simulations=99), "simulations", "99",
+     "value"),
+    (lambda: stats.paired_power([1.0], 5, "less", simulations=1e3), "simulations", "1000.0",
+     "type"),
+    (lambda: stats.paired_power([1.0], 5, "less", seed=-1), "seed", "-1", "value"),
+    # seeds_for_power(differences, alternative, power, rate, simulations, seed, most)
+    (lambda: stats.seeds_for_power([1.0], "less", power=1.0), "power", "1.0", "value"),
+    (lambda: stats.seeds_for_power([1.0], "less", power=NAN), "power", "nan", "value"),
+    (lambda: stats.seeds_for_power([1.0], "less", power="0.9"), "power", "'0.9'", "type"),
+    (lambda: stats.seeds_for_power([1.0], "less", most=0), "most", "0", "value"),
+    (lambda: stats.seeds_for_power([1.0], "less", most=2.0), "most", "2.0", "type"),
+    (lambda: stats.seeds_for_power([], "less"), "differences", "none", "value"),
+    (lambda: stats.seeds_for_power([1.0], "up"), "alternative", "'up'", "value"),
+    (lambda: stats.seeds_for_power([1.0], "less", rate=1.0), "rate", "1.0", "value"),
+    (lambda: stats.seeds_for_power([1.0], "less", simulations=0), "simulations", "0",
+     "value"),
+    (lambda: stats.seeds_for_power([1.0], "less", seed=-1), "seed", "-1", "value"),
+])
+def test_statistics_refuse_impossible_input(call, name, shown, kind):
+    refused(call, name, shown, kind)
+
+
 # --- icm.experiments ---------------------------------------------------------------------
 
 @pytest.mark.parametrize("run, kwargs, name, shown, kind", [

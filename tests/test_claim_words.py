@@ -175,8 +175,38 @@ PLANTED = {
 weak to carry it."""
 
 
+PLANTED_PLAIN = {
+    "every": "Red is mastered first in every layout.",
+    "always": "Red is always mastered first.",
+    "never": "The critic never fails to learn red.",
+    "in every seed": "Red came first in every seed.",
+    "at every point": "Red is predicted well at every point of the map.",
+    "in all N": "The teacher was sooner in all eight cases.",
+    "only because": "It learns red only because red is easy.",
+    "because": "Red is learned first because it is easy.",
+    "so ... no": "Red is learned at once, so no practice is needed.",
+    "clear": "Learning progress learns green with a clear lead.",
+    "clearly": "Growing up learns clearly faster.",
+    "exactly": "Red is mastered exactly when green is.",
+    "fastest": "Novelty learns the fastest.",
+    "most": "Red is mastered first most of the time.",
+}
+"""The same overclaims with no number and no bold text: a sentence that speaks of what
+the learners did needs its check all the same."""
+
+
 def test_every_pattern_has_a_planted_overclaim():
-    assert set(PLANTED) == set(claim_words.PATTERNS)
+    assert set(PLANTED) == set(claim_words.PATTERNS) == set(PLANTED_PLAIN)
+
+
+@pytest.mark.parametrize("pattern", sorted(PLANTED_PLAIN))
+def test_a_planted_overclaim_without_a_number_fails_too(pattern):
+    sentence = PLANTED_PLAIN[pattern]
+    found = claim_words.problems([sentence], {}, set())
+    assert len(found) == 1 and "with no check" in found[0] and pattern in found[0], found
+    # The same word in a sentence about the rules, not about what the learners did,
+    # is the code's to check.
+    assert claim_words.problems(["Each trial lights every button once."], {}, set()) == []
 
 
 @pytest.mark.parametrize("pattern", sorted(PLANTED))
@@ -199,6 +229,31 @@ def test_a_planted_overclaim_of_each_pattern_fails(pattern):
                 if pattern in f] == []
         assert "not checked" in claim_words.problems([sentence], {fragment: entry},
                                                      {"other"})[0]
+
+
+CARRIED_BY = {
+    "in every seed": set(), "at every point": {"all", "rule"}, "in all N": {"all", "rule"},
+    "every": {"all", "rule"}, "always": {"all", "rule"}, "never": {"all", "rule"},
+    "only because": {"causal"}, "because": {"causal", "rule"},
+    "so ... no": {"causal", "rule"}, "clear": {"corrected"}, "clearly": {"corrected"},
+    "exactly": {"exact"}, "fastest": {"corrected"},
+    "most": {"corrected", "majority", "bound", "rule"},
+}
+"""What carries each word, written out here as the specification (the module's table is
+what is tested against it): a mean never carries "never", "every" or "clear"."""
+
+
+@pytest.mark.parametrize("pattern, kind", [
+    (pattern, kind) for pattern in sorted(CARRIED_BY) for kind in sorted(claim_words.KINDS)])
+def test_each_word_is_carried_by_the_checks_of_its_strength_and_no_other(pattern, kind):
+    sentence = PLANTED[pattern][0]
+    entry = ("c", kind, "points") if kind == "all" else ("c", kind)
+    found = [f for f in claim_words.problems([sentence], {sentence[:20]: entry}, {"c"})
+             if f"{pattern!r}" in f]
+    if kind in CARRIED_BY[pattern]:
+        assert found == [], found
+    else:
+        assert any(f"{pattern!r} needs a check of kind" in f for f in found), found
 
 
 def test_every_seed_is_carried_by_no_check_and_all_needs_a_set_that_is_not_seeds():

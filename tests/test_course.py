@@ -231,7 +231,7 @@ def assignments(tmp_path_factory):
     """Every chapter's assignment, as `make assignments` writes it (otter assign), but
     without otter's run of the tests on the solutions (the tests above run them)."""
     out = tmp_path_factory.mktemp("assignments")
-    written = assign.assign(out, seed=SEED, run_tests=False, jobs=2, progress=lambda _: None)
+    written = assign.assign(out, seed=SEED, run_tests=False, progress=lambda _: None)
     return out, written
 
 

@@ -215,14 +215,21 @@ def test_every_order_of_the_peaks_has_its_own_words(default_run, red_peak, green
 def test_the_fewest_seeds_in_words_stay_true():
     from icm.chapters.words import in_seeds
 
-    assert in_seeds(1) == "in every seed"
+    # A lower end of an interval: "at least", rounded down; never 100%, never "every".
     assert in_seeds(0.965) == "in at least 96.5% of the seeds"  # 96.49999... in floats
     assert in_seeds(0.9656) == "in at least 96.5% of the seeds"  # rounded down, not up
     assert in_seeds(0.9996) == "in at least 99.9% of the seeds"  # never "100.0%"
     assert in_seeds(0) == "in at least 0.0% of the seeds"
-    for bad in (1.5, -0.1, float("nan")):
+    # A share seen in a sample: a count of it.
+    assert in_seeds(1, n_seeds=200) == "in 200 of the 200 seeds"
+    assert in_seeds(0.985, n_seeds=200) == "in at least 197 of the 200 seeds"
+    for bad in (1.5, -0.1, float("nan"), 1):  # 1: no interval's lower end reaches it
         with pytest.raises(ValueError, match="lowest"):
             in_seeds(bad)
+    with pytest.raises(ValueError, match="lowest"):
+        in_seeds(0.333, n_seeds=200)  # not a count of 200 seeds
+    with pytest.raises(ValueError, match="n_seeds"):
+        in_seeds(1, n_seeds=0)
     with pytest.raises(TypeError, match="lowest"):
         in_seeds("all")
 

@@ -9,6 +9,7 @@ import json
 import pathlib
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -108,7 +109,7 @@ def test_a_class_is_graded_case_by_case(graded):
 def test_each_student_gets_feedback_that_says_why_and_never_shows_a_hidden_case(graded):
     sheet, results, _ = graded
     folder = sheet.parent / f"{sheet.stem}-feedback"
-    assert files.is_ours(folder)
+    assert files.is_ours(folder, grade.COMMAND)
     assert sorted(p.name for p in folder.glob("*.md")) == sorted(
         f"{pathlib.Path(name).stem}.md" for name in results)
     correct = (folder / "correct.md").read_text()
@@ -348,7 +349,7 @@ def test_arguments_changed_in_place_are_changed_back_here():
     assert session.write_back(rng, moved) and rng.random() == moved.random()
 
 
-def test_control_groups_of_version_2_are_made_and_limited(tmp_path):
+def test_control_groups_of_version_2_are_made_and_limited(tmp_path, monkeypatch):
     root = tmp_path / "cgroup"
     root.mkdir()
     (root / "cgroup.controllers").write_text("cpu memory pids io\n")
@@ -357,10 +358,20 @@ def test_control_groups_of_version_2_are_made_and_limited(tmp_path):
     (root / cgroups.GROUP / "cgroup.subtree_control").write_text("")
     kind = sandbox.CgroupV2(root)
     assert kind.usable() == ""
-    assert (root / "cgroup.subtree_control").read_text() == "+memory +pids"
-    assert (root / cgroups.GROUP / "cgroup.subtree_control").read_text() == "+memory +pids"
-    group = kind.create("one", sandbox.Limits(memory=2 ** 30, processes=10))
+    assert (root / "cgroup.subtree_control").read_text() == "+memory +pids +cpu"
+    assert (root / cgroups.GROUP / "cgroup.subtree_control").read_text() == \
+        "+memory +pids +cpu"
+    real_mkdir = pathlib.Path.mkdir
+
+    def mkdir_with_files(self, *args, **kwargs):  # as the kernel fills a new group
+        real_mkdir(self, *args, **kwargs)
+        if self.parent == root / cgroups.GROUP:
+            (self / "cpu.max").write_text("max 100000")
+    monkeypatch.setattr(pathlib.Path, "mkdir", mkdir_with_files)
+    group = kind.create("one", sandbox.Limits(memory=2 ** 30, processes=10, cpus=1.5))
+    monkeypatch.undo()
     folder = root / cgroups.GROUP / "one"
+    assert (folder / "cpu.max").read_text() == "150000 100000"
     assert (folder / "memory.max").read_text() == str(2 ** 30)
     assert (folder / "pids.max").read_text() == "10"
     (folder / "memory.events").write_text("low 0\nhigh 0\nmax 3\noom 1\noom_kill 1\n")
@@ -379,7 +390,7 @@ def _controllers(tmp_path, text):
 
 
 @pytest.mark.skipif(not CONFINED.available, reason=f"no confinement: {CONFINED.problem}")
-def test_the_confinement_sees_only_the_system_python_numpy_and_the_runner():
+def test_the_confinement_sees_only_python_numpy_and_the_runner_and_refuses_calls():
     cells = ["import os, sys, socket\n"
              "seen = sorted(os.listdir('/'))\n"
              "grader = sorted(os.listdir('/grader'))\n"
@@ -388,18 +399,75 @@ def test_the_confinement_sees_only_the_system_python_numpy_and_the_runner():
              "import importlib.util\n"
              "missing = [m for m in ('icm', 'otter', 'pytest', 'pip') "
              "if importlib.util.find_spec(m) is not None]\n"
+             "import ctypes\n"
+             "libc = ctypes.CDLL(None, use_errno=True)\n"
+             "refused = []\n"
+             "for number in (248, 250, 272, 101, 323):  # add_key keyctl unshare ptrace "
+             "userfaultfd (x86-64)\n"
+             "    refused.append((libc.syscall(number, 0, 0, 0, 0, 0), ctypes.get_errno()))\n"
+             "status = open('/proc/self/status').read()\n"
+             "bounds = status.split('CapBnd:')[1].split()[0]\n"
              "def probe():\n"
-             "    return [seen, grader, packages, list(who), missing]\n"]
-    import time
+             "    return [seen, grader, packages, list(who), missing, refused, bounds]\n"]
 
     with sandbox.Confined(CONFINED, sandbox.Limits()) as run:
         run.start({"cells": cells, "functions": ["probe"]})
         while "ready" not in run.receive(time.monotonic() + 60):
             pass
         run.send({"id": 1, "call": "probe", "args": []})
-        seen, grader, packages, who, importable = runner.decode(
+        seen, grader, packages, who, importable, refused, bounds = runner.decode(
             run.receive(time.monotonic() + 60)["value"])
     assert "work" not in seen and "home" not in seen and "etc" not in seen
     assert grader == ["packages", "runner.py"]
     assert set(packages) <= {"numpy", "numpy.libs"}
     assert who == [65534, 65534, 1] and importable == []
+    import platform
+
+    if platform.machine() == "x86_64":  # the seccomp filter: each refused, EPERM
+        assert refused == [(-1, 1)] * 5, refused
+    if sandbox.drops_root():  # no capability left to gain, even through a setuid file
+        assert bounds == "0000000000000000"
+
+
+# --- the time limits: each fires once, at its limit, never a multiple of it -------------
+
+LOOP = "while True:\n    pass\n"
+
+
+def test_each_cell_past_its_limit_is_left_out_once_and_the_rest_is_graded(assignments,
+                                                                         tmp_path):
+    # Three cells that never end: each is left out once, at its own limit, and the
+    # notebook is run again without it (never rerun: three limits in all, not six); its
+    # answers are then graded in full.
+    folder = tmp_path / "class"
+    submission(assignments, folder, "loops", extra=[LOOP, LOOP, LOOP])
+    cell = 4.0
+    graded = grade.grade(folder, tmp_path / "g.csv", assignments=assignments,
+                         time_limit=120, cell_timeout=cell, trusted=not CONFINED.available,
+                         progress=lambda _: None)[0]
+    left_out = [note for note in graded.notes if "left out" in note]
+    assert len(left_out) == 3 and all("time limit of a cell" in n for n in left_out)
+    assert graded.total == 20 and not graded.problem
+    assert 3 * cell <= graded.seconds < 3 * cell + 30, graded.seconds
+
+
+def test_a_submission_is_stopped_at_its_own_limit_once_not_at_a_multiple(assignments,
+                                                                        tmp_path):
+    # Functions that never return, in a submission allowed less than one test's limit:
+    # the first call is stopped at the submission's limit, and nothing else runs (a
+    # limit counted per test or per exercise would let it run three times as long).
+    folder = tmp_path / "class"
+    looping = {name: f"def {signature}:\n" + "".join(f"    {line}\n" for line in
+                                                    LOOP.splitlines())
+               for name, signature in (("least_squares_slope", "least_squares_slope(values)"),
+                                       ("task_interest", "task_interest(history, others, "
+                                                         "window=5, new_task_factor=0.5)"))}
+    submission(assignments, folder, "loops", looping)
+    limit = 8.0
+    assert limit < EXERCISES["ex-least-squares-slope"].timeout
+    graded = grade.grade(folder, tmp_path / "g.csv", assignments=assignments,
+                         time_limit=limit, trusted=not CONFINED.available,
+                         progress=lambda _: None)[0]
+    assert graded.total == 0
+    assert "time limit" in graded.problem, graded.problem
+    assert limit <= graded.seconds < limit + 10, graded.seconds

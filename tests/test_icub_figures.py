@@ -212,3 +212,140 @@ def test_the_observation_table_shows_units_words_and_no_negative_zero():
             "observation['lights']", "0.5", "value")
     refused(lambda: icm.figures.observation_table({"fingertip": [np.nan, 0, 0]}),
             "observation['fingertip']", "nan", "value")
+
+
+# --- the chapter read by a newcomer (issue 43, second reading) -------------------------
+
+def _fingertip_at(physics, angles):
+    """The fingertip's world position with the right arm at `angles` (degrees, by joint
+    name; the others 0), from forward kinematics on a copy of the physics' data."""
+    import mujoco
+
+    from icm.envs import icub
+
+    arm = icub.Arm(physics)
+    data = mujoco.MjData(physics.model.ptr)
+    data.qpos[:] = physics.data.qpos
+    data.qpos[arm.qpos_index] = [np.deg2rad(angles.get(name, 0.0)) for name in icub.ARM_JOINTS]
+    mujoco.mj_kinematics(physics.model.ptr, data)
+    return data.site_xpos[arm.site_id].copy()
+
+
+def test_the_joint_table_says_which_way_each_joint_turns():
+    """JOINT_MOTIONS's words, on the model (x forward, y to the robot's left, z up)."""
+    from icm.chapters import simulated_icub as chapter
+
+    physics = buttons.load_physics()
+    physics.forward()
+    shoulder = physics.named.data.xpos["r_upper_arm"]
+    hanging = _fingertip_at(physics, {})
+    # every angle 0: the arm hangs straight along the torso, which leans forward (so the
+    # hand is below the shoulder and a little behind it)
+    along = (hanging - shoulder) / np.linalg.norm(hanging - shoulder)
+    torso_down = -physics.named.data.xmat["torso"].reshape(3, 3)[:, 2]
+    assert np.degrees(np.arccos(np.clip(along @ torso_down, -1, 1))) < 2
+    assert hanging[2] < shoulder[2] - 0.25 and hanging[0] < shoulder[0]
+    move = lambda angles, base={}: _fingertip_at(physics, {**base, **angles}) - \
+        _fingertip_at(physics, base)
+    pitch = move({"r_shoulder_pitch": -30})
+    assert pitch[0] > 0.05 and move({"r_shoulder_pitch": 30})[0] < 0  # forward, back
+    assert move({"r_shoulder_roll": 30})[1] < -0.05  # sideways, away from the body
+    assert move({"r_elbow": 30})[0] > 0.03  # bends: the forearm comes forward
+    bent = {"r_elbow": 90}
+    assert move({"r_shoulder_yaw": 30}, bent)[1] < -0.03  # the forearm swings out
+    wrist = move({"r_wrist_pitch": -30}, bent)
+    elbow = move({"r_elbow": 100}, bent)
+    assert wrist[2] > 0 and elbow[2] > 0  # both bend the same way: up
+    assert move({"r_wrist_yaw": 20}, bent)[1] > 0  # towards the robot's left
+    table = chapter.joint_table(physics)
+    assert all(chapter.JOINT_MOTIONS[name] in table for name in chapter.JOINT_MOTIONS)
+    refused(lambda: chapter.joint_table("physics"), "physics", "'physics'", "type")
+
+
+def test_the_buttons_are_numbered_from_the_robots_left():
+    env = icm.envs.load("buttons", physics=True, seed=0)
+    env.reset()
+    physics = env.physics
+    caps = [physics.named.data.geom_xpos[f"button{b}_cap"] for b in range(buttons.N_BUTTONS)]
+    assert all(np.diff([cap[1] for cap in caps]) < 0)  # y falls: from the robot's left
+    columns = figures_icub.project(physics, "eyes", caps, HEIGHT, WIDTH)[:, 0]
+    assert all(np.diff(columns) > 10)  # left to right through its eyes
+    # project agrees with the camera matrix the tests use for the fingertip
+    tip = figures_icub.project(physics, "close_up", physics.named.data.site_xpos["fingertip"],
+                               HEIGHT, WIDTH)[0]
+    assert tuple(np.round(tip).astype(int)) == fingertip_pixel(physics, "close_up")
+    fig = icm.figures.cameras_figure(physics, ["side", "eyes"], number_buttons=True)
+    side, eyes = fig.axes
+    assert [t.get_text() for t in eyes.texts] == [str(b) for b in range(buttons.N_BUTTONS)]
+    assert len(side.texts) == 0  # seen end on: numbers would overlap, none written
+    refused(lambda: icm.figures.cameras_figure(rods.load_physics(), ["eyes"],
+                                               number_buttons=True), "number_buttons",
+            "RodsPhysics", "value")
+
+
+def test_figure1b_sees_the_falling_rod_along_its_length_and_the_whole_robot():
+    physics = figures_icub.topple_moment()
+    from dm_control.mujoco import MovableCamera
+
+    view = figures_icub.ROD_VIEW
+    camera = MovableCamera(physics, 480, 640)
+    camera.set_pose(np.array(view["lookat"]), view["distance"], view["azimuth"],
+                    view["elevation"])
+    def red_rod(segmentation):
+        """The red rod's pixels and how elongated they are: the ratio of the long to the
+        short axis of their spread (about 1 for a square blob)."""
+        red = (segmentation[..., 0] == physics.model.name2id("red_rod", "geom")) & \
+            (segmentation[..., 1] == 5)
+        spread = np.linalg.eigvalsh(np.cov(np.vstack(np.nonzero(red))))
+        return red.sum(), np.sqrt(spread[1] / spread[0])
+
+    segmentation = camera.render(segmentation=True)
+    ids, kinds = segmentation[..., 0], segmentation[..., 1]
+    pixels, elongation = red_rod(segmentation)
+    assert pixels >= 4 * SEEN
+    # the falling rod's image is long (it is end on from the front, where it looked like
+    # a small cube: 1.4 when measured)
+    front = red_rod(physics.render(480, 640, camera_id="front", segmentation=True))[1]
+    assert elongation >= 2.5 and elongation > 1.5 * front, (elongation, front)
+    robot = np.isin(ids, robot_geoms(physics)) & (kinds == 5)
+    rows = np.flatnonzero(robot.any(axis=1))
+    assert rows[0] >= 8  # the head in frame
+    # (a): the open green lid and the shut red box in view, and the whole robot
+    physics, _ = figures_icub.press_moment(seed=0)
+    view = figures_icub.PRESS_VIEW
+    camera = MovableCamera(physics, 480, 640)
+    camera.set_pose(np.array(view["lookat"]), view["distance"], view["azimuth"],
+                    view["elevation"])
+    seen = {physics.model.id2name(int(g), "geom"): n for g, n in zip(*np.unique(
+        camera.render(segmentation=True)[..., 0], return_counts=True)) if g >= 0}
+    assert seen.get("green_lid", 0) >= 10 * SEEN and seen.get("red_lid", 0) >= 10 * SEEN, seen
+    assert physics.lid_angles()[1] > np.deg2rad(80)
+    assert seen.get("head", 0) > 2000 and seen.get("face", 0) > 500, seen
+
+
+def test_a_recorded_press_is_timed_from_its_start_and_lasts_its_phases():
+    from icm.chapters import simulated_icub
+
+    press = figures_icub.record_press(seed=0)
+    update = buttons.load_physics().model.opt.timestep * 10
+    assert np.isclose(press["time"][0], update)  # the first update ends 20 ms in
+    assert np.allclose(np.diff(press["time"]), update)
+    assert np.isclose(press["time"][-1], sum(simulated_icub.press_phases().values()))
+
+
+def test_the_eyes_see_the_hand_and_both_rods_through_the_chapters_topple():
+    env = rods.PhysicsRodTable(start_cell=(2, 0))
+    env.reset()
+    states = []
+    env.move(rods.ACTIONS.index("forward"),
+             recorder=lambda p: states.append((p.rod_tilt("red"), p.data.qpos.copy())))
+    tilts = np.array([tilt for tilt, _ in states])
+    physics = env.physics
+    for moment in (0, int(np.argmax(tilts > np.deg2rad(5))), len(states) - 1):
+        physics.data.qpos[:] = states[moment][1]
+        physics.forward()
+        seen = figures_icub.visible_geoms(physics, "eyes", HEIGHT, WIDTH)
+        for geom in ("r_finger", "red_rod", "blue_rod"):
+            assert seen.get(geom, 0) >= SEEN, (moment, geom, seen)
+    # the chapter's words: the rod rocks past flat, then settles near it
+    assert np.rad2deg(tilts.max()) > 90 and abs(np.rad2deg(tilts[-1]) - 90) < 5

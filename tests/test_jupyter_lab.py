@@ -14,6 +14,7 @@ two page loads, seconds on a quiet machine.
 import base64
 import json
 import os
+import pathlib
 import re
 import shutil
 import socket
@@ -128,6 +129,33 @@ def test_a_code_cells_figure_gets_its_caption_numbered_with_the_glued_ones():
     assert "**Fig. 2.2** Second." in lab.cells[4].source
 
 
+def test_cross_references_read_as_the_page_numbers_and_names_them():
+    notebook = _executed(["(sec-rods)=\n## The rod table\n\n:::{dropdown} Why a fold?\n"
+                          ":name: fold-why\nBecause.\n:::",
+                          "```{glue:figure} fig_a\n:name: fig-a\n\nA caption.\n```",
+                          "```{exercise} Implement: the minimum jerk\n:label: ex-jerk\n```",
+                          "See {numref}`fig-a`, {numref}`fig-code`, {numref}`Figure %s "
+                          "<fig-a>`, {numref}`ex-jerk`, {ref}`sec-rods`, {ref}`fold-why` "
+                          "and {ref}`the fold <fold-why>`."])
+    notebook.cells.insert(1, nbformat.v4.new_code_cell("figure()", metadata={
+        "mystnb": {"figure": {"caption": "First.", "name": "fig-code"}}}))
+    lab = lab_edition.lab_notebook(notebook, "students", TITLES, LABELS, chapter=3)
+    assert lab.cells[-1].source == ("See Fig. 3.2, Fig. 3.1, Figure 3.2, Exercise 3.1, The "
+                                    "rod table, Why a fold? and the fold.")
+
+
+def test_a_figure_of_another_chapter_reads_with_that_chapters_number():
+    other = _executed(["# Five", "```{glue:figure} fig_a\n:name: fig-5\n\nA caption.\n```"])
+    this = _executed(["See {numref}`fig-5` and {ref}`the other <fig-5>`."])
+    targets = lab_edition.book_targets({pathlib.Path("five.ipynb"): other}, {"five": 5})
+    lab = lab_edition.lab_notebook(this, "students", TITLES, LABELS, chapter=3,
+                                   book_targets=targets)
+    assert lab.cells[-1].source.split("---\n")[-1] == "See Fig. 5.1 and the other."
+    with pytest.raises(lab_edition.LabEditionError, match="'fig-5' is also five.ipynb's"):
+        lab_edition.book_targets({pathlib.Path("five.ipynb"): other,
+                                  pathlib.Path("six.ipynb"): other}, {"five": 5, "six": 6})
+
+
 def test_a_quiz_explanation_is_folded_until_the_student_looks():
     lab = _lab([":::{div} icm-quiz-explanation\nThe answer: {glue:text}`share:.0%`.\n:::",
                 ":::{div} other\nStays.\n:::"])
@@ -148,7 +176,8 @@ def test_the_students_notebooks_have_no_solution_the_instructors_have_theirs():
     ("{glue:math}`share`", "{glue:math}"),
     ("{doc}`nowhere`", "not a page of the book"),
     ("{cite:p}`nobody2020`", "not in references.bib"),
-    ("{numref}`fig-5`", "{numref}"),
+    ("{numref}`fig-5`", "names no figure, exercise, section or fold"),
+    ("{ref}`nowhere`", "names no figure, exercise, section or fold"),
     ("```{glue:math} share\n```", "{glue:math}")])
 def test_what_cannot_be_written_for_jupyter_is_refused_by_name(markdown, words):
     with pytest.raises(lab_edition.LabEditionError, match=re.escape(words)) as error:

@@ -780,3 +780,47 @@ def test_gravity_compensation_holds_the_arm_where_inverse_kinematics_aims_it():
     refused(lambda: chapter.hold_above_red(gravity_compensation="no"),
             "gravity_compensation", "no", "type")
     refused(lambda: chapter.hold_above_red(seconds=0), "seconds", "0", "value")
+
+
+def test_a_press_lasts_its_phases_and_the_claims_fail_when_it_does_not():
+    from icm.chapters import simulated_icub as chapter
+
+    phases = chapter.press_phases()
+    assert list(phases) == list(chapter.PRESS_PHASES)
+    console = buttons.PhysicsButtonConsole
+    update = 0.02
+    # each phase as run: the duration asked, to the nearest whole update
+    for seconds, asked in zip(phases.values(), (console.REACH_TIME, console.PUSH_TIME,
+                                                console.HOLD_TIME, console.LIFT_TIME,
+                                                console.RETURN_TIME)):
+        assert abs(seconds - asked) <= update / 2 + 1e-12
+        assert seconds / update == pytest.approx(round(seconds / update))
+    press = icm.figures.record_press(seed=3, button=1)  # an unlit button: no lid opens
+    claims = chapter.press_claims(press)
+    assert claims["press_is_its_phases"] and not claims["lid_opens_during_press"]
+    lit = icm.figures.record_press(seed=3)
+    assert chapter.press_claims(lit) == {name: True for name in chapter.PRESS_CLAIMS}
+    late = dict(lit, time=lit["time"] + update)  # a press one update longer
+    assert not chapter.press_claims(late)["press_is_its_phases"]
+    refused(lambda: chapter.press_claims({"time": []}), "press", "time", "type")
+
+
+def test_a_mean_over_few_seeds_peaks_higher_and_the_claims_fail_when_it_should():
+    from icm.chapters import simulated_icub as chapter
+
+    wide = icm.experiments.run_goal_oriented(n_seeds=40, n_trials=20, seed=7)
+    few = icm.experiments.run_goal_oriented(n_seeds=4, n_trials=10, seed=7)
+    assert chapter.peak_claims(wide, few) == {"icub_seeds_are_the_first": True}
+    other = icm.experiments.run_goal_oriented(n_seeds=4, n_trials=10, seed=8)
+    assert not chapter.peak_claims(wide, other)["icub_seeds_are_the_first"]
+    peaks = chapter.interest_peaks(wide)
+    red = wide.interest[:, :, 0]
+    # the mean's peak is at most the mean of the seeds' own peaks
+    assert peaks["mean_peak"] <= peaks["seed_peak"] + 1e-12
+    assert peaks["mean_peak"] == pytest.approx(red.mean(axis=0).max())
+    assert 1 <= peaks["first_peak_trial"] <= peaks["last_peak_trial"] <= wide.n_trials
+    low, high = peaks["quartile_trials"]
+    assert peaks["first_peak_trial"] <= low <= high <= peaks["last_peak_trial"]
+    assert peaks["started"] == int((wide.interest[:, 0, :] > 0).any(axis=1).sum())
+    refused(lambda: chapter.interest_peaks("run"), "result", "run", "type")
+    refused(lambda: chapter.peak_claims(wide, "run"), "few_run", "run", "type")

@@ -481,7 +481,7 @@ def test_the_chapters_verdicts_are_holm_corrected(study):
 
 def test_every_clear_verdict_has_its_replication(study):
     # A verdict the chapter calls clear is rerun on a fresh root (assets/replications.json,
-    # python -m icm.experiments.replication): none is missing there.
+    # python -m icm.chapters.replicate): none is missing there.
     stored = replication.load_replications()["forming_actions"]
     assert stored["root"] == REPLICATION_ROOTS["forming_actions"]
     assert stored["root"] not in remedies_study.ROOTS

@@ -75,8 +75,12 @@ def test_a_deck_holds_the_chapters_objectives_figures_and_takeaways(tmp_path):
     bare = _fake_book(tmp_path / "bare", with_blocks=False)
     text = slides.build_slides(bare, tmp_path / "bare-slides")[0].read_text()
     assert "Learning objectives" not in text and text.count("<section") == 3
+    with pytest.raises(ValueError, match="nothing does not exist"):
+        slides.build_slides(tmp_path / "nothing", tmp_path / "x")
+    (tmp_path / "nothing").mkdir()
     with pytest.raises(slides.SlidesError, match="not a built book"):
         slides.build_slides(tmp_path / "nothing", tmp_path / "x")
+    assert not (tmp_path / "x").exists()  # refused before anything was written
 
 
 def _items(html):

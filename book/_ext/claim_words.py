@@ -15,9 +15,11 @@ when it is built (`results.require`), and the kind one of those the pattern allo
 
 A few patterns are results wherever they stand ("in every seed", "only because", ...,
 `ANYWHERE`): they are read in every sentence, with a glued number or without.
-A sentence with no glued value and no bold text otherwise states a rule of the
-experiment or of the code ("every press", "never below the console's top"), which
-the code's tests check, not the chapter's data.
+A sentence that quotes no result and speaks of no outcome (`OUTCOMES`: mastered,
+learned, toppled, sooner, replicated, held, ...) states a rule of the experiment or
+of the code ("each press", "never below the console's top"), which the code's tests
+check, not the chapter's data. A strong word in a sentence that does speak of an
+outcome needs its check, glued number or not: "Red is always mastered first." fails.
 
 Glued phrases. A glued phrase ("sooner ... in all 8 cases") is chosen by the
 library from the data when the book is built, so its words change with the data; the
@@ -148,9 +150,20 @@ def sentences(markdown):
     return out
 
 
+OUTCOMES = re.compile(
+    r"\b(?:master(?:s|ed|y)?|learn(?:s|ed|t|ing)?|predict(?:s|ed)? well|toppl(?:es|ed)"
+    r"|comes? first|sooner|later|earlier|faster|slower|replicat\w*|trapped|fails?"
+    r"|holds?|held|outperforms?|beats?|wins?)\b", re.I)
+"""Words that speak of what the learners did in the runs (mastered, learned, toppled,
+came first, sooner, replicated, held, ...): a sentence with one of them reports a
+result even without a glued number ("Red is always mastered first.")."""
+
+
 def reports_a_result(sentence):
-    """Whether a sentence quotes a result: a glued value, or bold text."""
-    return bool(_GLUE.search(sentence) or _BOLD.search(sentence))
+    """Whether a sentence reports a result: it quotes one (a glued value), is in bold
+    (the chapters' claims), or speaks of what the learners did (`OUTCOMES`)."""
+    return bool(_GLUE.search(sentence) or _BOLD.search(sentence)
+                or OUTCOMES.search(with_glued(sentence, {}).replace("**", "")))
 
 
 def with_glued(sentence, glued):

@@ -190,9 +190,82 @@ def _cite(name, content, labels, where):
     return "[" + ", ".join(cited) + "]"
 
 
-def _roles(line, data, titles, labels, where):
+def _reference(name, content, targets, where):
+    """A cross-reference as the page writes it: {ref} as the target's title (or the
+    text given), {numref} as its number ("Fig. 3.2", "Exercise 3.1", or the text given
+    with its %s filled)."""
+    given = re.match(r"(?s)(.*?)\s*<([^>]*)>$", content)
+    text, label = (given.group(1), given.group(2)) if given else (None, content.strip())
+    target = (targets or {}).get(label)
+    if target is None:
+        raise LabEditionError(f"{where}: {{{name}}}`{content}` names no figure, exercise, "
+                              f"section or fold of the book")
+    if name == "ref":
+        return text or target["title"]
+    if target.get("number") is None:
+        raise LabEditionError(f"{where}: {{numref}}`{content}`: {label} has no number")
+    if text:
+        return text.replace("%s", target["number"])
+    return f"{target['kind']} {target['number']}"
+
+
+def targets_of(cells, chapter):
+    """The chapter's cross-reference targets, numbered as the page numbers them: its
+    figures (captioned code cells and glued figures, in order: "Fig." N.k), its
+    exercises ("Exercise" N.k), its labelled sections and folds (their titles).
+
+    Args:
+      cells: the chapter's cells (nbformat), in order.
+      chapter: the chapter's number (None: nothing numbered).
+
+    Returns:
+      {label: {"kind", "number" (None if not numbered), "title"}}.
+    """
+    found, figures, exercises = {}, 0, 0
+    number = lambda k: f"{chapter}.{k}" if chapter is not None else None
+    for cell in cells:
+        source = cell.source if isinstance(cell.source, str) else "".join(cell.source)
+        if cell.cell_type == "code":
+            figure = cell.get("metadata", {}).get("mystnb", {}).get("figure", {})
+            if figure.get("caption"):
+                figures += 1
+                if figure.get("name"):
+                    found[figure["name"]] = {"kind": "Fig.", "number": number(figures),
+                                             "title": f"Fig. {number(figures)}"}
+            continue
+        if cell.cell_type != "markdown":
+            continue
+        for match in re.finditer(r"(?m)^[ \t]*(`{3,}|:{3,})\{(glue:figure|exercise(?:-start)?|"
+                                 r"dropdown)\}[ \t]*(.*)$", source):
+            kind, argument = match.group(2), match.group(3).strip()
+            rest = source[match.end():]
+            option = re.match(r"(?:\n[ \t]*:[a-z_-]+:.*)*?\n[ \t]*:(?:name|label):[ \t]*(\S+)",
+                              rest)
+            label = option.group(1) if option else None
+            if kind == "glue:figure":
+                figures += 1
+                if label:
+                    found[label] = {"kind": "Fig.", "number": number(figures),
+                                    "title": f"Fig. {number(figures)}"}
+            elif kind.startswith("exercise"):
+                exercises += 1
+                if label:
+                    title = re.sub(r"^(Implement|Predict, then check|Extend):\s*", "", argument)
+                    found[label] = {"kind": "Exercise", "number": number(exercises),
+                                    "title": title}
+            elif label:
+                found[label] = {"kind": "", "number": None, "title": argument}
+        for match in re.finditer(r"(?m)^\(([\w-]+)\)=[ \t]*\n#+[ \t]+(.+)$", source):
+            found[match.group(1)] = {"kind": "", "number": None,
+                                     "title": match.group(2).strip()}
+    return found
+
+
+def _roles(line, data, titles, labels, where, targets=None):
     def replace(match):
         name, content = match.group("name"), match.group("content")
+        if name in ("ref", "numref"):
+            return _reference(name, content, targets, where)
         if name == "glue:text":
             return _text(data, content, where)
         if name == "glue:md":
@@ -204,8 +277,9 @@ def _roles(line, data, titles, labels, where):
         if name in RENDERED_AS_WRITTEN:
             return match.group(0)
         raise LabEditionError(f"{where}: the role {{{name}}} is not written for Jupyter "
-                              f"(lab_edition.py writes glue:text, glue:md, doc, cite:p "
-                              f"and cite:t, and leaves {', '.join(RENDERED_AS_WRITTEN)})")
+                              f"(lab_edition.py writes glue:text, glue:md, doc, ref, "
+                              f"numref, cite:p and cite:t, and leaves "
+                              f"{', '.join(RENDERED_AS_WRITTEN)})")
 
     return ROLE.sub(replace, line)
 
@@ -241,7 +315,8 @@ def _plain_words(markdown):
     return " ".join(re.sub(r"[*_`\\[\]]", "", markdown).split())
 
 
-def resolve_markdown(source, data, titles, labels, next_figure=None, where="cell"):
+def resolve_markdown(source, data, titles, labels, next_figure=None, where="cell",
+                     targets=None):
     """A Markdown cell's source with the book's own constructs written for Jupyter.
 
     Args:
@@ -252,6 +327,8 @@ def resolve_markdown(source, data, titles, labels, next_figure=None, where="cell
       next_figure: called once per glued figure, returns its number ("2.4"); None
         numbers none.
       where: the notebook and cell, for errors.
+      targets: the chapter's cross-reference targets (`targets_of`), for {ref} and
+        {numref}.
 
     Returns:
       (source, attachments): the MyST Markdown jupyterlab-myst renders, and the cell's
@@ -265,7 +342,7 @@ def resolve_markdown(source, data, titles, labels, next_figure=None, where="cell
     while index < len(lines):
         match = DIRECTIVE.match(lines[index])
         if not match:
-            out.append(_roles(lines[index], data, titles, labels, where))
+            out.append(_roles(lines[index], data, titles, labels, where, targets))
             index += 1
             continue
         indent, fence, name = match.group("indent", "fence", "name")
@@ -274,7 +351,7 @@ def resolve_markdown(source, data, titles, labels, next_figure=None, where="cell
             if argument.split() == [QUIZ_EXPLANATION]:
                 out.append(f"{indent}{fence}{{dropdown}} {QUIZ_DROPDOWN_TITLE}")
             else:
-                out.append(_roles(lines[index], data, titles, labels, where))
+                out.append(_roles(lines[index], data, titles, labels, where, targets))
             index += 1
             continue
         options, content, index = _block(lines, index, indent, fence, where)
@@ -289,7 +366,8 @@ def resolve_markdown(source, data, titles, labels, next_figure=None, where="cell
             attachments[attachment] = {"image/png": png if isinstance(png, str)
                                        else base64.b64encode(png).decode()}
             caption = "\n".join(_roles(line[len(indent):] if line.startswith(indent) else line,
-                                       data, titles, labels, where) for line in content)
+                                       data, titles, labels, where, targets)
+                                for line in content)
             alt = options.get("alt") or _plain_words(caption)
             out.append(f"{indent}![{alt}](attachment:{attachment})")
             if caption.strip():
@@ -324,7 +402,8 @@ def numbering_frontmatter(chapter):
     return f'---\nnumbering:\n  enumerator: "{chapter}.%s"\n---\n'
 
 
-def lab_notebook(executed, edition, titles, labels, chapter=None, name="notebook"):
+def lab_notebook(executed, edition, titles, labels, chapter=None, name="notebook",
+                 book_targets=None):
     """The chapter as `make lab` opens it (a new notebook; the argument is unchanged).
 
     Args:
@@ -335,6 +414,8 @@ def lab_notebook(executed, edition, titles, labels, chapter=None, name="notebook
       chapter: the chapter's number in the book, which numbers its exercises and
         figures as the page does (None: not numbered).
       name: the notebook's name, for errors.
+      book_targets: the other chapters' cross-reference targets (`book_targets`), for
+        a {ref} or {numref} to another chapter, as the page resolves it (default: none).
 
     Raises:
       LabEditionError: for a construct not written for Jupyter.
@@ -348,6 +429,7 @@ def lab_notebook(executed, edition, titles, labels, chapter=None, name="notebook
     if edition == "students":
         notebook = student_edition.strip_solutions(notebook, name)
     figures = []
+    targets = {**(book_targets or {}), **targets_of(notebook.cells, chapter)}
 
     def next_figure():
         figures.append(f"{chapter}.{len(figures) + 1}")
@@ -360,7 +442,8 @@ def lab_notebook(executed, edition, titles, labels, chapter=None, name="notebook
         cells.append(cell)
         if cell.cell_type == "markdown":
             cell.source, attachments = resolve_markdown(
-                cell.source, data, titles, labels, next_figure if chapter else None, where)
+                cell.source, data, titles, labels, next_figure if chapter else None, where,
+                targets)
             if attachments:
                 cell["attachments"] = {**cell.get("attachments", {}), **attachments}
             if not numbered:
@@ -379,7 +462,7 @@ def lab_notebook(executed, edition, titles, labels, chapter=None, name="notebook
                 # The page shows the caption under the cell's output; Jupyter shows
                 # none, so it follows the cell, as a Markdown cell of its own.
                 caption, _ = resolve_markdown(figure["caption"], data, titles, labels,
-                                              where=where)
+                                              where=where, targets=targets)
                 text = caption_markdown(next_figure(), caption) if chapter else caption
                 cells.append(nbformat.v4.new_markdown_cell(
                     text, metadata={"icm": {"caption_of": figure.get("name", "")}}))
@@ -501,13 +584,28 @@ EDITION_WORDS = {"students": "the students' edition, without the solutions",
                  "instructor": "the instructor's edition, with the solutions"}
 
 
+def book_targets(executed, numbers):
+    """Every chapter's cross-reference targets in one map (`targets_of`, each chapter
+    numbered by `numbers`), so that a chapter may name another's figure as the page
+    does; a label used by two chapters is an error, as Sphinx warns of it."""
+    found, owner = {}, {}
+    for path, notebook in executed.items():
+        for label, target in targets_of(notebook.cells, numbers.get(path.stem)).items():
+            if label in found:
+                raise LabEditionError(f"{path.name}: the label {label!r} is also "
+                                      f"{owner[label]}'s")
+            found[label], owner[label] = target, path.name
+    return found
+
+
 def prepare(path_output, edition, folder=None, root=ROOT):
     """Executes (what the cache lacks), writes the edition's notebooks into `folder`
     (default: `edition_folder`); returns the folder. Prints what it wrote and kept."""
     executed = executed_chapters(path_output, root)
     titles, labels, numbers = chapter_titles(root), citation_labels(root), chapter_numbers(root)
+    targets = book_targets(executed, numbers)
     notebooks = {path.name: lab_notebook(nb, edition, titles, labels,
-                                         numbers.get(path.stem), path.name)
+                                         numbers.get(path.stem), path.name, targets)
                  for path, nb in executed.items()}
     folder = pathlib.Path(folder) if folder else edition_folder(path_output, edition)
     written, kept = write_edition(folder, notebooks, edition)

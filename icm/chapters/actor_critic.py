@@ -127,6 +127,7 @@ STRONG_WORDS = {
          "across_layouts", "rule"),
     "(an action is a button's place: red's never changes)": (
         "tests/test_envs.py::test_red_never_moves_and_green_is_never_on_red", "rule"),
+    "green one on average and first in most seeds": ("red_first_mostly", "majority"),
 }
 """The chapter's sentences with a word of strength beside a result, and the checks that
 carry them (book/_ext/claim_words.py): {a fragment of the sentence: (claim name, or the

@@ -92,7 +92,13 @@ BOLD_CLAIMS = {
     "Novelty pays the coin exactly what it pays the sure outcome": ("novelty_blind", "exact"),
 }
 STRONG_WORDS = {
+    'How sure are "red before green" and "clearly sooner"?': ("clear_is_holm", "corrected"),
+    "Each clear one is rerun on a root seed no other run uses": ("clear_is_holm",
+                                                                  "corrected"),
     "the likelier one of them looks clear by luck": ("clear_is_holm", "corrected"),
+    # Every sentence that quotes a glued paired verdict ("clearly sooner", "no clear
+    # difference") quotes Holm's.
+    "{glue:text}`paired_": ("clear_is_holm", "corrected"),
     "a difference is called clear only if it survives it": ("clear_is_holm", "corrected"),
 }
 """The chapter's sentences with a word of strength beside a result, other than the bold

@@ -15,7 +15,7 @@ import json
 from icm import _validate
 from icm.chapters import curiosity, forming_actions, robustness
 from icm.chapters.replication import REPLICATION_FILE, load_replications
-from icm.store import ASSETS
+from icm.store import ASSETS, write_text
 
 
 def runs():
@@ -42,7 +42,7 @@ def main(argv=None):
     for chapter in chosen:
         out[chapter] = computed[chapter]()
     path = ASSETS / REPLICATION_FILE
-    path.write_text(json.dumps(out, indent=1) + "\n")
+    write_text(path, json.dumps(out, indent=1) + "\n")
     print(f"wrote {path}")
 
 

@@ -3,7 +3,7 @@ test otherwise uses (`icm.experiments.seeding.REPLICATION_ROOTS`): the rule
 (`replicated`), and the stored outcomes (`load_replications`).
 
 A verdict the book calls clear is rerun on its chapter's fresh root
-(`icm.chapters.forming_actions.run_replications`, `icm.chapters.curiosity.
+(`icm.chapters.forming_actions.family.run_replications`, `icm.chapters.curiosity.
 run_replications`, `icm.chapters.robustness.maps.run_replication`), and the outcome is kept
 in assets/replications.json: `python -m icm.chapters.replicate` writes it (every
 chapter, or those named: `python -m icm.chapters.replicate curiosity`), the one writer

@@ -2,7 +2,7 @@
 autograder, written by otter-grader (`otter assign`) from the chapter's own Exercises
 section.
 
-    python -m icm.course assign OUT [--seed N] [--chapters NAME ...] [--no-run-tests]
+    python -m icm.course assign OUT [--seed N] [--chapters NAME ...] [--no-run-tests] ...
 
 One source: the chapter's notebook holds each exercise's text (its sphinx-exercise
 block), its placeholder cell and its solution cells (tagged `solution`);
@@ -25,6 +25,10 @@ a student's would be (`icm.course.grade`; unless `--no-run-tests`), and every te
 must pass. The "predict, then check" questions stay in the book's pages (and
 `python -m icm.course lms`); the "extend" exercises go into the notebook as prompts
 with a cell for the answer, marked by hand.
+
+OUT must be new, empty, or this command's (`icm.files`), unless `--force`, and not in
+the book's sources; the chapters replace theirs in it only once all are written and
+their solutions pass (`icm.files.staged`): a failed run leaves OUT as it was.
 """
 
 import concurrent.futures
@@ -34,15 +38,15 @@ import json
 import pathlib
 import re
 import secrets
-import shutil
 import tempfile
 
 import nbformat
 import yaml
 
-from icm import _validate
+from icm import _validate, files, records
 from icm._book import toc_pages
 from icm.course.grade import MANIFEST  # the file, beside the autograder, `manifest` writes
+from icm.course.grade import MAX_JOBS  # the machine's cores
 from icm.exercises.registry import EXERCISES
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -55,8 +59,14 @@ SOLUTION_TAG = "solution"
 EXTEND_POINTS = 5.0
 """The points of an extend exercise, marked by hand (its marking guide, on the
 instructors' page, is out of this many)."""
+SOURCES = ("book", "_toc.yml", "_config.yml", "requirements.txt")
+"""What `assign` reads in the project's folder, which OUT may be neither in nor hold."""
 ROLE = re.compile(r"\{([a-z]+)(?::[a-z]+)?\}`([^`]*)`")
 """A MyST role (`{ref}`text <target>``, `{doc}`name``, ...)."""
+
+
+COMMAND = "python -m icm.course assign"
+"""The command, as the marker of its output folder names it (`icm.files.MARKER`)."""
 
 
 class AssignError(ValueError):
@@ -360,7 +370,8 @@ def grading_requirements(root=ROOT):
 
 
 def assign_chapter(name, path, out, seed, root=ROOT):
-    """Writes one chapter's assignment into `out/<name>` with otter assign.
+    """Writes one chapter's assignment into `out/<name>`, a folder that must not exist
+    yet, with otter assign.
 
     Args:
       name: the chapter's name.
@@ -374,6 +385,7 @@ def assign_chapter(name, path, out, seed, root=ROOT):
 
     Raises:
       AssignError: when the student's notebook holds what it must not.
+      icm.files.DestinationError: if `out/<name>` exists (this never replaces one).
     """
     import contextlib
     import io
@@ -382,7 +394,8 @@ def assign_chapter(name, path, out, seed, root=ROOT):
     from otter.assign import main as otter_assign
 
     result = pathlib.Path(out).resolve() / name
-    shutil.rmtree(result, ignore_errors=True)
+    if result.exists() or result.is_symlink():
+        raise files.DestinationError(f"{result} exists: assign_chapter writes a new folder")
     with tempfile.TemporaryDirectory(prefix=f"icm-assign-{name}-") as folder:
         master = pathlib.Path(folder) / f"{name}.ipynb"
         nbformat.write(master_notebook(name, path, seed, root), master)
@@ -391,8 +404,15 @@ def assign_chapter(name, path, out, seed, root=ROOT):
         with contextlib.redirect_stdout(io.StringIO()):
             otter_assign(str(master), str(result), no_pdfs=True, no_run_tests=True)
     check_student_notebook(name, path, result, seed)
-    (result / "autograder" / MANIFEST).write_text(json.dumps(manifest(name, path), indent=1))
+    files.write_text(result / "autograder" / MANIFEST, _manifest_text(name, path))
     return result
+
+
+def _manifest_text(name, path):
+    """The file `MANIFEST` (`manifest`), read back with the grader's model first."""
+    text = json.dumps(manifest(name, path), indent=1)
+    records.parse_json(text, records.Manifest, f"{name}'s manifest")  # (names the field)
+    return text
 
 
 def check_solutions(written, jobs=2, progress=print):
@@ -432,7 +452,7 @@ def check_solutions(written, jobs=2, progress=print):
                                   for test in exercise.tests for case in test.cases
                                   if not case.passed))
     if failed:
-        raise AssignError("the solutions fail their own tests:\n" + "\n".join(failed))
+        raise AssignError("the solutions fail their own tests: " + " | ".join(failed))
 
 
 def manifest(name, path):
@@ -522,44 +542,59 @@ def check_student_notebook(name, path, result, seed):
         raise AssignError(f"{name}: the student's notebook holds the hidden tests' seed")
 
 
-def assign(out, seed=None, names=None, run_tests=True, jobs=2, root=ROOT, progress=print):
+def assign(out, seed=None, names=None, run_tests=True, jobs=min(2, MAX_JOBS), root=ROOT,
+           progress=print, force=False):
     """Writes every chapter's assignment (or those named) into `out`.
+
+    Everything is checked before any work, `out` too (`icm.files.check_folder`); the
+    chapters replace theirs in `out` only once all are written and pass.
 
     Args:
       out: the output folder.
-      seed: the grading seed, an integer >= 0 (None: a fresh random one).
+      seed: the grading seed, an integer in 0..2**63-1 (None: a fresh random one).
       names: the chapters to write (None: every chapter with an implement exercise).
       run_tests: whether to grade each chapter's solutions with its autograder (every
         test must pass; a minute or two).
-      jobs: solutions graded at once.
+      jobs: solutions graded at once, from 1 to the machine's cores.
       root: the project's folder.
       progress: a function of one line, told what is done.
+      force: write into an existing folder that icm did not write (its other files
+        stay; a chapter's folder of the same name is replaced).
 
     Returns:
       {chapter name: its folder}.
 
     Raises:
       AssignError: for an unknown chapter or a chapter that cannot be assigned.
+      icm.files.DestinationError: for an `out` refused (see `icm.files.check_folder`).
+      ValueError: for a bad seed or jobs.
     """
-    seed = secrets.randbelow(2 ** 31) if seed is None else \
-        _validate.integer_at_least("seed", seed, 0)
-    jobs = _validate.integer_at_least("jobs", jobs, 1)
+    seed = secrets.randbelow(2 ** 31) if seed is None else _validate.seed("seed", seed)
+    jobs = _validate.integer("jobs", jobs, 1, MAX_JOBS)
+    run_tests = _validate.boolean("run_tests", run_tests)
+    force = _validate.boolean("force", force)
     known = dict(chapters(root))
     if names is not None:
         unknown = sorted(set(names) - set(known))
         if unknown:
             raise AssignError(f"unknown chapters {unknown}; the chapters are {sorted(known)}")
         known = {name: known[name] for name in names}
-    out = pathlib.Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = files.check_folder(out, force=force, inputs=[root / name for name in SOURCES],
+                             what="OUT", command=COMMAND)
     todo = {name: path for name, path in known.items()
             if any(e.kind == "implement" for e in chapter_exercises(path))}
-    written = {}
+    if not todo:
+        raise AssignError(f"no implement exercise in the chapters {sorted(known)}: nothing "
+                          f"to assign")
     for name, path in todo.items():
-        written[name] = assign_chapter(name, path, out, seed, root)
-        progress(f"[{len(written)}/{len(todo)}] {name}: "
-                 f"{written[name] / 'student' / (name + '.ipynb')}")
-    if run_tests and written:
-        progress("grading each chapter's solutions with its autograder ...")
-        check_solutions(written, jobs, progress)
-    return {name: written[name] for name in todo}
+        _manifest_text(name, path)  # (before any work)
+    with files.staged(out, command=COMMAND) as staging:
+        written = {}
+        for name, path in todo.items():
+            written[name] = assign_chapter(name, path, staging, seed, root)
+            progress(f"[{len(written)}/{len(todo)}] {name}: "
+                     f"{out / name / 'student' / (name + '.ipynb')}")
+        if run_tests:
+            progress("grading each chapter's solutions with its autograder ...")
+            check_solutions(written, jobs, progress)
+    return {name: out / name for name in todo}

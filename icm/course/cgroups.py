@@ -97,8 +97,14 @@ class _Group:
         return True
 
 
+CPU_PERIOD = 100_000
+"""The scheduler's period for a group's share of the processor, in microseconds."""
+
+
 class CgroupV1:
-    """Control groups of version 1: the memory and pids hierarchies.
+    """Control groups of version 1: the memory and pids hierarchies, and the cpu one
+    where it is mounted (a submission's processes then share `Limits.cpus` cores at
+    most, however many they are: 60 spinning processes take one core, not 60 shares).
 
     Args:
       root: where the hierarchies are mounted (/sys/fs/cgroup).
@@ -109,6 +115,7 @@ class CgroupV1:
     def __init__(self, root="/sys/fs/cgroup"):
         self.root = pathlib.Path(root)
         self.parents = [self.root / "memory" / GROUP, self.root / "pids" / GROUP]
+        self.cpu = self.root / "cpu" / GROUP
 
     def usable(self):
         """Why these groups cannot be used here, or "" if they can."""
@@ -122,6 +129,11 @@ class CgroupV1:
                 return f"cannot make a control group in {folder} ({error.strerror})"
             if not (folder / GROUP / probe).exists():
                 return f"the {hierarchy} controller is missing at {folder}"
+        if (self.root / "cpu" / "cpu.cfs_quota_us").exists():
+            try:
+                self.cpu.mkdir(exist_ok=True)
+            except OSError as error:
+                return f"cannot make a control group in {self.cpu.parent} ({error.strerror})"
         return ""
 
     def create(self, name, limits):
@@ -142,11 +154,19 @@ class CgroupV1:
         if swap.exists():  # with swap accounting: no swapping past the limit
             swap.write_text(str(limits.memory))
         (pids / "pids.max").write_text(str(limits.processes))
-        return _Group([memory, pids], limits, None)
+        folders = [memory, pids]
+        if self.cpu.is_dir():
+            cpu = self.cpu / name
+            cpu.mkdir()
+            (cpu / "cpu.cfs_period_us").write_text(str(CPU_PERIOD))
+            (cpu / "cpu.cfs_quota_us").write_text(str(int(limits.cpus * CPU_PERIOD)))
+            folders.append(cpu)
+        return _Group(folders, limits, None)
 
 
 class CgroupV2:
-    """Control groups of version 2, with the memory and pids controllers.
+    """Control groups of version 2, with the memory and pids controllers (and cpu's,
+    where it is enabled: see `CgroupV1`).
 
     Args:
       root: where the unified hierarchy is mounted (/sys/fs/cgroup).
@@ -167,12 +187,14 @@ class CgroupV2:
         missing = {"memory", "pids"} - set(controllers)
         if missing:
             return f"the cgroup v2 hierarchy at {self.root} lacks {sorted(missing)}"
+        wanted = ["memory", "pids"] + (["cpu"] if "cpu" in controllers else [])
         try:
             self.parent.mkdir(exist_ok=True)
             for folder in (self.root, self.parent):
                 enabled = (folder / "cgroup.subtree_control").read_text().split()
-                if not {"memory", "pids"} <= set(enabled):
-                    (folder / "cgroup.subtree_control").write_text("+memory +pids")
+                if not set(wanted) <= set(enabled):
+                    (folder / "cgroup.subtree_control").write_text(
+                        " ".join(f"+{name}" for name in wanted))
         except OSError as error:
             return f"cannot make a control group in {self.root} ({error.strerror})"
         return ""
@@ -185,4 +207,6 @@ class CgroupV2:
         if (folder / "memory.swap.max").exists():
             (folder / "memory.swap.max").write_text("0")
         (folder / "pids.max").write_text(str(limits.processes))
+        if (folder / "cpu.max").exists():
+            (folder / "cpu.max").write_text(f"{int(limits.cpus * CPU_PERIOD)} {CPU_PERIOD}")
         return _Group([folder], limits, folder / "cgroup.kill")

@@ -43,7 +43,7 @@ import secrets
 import time
 
 from icm import _validate, files, records
-from icm.course import gradebook, grading, sandbox, session
+from icm.course import gradebook, grading, limits, sandbox, session
 from icm.exercises._core import NOT_IMPLEMENTED
 from icm.exercises.registry import EXERCISES
 
@@ -55,12 +55,19 @@ CELL_TIMEOUT = 120.0
 """Seconds one cell may run before it is left out."""
 MEMORY_LIMIT = 4.0
 """GiB of memory for one submission, all its processes and its RAM disk together."""
-MAX_JOBS = os.cpu_count() or 1
+MAX_JOBS = limits.JOBS[1]
 """The most submissions graded at once: the machine's cores."""
 GRADING_SETUP = "import numpy as np"
 """What the grader runs in place of an assignment's setup cell left unchanged (the
 setup installs icm and otter and starts `grader.check`, which only the student's own
 kernel runs): the import it gives the student's answers."""
+MAX_SUBMISSION_BYTES = 32 * 2 ** 20
+"""The largest notebook read (a notebook with its outputs is a few MB)."""
+FEEDBACK_STEM_BYTES = 200
+"""The longest stem of a feedback file's name, in bytes (a name has at most 255, and
+its temporary name while it is written takes more)."""
+COMMAND = "grade"
+"""This command's name in the marker of the feedback folders it writes."""
 SETUP_MARK = "grader = otter.Notebook("
 """How the setup cell of an assignment's notebook is recognised."""
 
@@ -77,7 +84,8 @@ class Assignment:
       chapter: the chapter's name.
       number: its number in the book.
       title: its title.
-      exercises: its `records.ManifestExercise`s, in order (implement and extend).
+      exercises: its exercises (`records.ManifestExercise`), in order (implement and
+        extend).
       handed_out: the sources of the student's notebook's code cells that are not
         answer cells (setup, checks, export, the extend exercises' empty cells).
       setup: the source of its setup cell ("" if none).
@@ -210,10 +218,13 @@ def _judged(exercise, function, cases, hidden):
             for case in remaining:
                 verdicts.setdefault(case.name, gradebook.CaseGrade(case.name, False, stopped))
             break
-        except (TypeError, ValueError) as error:  # a function the check cannot call
+        except Exception as error:  # a function the check cannot call, or judge
+            text = str(error) if isinstance(error, (TypeError, ValueError)) else (
+                f"the check could not judge your function's answer ({type(error).__name__}"
+                f": {error})")
             for case in remaining:
                 verdicts.setdefault(case.name, gradebook.CaseGrade(case.name, False,
-                                                                   str(error)))
+                                                                   text[:2000]))
             break
         if order is None:
             order = list(result.cases)
@@ -230,8 +241,12 @@ def _judged(exercise, function, cases, hidden):
             passed_cases += [case for case in remaining if case.name == name]
         if failed is None:
             break
-        verdicts[failed] = gradebook.CaseGrade(failed, False,
-                                               grading.case_message(result, hidden))
+        message = grading.case_message(result, hidden)
+        if not hidden:  # its place among all the test's cases, not among those rerun
+            message = message.replace(result.headline(), f"{exercise.function}: case "
+                                      f"{order.index(failed) + 1} of {len(order)}, "
+                                      f"\"{failed}\", failed.", 1)
+        verdicts[failed] = gradebook.CaseGrade(failed, False, message)
         given = [case.name for case in remaining]
         if failed not in given:  # a case of the check's own: the last it judges
             break
@@ -357,16 +372,12 @@ def _submissions(folder):
 
 
 def _read(path):
-    """A submission's bytes, or (None, why not)."""
-    if path.is_symlink():
-        return None, "a symbolic link, not a file: not read"
+    """A submission's bytes, or (None, why not): a regular file only, not through a
+    link, of a sane size (`records.read_bytes`)."""
     try:
-        size = path.stat().st_size
-        if size > records.MAX_JSON_BYTES:
-            return None, f"larger than {records.MAX_JSON_BYTES // 2 ** 20} MiB: not read"
-        return path.read_bytes(), ""
-    except OSError as error:
-        return None, f"cannot be read ({error.strerror})"
+        return records.read_bytes(path, MAX_SUBMISSION_BYTES, follow=False), ""
+    except records.RecordError as error:
+        return None, str(error).split(": ", 1)[-1] + ": not read"
 
 
 def _is_grade_sheet(path):
@@ -405,21 +416,22 @@ def grade(submissions, out, assignments="_build/assignments", feedback_dir=None,
         (unless `trusted`).
       ValueError: for bad limits or destinations (before any work).
     """
-    time_limit = _validate.real("time_limit", time_limit, 1.0, 86400.0)
-    memory_limit = _validate.real("memory_limit", memory_limit, 0.25, 1024.0)
-    cell_timeout = _validate.real("cell_timeout", cell_timeout, 1.0, 86400.0)
-    jobs = _validate.integer("jobs", jobs, 1, MAX_JOBS)
+    time_limit = _validate.real("time_limit", time_limit, *limits.TIME_LIMIT)
+    memory_limit = _validate.real("memory_limit", memory_limit, *limits.MEMORY_LIMIT)
+    cell_timeout = _validate.real("cell_timeout", cell_timeout, *limits.CELL_TIMEOUT)
+    jobs = _validate.integer("jobs", jobs, *limits.JOBS)
     trusted = _validate.boolean("trusted", trusted)
-    submissions = pathlib.Path(submissions)
-    if not submissions.is_dir():
-        raise GradeError(f"the submissions' folder {submissions} does not exist")
+    try:
+        submissions = records.input_folder(submissions, "the submissions' folder")
+    except records.RecordError as error:
+        raise GradeError(str(error)) from None
     out = pathlib.Path(out)
     feedback_dir = pathlib.Path(feedback_dir) if feedback_dir else \
         out.parent / f"{out.stem}-feedback"
     inputs = [submissions, assignments] + ([roster] if roster else [])
     files.check_file(out, own=_is_grade_sheet, force=force, inputs=inputs, what="--out")
     files.check_folder(feedback_dir, force=force, inputs=inputs + [out],
-                       what="--feedback")
+                       what="--feedback", command=COMMAND)
     paths = _submissions(submissions)
     if not paths:
         raise GradeError(f"no notebook (*.ipynb) in {submissions}")
@@ -431,7 +443,7 @@ def grade(submissions, out, assignments="_build/assignments", feedback_dir=None,
         if not confinement.available:
             raise GradeError(f"submissions cannot be confined here: {confinement.problem}. "
                              f"Grade only notebooks you trust with --trusted")
-    limits = sandbox.Limits(memory=int(memory_limit * 2 ** 30),
+    run_limits = sandbox.Limits(memory=int(memory_limit * 2 ** 30),
                             cpu_seconds=int(time_limit) + 30)
     secret = secrets.token_bytes(32)  # this run's hidden cases; never written anywhere
     # Everything is read before any submission runs.
@@ -442,9 +454,10 @@ def grade(submissions, out, assignments="_build/assignments", feedback_dir=None,
         if data is None:
             graded = gradebook.Graded(name, problem=unread)
         else:
-            graded = grade_submission(name, data, loaded, secret, confinement, limits,
+            graded = grade_submission(name, data, loaded, secret, confinement, run_limits,
                                       time_limit, cell_timeout)
-        progress(f"{graded.submission}: {gradebook.number(graded.total)} of "
+        progress(f"{gradebook.printable(graded.submission)}: "
+                 f"{gradebook.number(graded.total)} of "
                  f"{gradebook.number(sum(graded.possible.values()))}"
                  + (f" ({graded.problem})" if graded.problem else "") +
                  f" [{graded.seconds:.0f} s]")
@@ -453,11 +466,31 @@ def grade(submissions, out, assignments="_build/assignments", feedback_dir=None,
     with concurrent.futures.ThreadPoolExecutor(jobs) as pool:
         results = list(pool.map(one, contents))
     gradebook.write_csv(results, loaded, out, students)
-    files.fresh_folder(feedback_dir)
-    written = set()
-    for graded in results:
-        stem = pathlib.Path(graded.submission).stem
-        name = f"{stem}.md" if stem.lower() not in written else f"{graded.submission}.md"
-        written.add(stem.lower())
-        files.write_text(feedback_dir / name, gradebook.feedback(graded))
+    with files.staged(feedback_dir, replace=True, command=COMMAND) as staging:
+        for graded, name in zip(results, feedback_names(results)):
+            files.write_text(staging / name, gradebook.feedback(graded))
     return results
+
+
+def feedback_names(results):
+    """Each submission's feedback file's name: its stem (cut to `FEEDBACK_STEM_BYTES`)
+    and ".md", made unique whatever the case ("-2", "-3", ...), so that no student's
+    feedback is written over another's.
+
+    Args:
+      results: the list of `gradebook.Graded`.
+
+    Returns:
+      The names, in the same order.
+    """
+    names, taken = [], set()
+    for graded in results:
+        stem = os.fsdecode(os.fsencode(pathlib.Path(graded.submission).stem)
+                           [:FEEDBACK_STEM_BYTES])
+        name, copy = f"{stem}.md", 1
+        while gradebook.folded(name) in taken:
+            copy += 1
+            name = f"{stem}-{copy}.md"
+        taken.add(gradebook.folded(name))
+        names.append(name)
+    return names

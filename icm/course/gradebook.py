@@ -9,8 +9,11 @@ written with a leading apostrophe.
 
 import csv
 import dataclasses
+import html
 import io
 import pathlib
+import re
+import unicodedata
 
 from icm import files, records
 
@@ -42,7 +45,7 @@ class TestGrade:
       name: "public test" or "hidden test N".
       hidden: whether its cases are hidden.
       points: its points.
-      cases: its `CaseGrade`s.
+      cases: its cases (`CaseGrade`).
     """
 
     name: str
@@ -66,7 +69,7 @@ class ExerciseGrade:
       label: the exercise's label.
       title: its number and title, e.g. "Exercise 2.1: the least-squares slope".
       possible: its points.
-      tests: its `TestGrade`s.
+      tests: its tests (`TestGrade`).
       problem: why it could not be tested at all ("" if it was).
     """
 
@@ -128,6 +131,27 @@ def number(value):
     return f"{round(value, 2):g}"
 
 
+def printable(text):
+    """`text` with its control characters and characters that cannot be written
+    escaped (a file's name printed in a terminal, or written into a sheet)."""
+    text = text.encode("utf-8", "backslashreplace").decode("utf-8")
+    return "".join(c if c.isprintable() else c.encode("unicode_escape").decode("ascii")
+                   for c in text)
+
+
+def folded(name):
+    """How file names are compared: compatibility-normalised and case-folded, so that
+    "MIKE.ipynb" and "mi\u212ae.ipynb" (a Kelvin sign for its K) are one name."""
+    return unicodedata.normalize("NFKC", name).casefold()
+
+
+def _fence(text):
+    """A code fence longer than any run of backticks in `text` (which then cannot close
+    it and turn what follows into Markdown or HTML)."""
+    longest = max((len(run) for run in re.findall(r"`+", text)), default=0)
+    return "`" * max(3, longest + 1)
+
+
 def safe_cell(value):
     """A value as a CSV cell that no spreadsheet reads as a formula.
 
@@ -137,8 +161,8 @@ def safe_cell(value):
     Returns:
       Its text, with a leading apostrophe if it starts as a formula does.
     """
-    text = str(value)
-    return "'" + text if text.startswith(FORMULA_STARTS) else text
+    text = printable(str(value))
+    return "'" + text if text.lstrip().startswith(FORMULA_STARTS) else text
 
 
 def read_roster(path):
@@ -156,11 +180,7 @@ def read_roster(path):
         bad row (named by its line), or a repeated id or file.
     """
     path = pathlib.Path(path)
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except (OSError, UnicodeDecodeError) as error:
-        raise records.RecordError(f"{path}: cannot be read as a UTF-8 CSV ({error})") \
-            from None
+    text = records.read_text(path).removeprefix("\ufeff")  # (a spreadsheet's BOM)
     reader = csv.DictReader(io.StringIO(text))
     fields = [name.strip().lower() for name in reader.fieldnames or ()]
     missing = [name for name in ("id", "name", "file") if name not in fields]
@@ -206,19 +226,25 @@ def write_csv(results, assignments, out, roster=None):
     header += [label if e.kind == "implement" else f"{label} (by hand, of {number(e.points)})"
                for label, e in columns]
     header += ["total", "possible", "problem"]
-    by_file = {graded.submission.lower(): graded for graded in results}
+    by_file = {}
+    for graded in results:
+        by_file.setdefault(folded(graded.submission), []).append(graded)
     rows = []
     listed = set()
     for student in roster or ():
-        graded = by_file.get(student.file.lower())
-        listed.add(student.file.lower())
+        matching = by_file.get(folded(student.file), [])
+        exact = [graded for graded in matching if graded.submission == student.file]
+        graded = exact[0] if exact else matching[0] if len(matching) == 1 else None
         if graded is None:
+            why = ("no submission" if not matching else "several submissions match this "
+                   "file: " + ", ".join(g.submission for g in matching))
             rows.append([student.id, student.name, student.file, ""] + [""] * len(columns)
-                        + ["0", "", "no submission"])
+                        + ["0", "", why])
         else:
+            listed.add(id(graded))
             rows.append([student.id, student.name] + _row(graded, columns))
     for graded in results:
-        if graded.submission.lower() in listed:
+        if id(graded) in listed:
             continue
         row = _row(graded, columns)
         if roster is not None:
@@ -253,7 +279,7 @@ def feedback(graded):
     Returns:
       The text.
     """
-    lines = [f"# Feedback: {graded.submission}", ""]
+    lines = [f"# Feedback: {html.escape(printable(graded.submission))}", ""]
     if graded.chapter is None or not graded.exercises and graded.problem:
         return "\n".join(lines + [f"Not graded: {graded.problem}.", ""])
     possible = sum(graded.possible.values())
@@ -262,8 +288,9 @@ def feedback(graded):
     if graded.problem:
         lines += [f"**The notebook as a whole:** {graded.problem}.", ""]
     if graded.notes:
-        lines += ["**Your notebook's cells, run by the grader:**", ""]
-        lines += [f"- {note}" for note in graded.notes] + [""]
+        notes = "\n".join(graded.notes)
+        lines += ["**Your notebook's cells, run by the grader:**", "",
+                  f"{_fence(notes)}text", notes, _fence(notes), ""]
     for grade in graded.exercises.values():
         lines += [f"## {grade.title} (`{grade.label}`): {number(grade.earned)} of "
                   f"{number(grade.possible)}", ""]
@@ -282,9 +309,10 @@ def feedback(graded):
                 if case.message == said:
                     lines.append(f"  - \"{case.name}\": failed, for the same reason")
                     continue
-                lines += [f"  - \"{case.name}\": failed", "", "    ```text"]
+                fence = _fence(case.message)
+                lines += [f"  - \"{case.name}\": failed", "", f"    {fence}text"]
                 lines += [f"    {line}" for line in case.message.splitlines()]
-                lines += ["    ```", ""]
+                lines += [f"    {fence}", ""]
                 said = case.message
         lines.append("")
     for label, title, points in graded.hand_marked:

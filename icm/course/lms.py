@@ -1,7 +1,7 @@
 """The book's "predict, then check" questions for a learning platform: one Moodle XML
 file holding all of them, read from the built book's pages.
 
-    python -m icm.course lms _build/html --out questions.xml
+    python -m icm.course lms _build/html --out questions.xml [--force]
 
 In the book a question is answered in the page, with no kernel (`icm.exercises.Choices`
 and `book/_static/icm-quiz.js`); its right option was chosen when the book was built,
@@ -14,6 +14,11 @@ filter typesets.
 
 The file is then read back with moodle-xml-parser (PyPI), a parser of Moodle's
 question format, and each question must come back as it was written (`validate`).
+
+The file to write is checked before any work (`icm.files.check_file`): it must end in
+.xml, may not lie in the built book, and an existing file is replaced only if it is an
+export of this command (its comment `SIGNATURE` on its second line), unless `force`.
+It is written under a temporary name and renamed.
 """
 
 import contextlib
@@ -22,7 +27,14 @@ import io
 import pathlib
 import xml.etree.ElementTree as ElementTree
 
+from icm import _validate, files, records
 from icm.course.assign import chapters
+
+DECLARATION = '<?xml version="1.0" encoding="UTF-8"?>'
+SIGNATURE = ("<!-- Moodle XML written by python -m icm.course lms: the book's \"predict, "
+             "then check\" questions. -->")
+"""The comment under the XML declaration that marks an export of this command (which
+it may replace)."""
 
 
 class ExportError(ValueError):
@@ -32,7 +44,10 @@ class ExportError(ValueError):
 def _soup(path):
     from bs4 import BeautifulSoup
 
-    return BeautifulSoup(path.read_text(encoding="utf-8"), "html.parser")
+    try:
+        return BeautifulSoup(records.read_text(path), "html.parser")
+    except records.RecordError as error:
+        raise ExportError(f"a page of the built book: {error}") from None
 
 
 def _html_of(nodes):
@@ -62,7 +77,8 @@ def quiz_questions(html_dir, root=None):
     Raises:
       ExportError: for a folder that is not a built book.
     """
-    html_dir = pathlib.Path(html_dir)
+    html_dir = records.input_folder(html_dir, "the built book's folder",
+                                    "build it first (make book)")
     names = [name for name, _ in (chapters() if root is None else chapters(root))]
     questions = []
     for number, name in enumerate(names, 1):
@@ -84,11 +100,18 @@ def quiz_questions(html_dir, root=None):
                 if getattr(child, "name", None) == "div":
                     break
                 text.append(child)
-            title = block.select_one("p.admonition-title").get_text(" ", strip=True)
+            title = block.select_one("p.admonition-title")
+            if title is None:
+                raise ExportError(f"{page_path.name}: the question {block.get('id')} has no "
+                                  f"title")
+            title = title.get_text(" ", strip=True)
             options = []
             for option in fieldset.select("div.icm-quiz-option"):
-                choice = option.find("input")
-                options.append((option.find("label").get_text(" ", strip=True),
+                choice, label = option.find("input"), option.find("label")
+                if choice is None or label is None:
+                    raise ExportError(f"{page_path.name}: an option of {block.get('id')} has "
+                                      f"no input or no label")
+                options.append((label.get_text(" ", strip=True),
                                 choice.get("data-correct") == "true",
                                 choice.get("data-hint", "")))
             if sum(right for _, right, _ in options) != 1:
@@ -149,8 +172,23 @@ def moodle_xml(questions, course="Intrinsic motivation on the iCub"):
             _text(answer, "feedback", "Right." if right else html.escape(hint, quote=False),
                   html_format=True)
     ElementTree.indent(quiz)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + \
-        ElementTree.tostring(quiz, encoding="unicode") + "\n"
+    return f"{DECLARATION}\n{SIGNATURE}\n" + ElementTree.tostring(quiz, encoding="unicode") + \
+        "\n"
+
+
+def is_export(path):
+    """Whether a file is an export of this command (its first two lines: the XML
+    declaration and `SIGNATURE`).
+
+    Args:
+      path: the file.
+
+    Returns:
+      True or False.
+    """
+    with open(path, "rb") as file:
+        start = file.read(len(DECLARATION) + len(SIGNATURE) + 2)
+    return start.decode("utf-8", "replace").split("\n")[:2] == [DECLARATION, SIGNATURE]
 
 
 def validate(xml_text, questions):
@@ -198,28 +236,34 @@ def validate(xml_text, questions):
     return problems
 
 
-def export_moodle(html_dir, out, root=None):
+def export_moodle(html_dir, out, root=None, force=False):
     """Writes every "predict, then check" question of the built book into one Moodle
     XML file, and checks that it reads back.
 
     Args:
       html_dir: the built book's HTML folder.
-      out: the file to write.
+      out: the file to write (.xml): new, or an export of this command (`is_export`),
+        never inside `html_dir`.
       root: the project's folder (default: this package's).
+      force: replace an existing file that is not an export of this command.
 
     Returns:
       The number of questions written.
 
     Raises:
       ExportError: when the book has no questions or the file does not read back.
+      icm.files.DestinationError: for an `out` refused, before any work.
     """
+    force = _validate.boolean("force", force)
+    out = pathlib.Path(out)
+    if out.suffix.lower() != ".xml":
+        raise files.DestinationError(f"--out {out}: a Moodle XML file's name ends in .xml")
+    files.check_file(out, own=is_export, force=force, inputs=[html_dir], what="--out")
     questions = quiz_questions(html_dir, root)
     text = moodle_xml(questions)
     problems = validate(text, questions)
     if problems:
-        raise ExportError("the Moodle XML does not read back as written:\n" +
-                          "\n".join(problems))
-    out = pathlib.Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(text, encoding="utf-8")
+        raise ExportError("the Moodle XML does not read back as written: " +
+                          "; ".join(problems))
+    files.write_text(out, text)
     return len(questions)

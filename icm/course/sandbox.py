@@ -55,6 +55,7 @@ import time
 from icm import _validate
 from icm.course import runner
 from icm.course.cgroups import CgroupV1, CgroupV2
+from icm.course.syscalls import seccomp_filter
 
 PACKAGES = ("numpy",)
 """What the student's code may import besides the standard library (and what those
@@ -90,14 +91,17 @@ class Limits:
       processes: processes and threads at once.
       disk: bytes of its RAM disk (its folder and /tmp).
       cpu_seconds: CPU seconds of each process.
+      cpus: cores its processes share at most, together (where the cpu controller is).
     """
 
     memory: int = 4 * 2 ** 30
     processes: int = 64
     disk: int = 256 * 2 ** 20
     cpu_seconds: int = 900
+    cpus: float = 1.0
 
     def __post_init__(self):
+        _validate.real("cpus", self.cpus, 0.1, 1024.0)
         _validate.integer("memory", self.memory, 64 * 2 ** 20, 2 ** 46)
         _validate.integer("processes", self.processes, 4, 4096)
         _validate.integer("disk", self.disk, 2 ** 20, 2 ** 40)
@@ -114,11 +118,13 @@ class Confinement:
       bwrap: the path of bubblewrap, or None.
       cgroups: a `CgroupV1` or `CgroupV2`, or None.
       problem: why the confinement is not available ("" if it is).
+      seccomp: the program's seccomp filter (`seccomp_filter`).
     """
 
     bwrap: str = None
     cgroups: object = None
     problem: str = ""
+    seccomp: bytes = b""
 
     @property
     def available(self):
@@ -170,7 +176,13 @@ def probe():
     if cgroups is None:
         return Confinement(bwrap, problem=f"no control group to limit a submission's "
                                           f"memory and processes: {why} ({INSTALL})")
-    confinement = Confinement(bwrap, cgroups)
+    try:
+        rules = seccomp_filter()
+    except (ImportError, OSError, RuntimeError) as error:
+        return Confinement(bwrap, cgroups, f"no seccomp filter: libseccomp is missing "
+                                           f"({error}; apt-get install libseccomp2, and "
+                                           f"pyseccomp from requirements.txt)")
+    confinement = Confinement(bwrap, cgroups, seccomp=rules)
     try:
         with Confined(confinement, Limits()) as trial:
             trial.start({"cells": [], "functions": []})
@@ -303,14 +315,17 @@ class Confined:
             Confined._count += 1
             return f"{os.getpid()}-{Confined._count}"
 
-    def start(self, job):
+    def start(self, job, deadline=None):
         """Starts the program and gives it its job (see `icm.course.runner`).
 
         Args:
           job: {"cells": [source, ...], "skip": [index, ...], "functions": [name, ...]}.
+          deadline: when the program must have taken its job, a `time.monotonic()` time
+            (None: no limit).
 
         Raises:
           OSError: if the program cannot be started.
+          Ended, TimedOut: if it did not take its job.
         """
         self.folder = pathlib.Path(tempfile.mkdtemp(prefix="icm-confined-"))
         packages = _package_folders()
@@ -321,7 +336,8 @@ class Confined:
             self._start_confined(packages)
             path = [f"{INSIDE}/packages"]
         self._drain_log()
-        self.send({**job, "path": path})
+        os.set_blocking(self.process.stdin.fileno(), False)  # (`send` never blocks)
+        self.send({**job, "path": path}, deadline)
 
     def _limit(self, pid):
         limits = self.limits
@@ -348,8 +364,9 @@ class Confined:
                      "--unshare-net", "--unshare-uts", "--unshare-cgroup",
                      "--hostname", "grading", "--die-with-parent", "--new-session",
                      "--as-pid-1", "--cap-drop", "ALL", "--clearenv"]
-        if drops_root():
-            arguments += ["--cap-add", "CAP_SETUID", "--cap-add", "CAP_SETGID"]
+        if drops_root():  # (setpriv needs these to drop to NOBODY and empty its bounds)
+            arguments += ["--cap-add", "CAP_SETUID", "--cap-add", "CAP_SETGID",
+                          "--cap-add", "CAP_SETPCAP"]
             user = [shutil.which("setpriv"), f"--reuid={NOBODY}", f"--regid={NOBODY}",
                     "--clear-groups", "--inh-caps=-all", "--bounding-set=-all",
                     "--no-new-privs", "--"]
@@ -367,16 +384,21 @@ class Confined:
                       "--size", str(self.limits.disk), "--tmpfs", "/tmp", "--chdir", "/tmp"]
         info_read, info_write = os.pipe()
         block_read, block_write = os.pipe()
-        arguments += ["--info-fd", str(info_write), "--block-fd", str(block_read)]
+        rules_read, rules_write = os.pipe()  # (the filter is small: the pipe holds it)
+        os.write(rules_write, self.confinement.seccomp)
+        os.close(rules_write)
+        arguments += ["--info-fd", str(info_write), "--block-fd", str(block_read),
+                      "--seccomp", str(rules_read)]
         arguments += user + [_python(), "-I", "-S", f"{INSIDE}/runner.py"]
         try:
             self.process = subprocess.Popen(
                 arguments, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                stderr=subprocess.PIPE, pass_fds=(info_write, block_read),
+                stderr=subprocess.PIPE, pass_fds=(info_write, block_read, rules_read),
                 start_new_session=True)
         finally:
             os.close(info_write)
             os.close(block_read)
+            os.close(rules_read)
         try:
             child = self._child_pid(info_read)
             self.group = self.confinement.cgroups.create(self._name(), self.limits)
@@ -424,23 +446,43 @@ class Confined:
         """The last lines the program printed, as text."""
         return bytes(self.log).decode(errors="replace")
 
-    def send(self, message):
-        """Sends one message to the program.
+    def send(self, message, deadline=None):
+        """Sends one message to the program, which must take it before `deadline`.
+
+        Args:
+          message: a dict.
+          deadline: a `time.monotonic()` time, or None for no limit.
 
         Raises:
           Ended: if the program has closed its input (it ended).
+          TimedOut: if it has not read the message by the deadline (a program that
+            stops reading fills the pipe: a write that waited on it would wait
+            forever).
         """
-        try:
-            self.process.stdin.write(runner.dumps(message))
-            self.process.stdin.flush()
-        except (BrokenPipeError, ValueError, OSError):
-            raise Ended("the program ended") from None
+        view = memoryview(runner.dumps(message))
+        pipe = self.process.stdin.fileno()
+        while view:
+            remaining = None if deadline is None else deadline - time.monotonic()
+            if remaining is not None and remaining <= 0:
+                raise TimedOut()
+            _, ready, _ = select.select([], [pipe], [], 1.0 if remaining is None
+                                        else min(remaining, 1.0))
+            if not ready:
+                continue
+            try:
+                view = view[os.write(pipe, view):]
+            except BlockingIOError:
+                continue
+            except OSError:  # BrokenPipeError: it ended
+                raise Ended("the program ended") from None
 
-    def receive(self, deadline):
+    def receive(self, deadline, limit=runner.MAX_LINE):
         """The next message from the program.
 
         Args:
           deadline: a `time.monotonic()` time.
+          limit: the longest message taken, in bytes (a longer one is refused before
+            it is decoded).
 
         Returns:
           A dict.
@@ -462,9 +504,11 @@ class Confined:
             if not chunk:
                 raise Ended("the program ended")
             self.pending += chunk
-            if len(self.pending) > runner.MAX_LINE:
-                raise runner.WireError("a message too long")
+            if len(self.pending) > limit:
+                raise runner.WireError(f"a message longer than {limit} bytes")
         line, self.pending = self.pending.split(b"\n", 1)
+        if len(line) > limit:
+            raise runner.WireError(f"a message longer than {limit} bytes")
         return runner.loads(line)
 
     def close(self):

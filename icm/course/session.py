@@ -34,6 +34,11 @@ PARAMETER_KINDS = type(inspect.Parameter.POSITIONAL_ONLY)
 """The kinds of a parameter (positional only, ..., keyword only), by number."""
 
 
+REPLY_BYTES = 2 ** 20
+"""The longest reply to a call, in bytes (3,000 draws of a rule take about 10 kB): a
+longer one is refused before the grader decodes it."""
+
+
 class Unsendable:
     """What a student's function returned that cannot cross (an object of a class of
     its own, a function): a wrong result, shown as what it was.
@@ -249,11 +254,14 @@ class Session:
             if time.monotonic() >= self.deadline:
                 raise SessionOver("the submission's time limit passed while its cells ran")
             self.runs += 1
+            job = {"cells": self.cells, "skip": sorted(self.skip), "functions": self.functions}
+            if len(runner.dumps(job)) > runner.MAX_LINE - 4096:
+                raise SessionOver(f"the notebook's code is larger than the grader takes "
+                                  f"({runner.MAX_LINE // 2 ** 20} MiB, written as JSON)")
             self.run = sandbox.Confined(self.confinement, self.limits)
-            self.run.start({"cells": self.cells, "skip": sorted(self.skip),
-                            "functions": self.functions})
             current = None
             try:
+                self.run.start(job, self.deadline)
                 while True:
                     message = self.run.receive(self._remaining(self.cell_timeout)
                                                if current is not None else self.deadline)
@@ -310,7 +318,7 @@ class Session:
                           f"{str(found.get('type'))[:40]}")
         try:
             signature = _signature(found.get("parameters") or [])
-        except (runner.WireError, TypeError, ValueError):
+        except Exception:  # whatever the notebook's process described
             return None, f"`{name}`'s parameters could not be read"
         return RemoteFunction(self, name, signature), ""
 
@@ -331,20 +339,27 @@ class Session:
         request = {"id": self.next_id, "call": name, "args": runner.encode(list(arguments))}
         if times is not None:
             request["times"] = times
+        deadline = min(self.call_deadline, self.deadline)
         try:
-            self.run.send(request)
-            reply = self.run.receive(min(self.call_deadline, self.deadline))
+            self.run.send(request, deadline)
+            reply = self.run.receive(deadline, limit=REPLY_BYTES)
             if reply.get("id") != self.next_id:
                 raise runner.WireError("an answer to another call")
             if "refused" in reply:
                 raise runner.WireError(str(reply["refused"])[:200])
             if "unsendable" in reply:
                 return {"value": Unsendable(str(reply["unsendable"])[:200]), "args": []}
-            decoded = {"args": runner.decode(reply.get("args"))}
-            if "raised" in reply:
-                decoded["raised"] = reply["raised"]
-            else:
-                decoded["value"] = runner.decode(reply.get("value"))
+            try:
+                decoded = {"args": runner.decode(reply.get("args"))}
+                if "raised" in reply:
+                    decoded["raised"] = reply["raised"]
+                else:
+                    decoded["value"] = runner.decode(reply.get("value"))
+            except runner.WireError:
+                raise
+            except Exception as error:  # whatever a malformed value makes of decoding
+                raise runner.WireError(f"a malformed value ({type(error).__name__})") \
+                    from None
             return decoded
         except sandbox.TimedOut:
             reason = "it took longer than its time limit: look for a loop that never ends"

@@ -4,7 +4,7 @@ of its figures with its caption, its key takeaways (the block of class
 `icm-takeaways`) and the list of its exercises. Nothing is typed a second time: a
 deck changes when its chapter does.
 
-    python -m icm.course slides _build/html --out _build/slides     (make slides)
+    python -m icm.course slides _build/html --out _build/slides [--force]   (make slides)
 
 The decks work offline: reveal.js (and MathJax, for the formulas) come from the
 book's vendored copies (`book/_static/vendor`, copied into the built book's
@@ -15,14 +15,21 @@ to the window): a figure is stretched to the height its caption leaves it (revea
 `r-stretch`), and a list too long for one slide goes on over the next ones, split
 between its items (`split_text`). tests/test_slides.py opens every deck in Chromium
 and measures every slide.
+
+The decks' folder is checked before any work (`icm.files.check_folder`): new, empty,
+or a folder icm wrote (its marker, `icm.files.MARKER`), unless `force`; never the
+built book, inside it, or holding it. The decks are written into a staging folder
+inside it and replace the old ones only when all are written (`icm.files.staged`).
+A figure is copied only from inside the built book.
 """
 
 import html
 import math
+import os
 import pathlib
 import shutil
 
-from icm import _validate
+from icm import _validate, files, records
 from icm.course.assign import chapters
 
 OBJECTIVES = "icm-objectives"
@@ -61,6 +68,10 @@ _STYLE = """
 """
 
 
+COMMAND = "python -m icm.course slides"
+"""The command, as the marker of its output folder names it (`icm.files.MARKER`)."""
+
+
 class SlidesError(ValueError):
     """A built book the decks cannot be made from."""
 
@@ -68,7 +79,10 @@ class SlidesError(ValueError):
 def _soup(path):
     from bs4 import BeautifulSoup
 
-    return BeautifulSoup(path.read_text(encoding="utf-8"), "html.parser")
+    try:
+        return BeautifulSoup(records.read_text(path), "html.parser")
+    except records.RecordError as error:
+        raise SlidesError(f"a page of the built book: {error}") from None
 
 
 def _clean(node):
@@ -342,54 +356,71 @@ Reveal.initialize({{
 """
 
 
-def build_slides(html_dir, out, root=None):
+def _figure_source(html_dir, page, src):
+    """The file of a figure a page shows, which must be a file of the built book."""
+    source = pathlib.Path(os.path.realpath(page.parent / src))
+    book = pathlib.Path(os.path.realpath(html_dir))
+    if book not in source.parents or not source.is_file():
+        raise SlidesError(f"{page}: the figure {src[:200]!r} is not a file of the built "
+                          f"book {html_dir}")
+    return source
+
+
+def build_slides(html_dir, out, root=None, force=False):
     """Writes one deck per chapter into `out`, with what they need to work offline.
 
     Args:
       html_dir: the built book's HTML folder (with `book/<chapter>.html` and
         `_static/vendor`).
-      out: the decks' folder (emptied first).
+      out: the decks' folder: new, empty, or one icm wrote (whose contents the decks
+        replace); never `html_dir`, inside it or holding it.
       root: the project's folder (default: this package's), for the chapters' order.
+      force: write into an existing folder that icm did not write (its other files
+        stay).
 
     Returns:
       The decks' paths, in the book's order.
 
     Raises:
       SlidesError: for a folder that is not a built book.
+      icm.files.DestinationError: for an `out` refused, before any work.
     """
-    html_dir = pathlib.Path(html_dir)
+    force = _validate.boolean("force", force)
+    out = files.check_folder(out, force=force, inputs=[html_dir], what="--out",
+                             command=COMMAND)
+    html_dir = records.input_folder(html_dir, "the built book's folder",
+                                    "build it first (make book)")
     vendor = html_dir / "_static" / "vendor"
-    if not (vendor / "reveal" / "dist" / "reveal.js").exists():
+    if not (vendor / "reveal" / "dist" / "reveal.js").is_file() or \
+            not (vendor / "mathjax").is_dir():
         raise SlidesError(f"{html_dir} is not a built book with the vendored reveal.js "
-                          f"(_static/vendor/reveal): build it with `make book`")
-    out = pathlib.Path(out)
-    if out.exists():
-        shutil.rmtree(out)
-    (out / "images").mkdir(parents=True)
-    shutil.copytree(vendor / "reveal", out / "reveal")
-    shutil.copytree(vendor / "mathjax", out / "mathjax")
+                          f"and MathJax (_static/vendor): build it with `make book`")
     names = [name for name, _ in (chapters() if root is None else chapters(root))]
-    decks, titles = [], []
-    for number, name in enumerate(names, 1):
-        page = html_dir / "book" / f"{name}.html"
-        if not page.exists():
+    pages = [html_dir / "book" / f"{name}.html" for name in names]
+    for page in pages:
+        if not page.is_file():
             raise SlidesError(f"{page} is missing: build the book first")
-        content = chapter_slides(page)
-        for figure in content["figures"]:
-            if figure["src"].startswith("data:"):
-                continue
-            source = (page.parent / figure["src"]).resolve()
-            target = out / "images" / source.name
-            shutil.copyfile(source, target)
-            figure["src"] = f"images/{source.name}"
-        deck = out / f"{name}.html"
-        deck.write_text(deck_html(content, number), encoding="utf-8")
-        decks.append(deck)
-        titles.append(content["title"])  # for the index: each page is read once
-    items = "".join(f'<li><a href="{deck.name}">{i}. {html.escape(title)}</a></li>'
-                    for i, (deck, title) in enumerate(zip(decks, titles), 1))
-    (out / "index.html").write_text(
-        f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>Slides</title>'
-        f'</head><body><h1>Intrinsic motivation on the iCub: the slides</h1><ol>{items}'
-        f'</ol></body></html>\n', encoding="utf-8")
+    with files.staged(out, replace=True, command=COMMAND) as staging:
+        (staging / "images").mkdir()
+        shutil.copytree(vendor / "reveal", staging / "reveal", symlinks=True)
+        shutil.copytree(vendor / "mathjax", staging / "mathjax", symlinks=True)
+        decks, titles = [], []
+        for number, (name, page) in enumerate(zip(names, pages), 1):
+            content = chapter_slides(page)
+            for figure in content["figures"]:
+                if figure["src"].startswith("data:"):
+                    continue
+                source = _figure_source(html_dir, page, figure["src"])
+                shutil.copyfile(source, staging / "images" / source.name)
+                figure["src"] = f"images/{source.name}"
+            files.write_text(staging / f"{name}.html", deck_html(content, number))
+            decks.append(out / f"{name}.html")
+            titles.append(content["title"])  # for the index: each page is read once
+        items = "".join(f'<li><a href="{deck.name}">{i}. {html.escape(title)}</a></li>'
+                        for i, (deck, title) in enumerate(zip(decks, titles), 1))
+        files.write_text(
+            staging / "index.html",
+            f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>Slides'
+            f'</title></head><body><h1>Intrinsic motivation on the iCub: the slides</h1>'
+            f'<ol>{items}</ol></body></html>\n')
     return decks

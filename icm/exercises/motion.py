@@ -32,25 +32,29 @@ def public_cases():
     Returns:
       A list of `icm.exercises._core.Case`.
     """
+    derive = "Solve the three conditions at s = 1 for a3, a4 and a5 (those at s = 0 make " \
+             "a0 = a1 = a2 = 0): x(1) = 1, x'(1) = 0, x''(1) = 0."
     cases = [
-        Case("the start: fraction 0", (0.0,), "At the start the profile is 0."),
-        Case("the end: fraction 1", (1.0,), "At the end the profile is 1: the target is "
-             "reached exactly (10 - 15 + 6 = 1)."),
+        Case("the start: fraction 0", (0.0,), "At the start nothing has moved: x(0) = 0."),
+        Case("the end: fraction 1", (1.0,), "At the end the targets are there: x(1) = 1, so "
+             "the coefficients add up to 1. Check your signs."),
         Case("half-way: fraction 0.5", (0.5,), "Half-way in time is half-way in space: the "
-             "profile is symmetric."),
-        Case("a quarter of the time", (0.25,), "The profile is 10 s^3 - 15 s^4 + 6 s^5 "
-             "(not the cubic 3 s^2 - 2 s^3, which has a jump in acceleration at the ends)."),
-        Case("three quarters of the time", (0.75,), "10 s^3 - 15 s^4 + 6 s^5."),
+             "conditions are the same seen from either end."),
+        Case("a quarter of the time", (0.25,), "All six conditions must hold, the "
+             "acceleration's too: the cubic 3 s^2 - 2 s^3 starts and stops with no speed, "
+             "but its acceleration jumps at both ends. " + derive),
+        Case("three quarters of the time", (0.75,), derive),
     ]
     for i, s in enumerate(np.linspace(0.05, 0.95, 7).round(3).tolist()):
-        cases.append(Case(f"fraction {s}", (s,), "10 s^3 - 15 s^4 + 6 s^5."))
+        cases.append(Case(f"fraction {s}", (s,), derive))
     return cases
 
 
 def check_minimum_jerk(minimum_jerk_function, cases=None):
     """Checks a student's minimum-jerk profile, `f(fraction)`: the share of the way
-    covered at `fraction` (0 to 1) of the motion's time, 10 s^3 - 15 s^4 + 6 s^5, which
-    starts and ends with zero speed and zero acceleration.
+    covered at `fraction` (0 to 1) of the motion's time, the polynomial of degree five
+    that goes from 0 to 1 and starts and ends with zero speed and zero acceleration
+    (the exercise asks the student to derive it).
 
     Args:
       minimum_jerk_function: the student's function.
@@ -82,5 +86,7 @@ def hidden_cases(rng):
     cases = [Case("the start (hidden)", (0.0,), "At the start the profile is 0."),
              Case("the end (hidden)", (1.0,), "At the end the profile is 1.")]
     for s in np.sort(rng.uniform(0.01, 0.99, 6)).round(4).tolist():
-        cases.append(Case(f"a fraction of the time (hidden)", (s,), "10 s^3 - 15 s^4 + 6 s^5."))
+        cases.append(Case("a fraction of the time (hidden)", (s,), "The polynomial of degree "
+                          "five with x(0) = 0, x(1) = 1 and no speed or acceleration at "
+                          "either end."))
     return cases

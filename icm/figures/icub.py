@@ -65,6 +65,29 @@ def visible_geoms(physics, camera, height=240, width=320):
     return {physics.model.id2name(int(g), "geom"): int(n) for g, n in zip(geoms, counts)}
 
 
+def project(physics, camera, points, height=480, width=640):
+    """Where world `points` (n, 3) appear in an image of `camera` (its size `height` x
+    `width`): an array (n, 2) of (column, row) pixel coordinates, from dm_control's
+    camera matrix."""
+    from dm_control.mujoco import Camera
+
+    camera = check_camera(physics, camera)
+    height, width = check_image_size(height, width)
+    points = np.atleast_2d(_validate.finite_array("points", points))
+    if points.shape[1] != 3:
+        raise ValueError(f"points must be an array (n, 3) of world positions, got shape "
+                         f"{points.shape}")
+    return _pixels(Camera(physics, height, width, camera_id=camera).matrix, points)
+
+
+def _label(ax, xy, text, offset=(0, -40), fontsize=8):
+    """Writes `text` in a white box near pixel `xy` of an image axis, with an arrow to it."""
+    ax.annotate(text, xy=xy, xytext=offset, textcoords="offset points", ha="center",
+                fontsize=fontsize, bbox=dict(boxstyle="round,pad=0.25", facecolor="white",
+                                             edgecolor="#444444", linewidth=0.8),
+                arrowprops=dict(arrowstyle="-|>", color="#222222", linewidth=1.2))
+
+
 def press_moment(seed=0):
     """The button scene at the moment of Figure 1 (a): the finger holding the lit green
     button down and the green lid open.
@@ -129,34 +152,102 @@ def toppling_rod(camera="front", height=480, width=640, start_cell=(2, 0), actio
     return render(topple_moment(start_cell, action), camera, height, width)
 
 
-def figure1(seed=0, camera="front"):
+PRESS_VIEW = {"lookat": (0.35, -0.08, 0.6), "distance": 0.85, "azimuth": 210.0,
+              "elevation": -28.0}
+"""The free camera of Figure 1 (a) (MuJoCo's lookat, distance in metres, azimuth and
+elevation in degrees): in front of the robot and to its right, where the open green
+lid stands out against the table."""
+ROD_VIEW = {"lookat": (0.25, -0.08, 0.65), "distance": 0.7, "azimuth": 115.0,
+            "elevation": -16.0}
+"""The free camera of Figure 1 (b): from the robot's right, across the rod's fall, so
+that the falling rod is seen along its length, not end on (from the front it looks like
+a small cube)."""
+
+
+def _free_view(physics, view, height, width):
+    """(image, camera matrix) of a free camera posed by `view` (as `ROD_VIEW`)."""
+    from dm_control.mujoco import MovableCamera
+
+    camera = MovableCamera(physics, height, width)
+    camera.set_pose(np.array(view["lookat"], dtype=float), view["distance"], view["azimuth"],
+                    view["elevation"])
+    return camera.render(), camera.matrix
+
+
+def _pixels(matrix, points):
+    projected = np.column_stack([points, np.ones(len(points))]) @ matrix.T
+    return projected[:, :2] / projected[:, 2:3]
+
+
+def figure1(seed=0):
     """Figure 1, rebuilt from the model: (a) the iCub pushing the green button, the
-    green box open; (b) the iCub's hand toppling the red rod."""
+    green box open (seen from `PRESS_VIEW`); (b) the iCub's hand toppling the red rod,
+    seen from the robot's right (`ROD_VIEW`). Labels point at what each panel is about:
+    the open green lid and the shut red box, the falling red rod and the standing blue
+    one."""
+    height, width = 480, 640
     fig, (left, right) = new_figure(width=11, height=4.4, ncols=2)
-    for ax, image, title in [
-            (left, pressing_green(seed=seed, camera=camera),
-             "(a) pressing the green button opens the green box"),
-            (right, toppling_rod(camera=camera), "(b) the hand topples the red rod")]:
-        ax.imshow(image)
-        ax.set_title(textwrap.fill(title, 30), fontsize=10)
+    physics, _ = press_moment(seed)
+    image, matrix = _free_view(physics, PRESS_VIEW, height, width)
+    left.imshow(image)
+    lid, box = _pixels(matrix, [physics.named.data.geom_xpos["green_lid"],
+                                physics.named.data.geom_xpos["red_lid"]])
+    _label(left, lid, "green lid: open", offset=(10, 55))
+    _label(left, box, "red box: shut", offset=(40, -40))
+    rod_physics = topple_moment()
+    image, matrix = _free_view(rod_physics, ROD_VIEW, height, width)
+    right.imshow(image)
+    red, blue = _pixels(matrix, [rod_physics.named.data.xpos[f"{name}_rod"]
+                                 for name in rods.ROD_NAMES])
+    _label(right, red, "red rod: falling", offset=(-115, -20))
+    _label(right, blue, "blue rod: standing", offset=(55, 60))
+    for ax, title in [(left, "(a) pressing the green button opens the green box"),
+                      (right, "(b) the hand topples the red rod")]:
+        ax.set_title(textwrap.fill(title, 32), fontsize=10)
         ax.axis("off")
     return fig.describe("The paper's Figure 1, rendered from the model: (a) the iCub's "
-                        "finger holds the lit green button down and the green box is open; "
-                        "(b) the iCub's hand moves into the red rod, which falls.")
+                        "finger holds the lit green button down and the green box's lid is "
+                        "open, the red box shut; (b) seen from the robot's right, its hand "
+                        "has moved into the red rod, which falls, the blue rod standing.")
 
 
-def cameras_figure(physics, cameras, height=240, width=320):
-    """The scene of `physics` from each of `cameras`, side by side."""
+def cameras_figure(physics, cameras, height=240, width=320, number_buttons=False):
+    """The scene of `physics` from each of `cameras`, side by side.
+
+    Args:
+      physics: a scene's physics.
+      cameras: the names of its cameras to show, a non-empty list.
+      height, width: each image's size in pixels.
+      number_buttons: write each button's number above it (the button scene only),
+        in each view where the buttons are far enough apart for the numbers to be read.
+    """
     if isinstance(cameras, str) or not isinstance(cameras, (list, tuple)) or not cameras:
         raise _validate.ArgumentTypeError(f"cameras must be a non-empty list of camera "
                                           f"names, got {_validate.show(cameras)}")
     for camera in cameras:
         check_camera(physics, camera)
+    number_buttons = _validate.boolean("number_buttons", number_buttons)
+    if number_buttons and not isinstance(physics, buttons.ButtonsPhysics):
+        raise ValueError(f"number_buttons needs the button scene's physics, got "
+                         f"{type(physics).__name__}")
     fig, axes = new_figure(width=3.2 * len(cameras), height=2.7, ncols=len(cameras))
     for ax, camera in zip(np.atleast_1d(axes), cameras):
         ax.imshow(render(physics, camera, height, width))
         ax.set_title(camera_title(camera), fontsize=9)
         ax.axis("off")
+        if number_buttons:
+            physics.forward()
+            caps = [physics.named.data.geom_xpos[f"button{b}_cap"] + [0.0, 0.0, 0.03]
+                    for b in range(buttons.N_BUTTONS)]
+            pixels = project(physics, camera, caps, height, width)
+            if np.linalg.norm(np.diff(pixels, axis=0), axis=1).min() < 0.06 * width:
+                continue  # the buttons seen end on: the numbers would overlap
+            for b, (column, row) in enumerate(pixels):
+                if 0 <= column < width and 0 <= row < height:
+                    ax.text(column, row, str(b), ha="center", va="bottom", fontsize=8,
+                            fontweight="bold", bbox=dict(boxstyle="round,pad=0.12",
+                                                         facecolor="white", linewidth=0,
+                                                         alpha=0.85))
     return fig
 
 
@@ -170,7 +261,8 @@ def record_press(seed=0, button=None, camera=None, frame_every=2, height=240, wi
         control updates (40 ms of simulated time at 2).
 
     Returns:
-      A dict of arrays: "time" (s), "depth" (the pressed button's depth, mm), "other"
+      A dict of arrays: "time" (s since the press started, at the end of each update
+      of the motors' targets), "depth" (the pressed button's depth, mm), "other"
       (deepest of the other buttons, mm), "lids" (red and green lid angles, degrees),
       "fingertip" (m), "frames" (list of images), and "button", "boxes" (the
       observation after the press), "lights".
@@ -197,9 +289,10 @@ def record_press(seed=0, button=None, camera=None, frame_every=2, height=240, wi
             log["frame_index"].append(len(log["time"]) - 1)
 
     log["frame_index"] = []
+    started = env.physics.data.time
     boxes = env.press(button, recorder=recorder)
     out = {key: np.array(value) for key, value in log.items() if key != "frames"}
-    out["time"] = out["time"] - out["time"][0]
+    out["time"] = out["time"] - started  # the first update ends 20 ms after the start
     out.update(frames=log["frames"], button=button, boxes=boxes, lights=env.lights)
     out["captions"] = [f"t = {out['time'][i]:.2f} s, button {button} in "
                        f"{max(out['depth'][i], 0.0):.1f} mm\nlids: red "

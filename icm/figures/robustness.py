@@ -22,24 +22,41 @@ COLUMNS = 2
 
 
 def cell_percent(share):
-    """A cell's share in percent, without the sign: whole percents, with a decimal where
-    whole percents would show 100 or 0 for a share that is neither (199 seeds of 200:
-    "99.5", not "100", which a reader takes for every seed)."""
-    return percent(share).rstrip("%")
+    """A cell's share in percent, without the sign, with one decimal ("48.5", "99.5",
+    "100.0"): a share of 200 or 1,000 seeds is a multiple of 0.5% or 0.1%, so one
+    decimal shows it exactly, and "100.0" only where every seed of the sample held
+    (more decimals where one would round a share that is not 1 to 100.0:
+    `results.percent`)."""
+    return percent(share, 1).rstrip("%")
 
 
 def _label(value):
     return f"{value:g}" if isinstance(value, float) else str(value)
 
 
+KEY = ("How to read a cell: the share of the seeds in which the claim held, in "
+       "percent (the share seen), and a verdict from that share's 95% interval: ✓ "
+       "holds (the whole interval at or above the claim's threshold), ✗ fails (all "
+       "below), ? unclear. A share just above the threshold can be unclear: its "
+       "interval reaches below. Purple: above the threshold; orange: below; white: at "
+       "it. Outlined: the defaults.")
+"""The key a map draws where a row of its maps leaves a place free (three claims in
+two columns), followed by `KEY_MORE_SETTINGS` for a learner with more than two
+settings."""
+KEY_MORE_SETTINGS = "Each row of maps changes two settings, the others at their defaults."
+"""What the key adds for a learner with more than two settings (a map per pair)."""
+
+
 def robustness_map(result, title=None):
     """Draws, for every pair of a study's settings (rows) and every claim (columns),
     the share of seeds in which the claim held at each grid point.
 
-    Each cell shows the share in percent (`cell_percent`) and a mark: ✓ where the claim holds (the whole
-    95% interval of the share is at or above the claim's threshold), ✗ where it fails
-    (all below), ? where the interval straddles the threshold. The colour is the
-    share, white at the threshold. The outlined cell is the library's default.
+    Each cell shows the share seen in percent (`cell_percent`) and a mark: ✓ where the
+    claim holds (the whole 95% interval of the share is at or above the claim's
+    threshold), ✗ where it fails (all below), ? where the interval straddles the
+    threshold. The colour is the share, white at the threshold, and its colour bar is in
+    percent as the cells are. The outlined cell is the library's default. Where a block
+    of claims leaves a column free, the map draws its key there (`KEY`).
 
     Args:
       result: a `RobustnessResult` (from `icm.studies.robustness.run_robustness`).
@@ -54,46 +71,57 @@ def robustness_map(result, title=None):
     pairs, claims = study.pairs(), study.claims
     # At most COLUMNS claims side by side, so that the figure is as wide as the book's
     # text column and its numbers stay readable there; more claims go into further
-    # blocks of rows below. Each block: a row of maps per pair, then the colour bars.
+    # blocks below, the key (`KEY`) in the place a block leaves free. Each block: the
+    # claims' titles, a row of maps per pair, then the colour bars. Placed by hand, in
+    # inches (not with `new_figure`'s constrained layout, which costs a second of
+    # drawing with this many texts).
     blocks = [claims[k:k + COLUMNS] for k in range(0, len(claims), COLUMNS)]
     columns = min(COLUMNS, len(claims))
-    ratios = []
-    for k, _ in enumerate(blocks):
-        ratios += [1.0] * len(pairs) + [0.07] + ([0.3] if k < len(blocks) - 1 else [])
-    width, row_height = 3.0 * columns + 0.85, 2.45
-    height = row_height * len(pairs) * len(blocks) + 0.8 * len(blocks) + 1.3
-    # Placed by hand, not with `new_figure`'s constrained layout, which costs a second
-    # of drawing with this many texts.
+    left, right, gap, column_width = 1.75, 0.1, 0.2, 2.4
+    top, heading, panel, below, bar, bar_below, bottom = 1.0, 0.85, 1.45, 1.0, 0.15, 0.55, 0.1
+    block_height = heading + len(pairs) * (panel + below) + bar + bar_below
+    width = left + columns * column_width + (columns - 1) * gap + right
+    height = top + len(blocks) * block_height + bottom
     fig = Figure(figsize=(width, height))
-    axes = fig.subplots(len(ratios), columns, squeeze=False,
-                        gridspec_kw={"height_ratios": ratios})
-    fig.subplots_adjust(left=1.75 / width, right=1 - 0.1 / width, bottom=0.45 / height,
-                        top=1 - 1.5 / height, wspace=0.08, hspace=0.95)
-    row = 0
-    for block in blocks:
+
+    def axes_at(column, y_top, h):
+        """New axes in `column`, from `y_top` inches below the figure's top, `h` high."""
+        x = left + column * (column_width + gap)
+        return fig.add_axes([x / width, 1 - (y_top + h) / height, column_width / width,
+                             h / height])
+
+    for k, block in enumerate(blocks):
+        y = top + k * block_height
         for j in range(columns):
             if j >= len(block):
-                for i in range(len(pairs) + 1):
-                    axes[row + i, j].set_visible(False)
+                x = left + j * (column_width + gap) + 0.15
+                key = KEY + (" " + KEY_MORE_SETTINGS if len(study.settings) > 2 else "")
+                fig.text(x / width, 1 - y / height, textwrap.fill(key, 30), ha="left",
+                         va="top", fontsize=10.5, linespacing=1.25)
                 continue
-            if row + len(pairs) + 1 < len(ratios):  # the space between two blocks
-                axes[row + len(pairs) + 1, j].set_visible(False)
             claim = block[j]
             norm = matplotlib.colors.TwoSlopeNorm(vmin=0.0, vcenter=claim.threshold, vmax=1.0)
             for i, pair in enumerate(pairs):
-                ax = axes[row + i, j]
+                ax = axes_at(j, y + heading + i * (panel + below), panel)
                 image = _draw_pair(ax, result, claim, pair, norm, y_label=j == 0)
                 if i == 0:
-                    ax.set_title(textwrap.fill(f"{claim.text} (in ≥ {claim.threshold:.0%} "
-                                               f"of seeds)", 24), fontsize=12)
-            bar = fig.colorbar(image, cax=axes[row + len(pairs), j], orientation="horizontal")
-            bar.set_label("share of seeds", fontsize=10, labelpad=1)
-            bar.set_ticks([0, claim.threshold, 1], labels=["0", f"{claim.threshold:g}", "1"])
-            bar.ax.axvline(claim.threshold, color="black", linewidth=1)
-        row += len(pairs) + 2
-    fig.suptitle(title or f"{study.title}, {result.n_seeds} seeds per cell\n✓ holds, ✗ fails, "
-                          f"? unclear (95% interval)\noutlined: the defaults", fontsize=13,
-                 y=1 - 0.08 / height, va="top")
+                    ax.set_title(textwrap.fill(f"{claim.text} (needs ≥ "
+                                               f"{claim.threshold:.0%} of seeds)", 24),
+                                 fontsize=12)
+            cax = axes_at(j, y + heading + len(pairs) * (panel + below), bar)
+            colour_bar = fig.colorbar(image, cax=cax, orientation="horizontal")
+            colour_bar.set_label("share of seeds, %", fontsize=10, labelpad=1)
+            colour_bar.set_ticks([0, claim.threshold, 1],
+                                 labels=["0", f"{100 * claim.threshold:g}", "100"])
+            # The ends' labels inside the bar's ends, so that two bars side by side do
+            # not read as one number ("100" and "0" as "1000").
+            first, *_, last = cax.get_xticklabels()
+            first.set_horizontalalignment("left")
+            last.set_horizontalalignment("right")
+            cax.axvline(claim.threshold, color="black", linewidth=1)
+    fig.suptitle(title or f"{textwrap.fill(study.title, 56)}\n{result.n_seeds:,} seeds per cell; "
+                          f"outlined: the defaults\n✓ holds, ✗ fails, ? unclear (95% "
+                          f"interval)", fontsize=13, y=1 - 0.08 / height, va="top")
     return fig.describe(_summary(result))
 
 

@@ -12,8 +12,8 @@ from icm.learners._common import check_state, check_values
 TIES = ("latest", "earliest")
 """Which of equally near experiences a nearest-neighbour prediction takes (`TIE`)."""
 ACTION_WEIGHT = Setting(
-    default=10.0, label="the predictor's cost of a different button", kind="real",
-    low=0.0, low_open=True,
+    default=10.0, label="the predictor's cost of a different button (action weight)",
+    kind="real", low=0.0, low_open=True,
     source='the paper\'s predictor is "a simple nearest neighbour research on past '
            'experiences" (section 3.1) and does not say how it compares them. The book '
            'counts the lights that differ, plus this weight if the button differs: 10, '

@@ -2,9 +2,10 @@
 one at a time (`run_readings`): for each, every other reading its `Setting` declares
 (`icm._settings.Setting.other_readings`: an unpublished choice's other choices, or the
 other values it lists), run on the same seeds as the book's reading, with the same
-claims as the maps (`icm.studies.robustness.STUDIES`), kept in a `ReadingsResult`; and what the rods' first episode is made of, which the
-chapter reads from the learner and the topple map (`fewest_moves_to_topple`,
-`value_after_a_quiet_move`).
+claims as the maps (`icm.studies.robustness.STUDIES`), kept in a `ReadingsResult`; and
+what the rods' first episode is made of, which the chapter reads from the learner and
+the topple map (`fewest_moves_to_topple`, `value_after_a_quiet_move`). What the chapter
+says of them (its tables, clauses and checks) is `icm.chapters.robustness.readings`'.
 """
 
 import collections
@@ -55,15 +56,21 @@ def unpublished_settings(study):
 
 
 def readings(study):
-    """The other readings `run_readings` measures for a study: for each unpublished
-    setting that its maps do not sweep (and that is not in `NOT_MEASURED`), each value
-    of its `Setting.other_readings()`, as `Reading` objects."""
+    """The other readings `run_readings` measures for a study, as `Reading` objects:
+    for each unpublished setting that its maps do not sweep (and that is not in
+    `NOT_MEASURED`), each value of its `Setting.other_readings()`; and for an unpublished
+    choice that the maps sweep on part of its choices, the choices off the maps' grid
+    (the actor-critic's `variant`: the maps try the standard and the printed TD error,
+    and the printed reward is read here), each at the other settings' defaults."""
     study = check_study(study)
     out = []
     for name, spec in unpublished_settings(study).items():
         if (study.name, name) in NOT_MEASURED:
             continue
-        for value in spec.other_readings():
+        values = spec.other_readings()
+        if spec.swept is not None and spec.kind == "choice":
+            values = tuple(c for c in spec.choices if c not in spec.swept)
+        for value in values:
             out.append(Reading(name, spec.label, spec.default, value, spec.source))
     return tuple(out)
 
@@ -208,3 +215,4 @@ def value_after_a_quiet_move(initial_q):
                     (start, rods.next_cell(start, right)))
     learner.learn(state, right, [0.0] * len(rods.ROD_NAMES), after)
     return float(learner.q[state, right])
+

@@ -30,6 +30,7 @@ from icm.envs import buttons, rods
 from icm.experiments.actor_critic import run_actor_critic
 from icm.experiments.goal_oriented import CHAPTER_TRIALS, run_goal_oriented
 from icm.experiments.goal_oriented_results import TASKS
+from icm.experiments.rod_episodes import WELL_PREDICTED_ERROR
 from icm.experiments.rod_toppling import run_rod_toppling
 from icm.experiments.sweep import run_point, sweep
 from icm.stats import comes_first, share_interval, verdict
@@ -38,10 +39,12 @@ from icm.studies.maps import RobustnessResult
 
 CLAIM_SHARE = 0.9
 """The share of seeds in which an order or a learning claim must hold ("red mastered
-first in at least 90% of seeds"; the paper gives no share)."""
+first in at least 90% of seeds"). The paper gives no share: it reports an order as what
+its learner does, so nearly every run must show it; one in ten may go otherwise."""
 MAJORITY = 0.5
 """The share of seeds for "interest moves to the hard task later", which the paper
-states "on average": it must hold in at least half of the runs."""
+states "on average" (its Figure 5 averages the interest of many trials), leaving room
+for runs that go the other way: it must hold in at least half of the runs."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -68,13 +71,15 @@ class Claim:
 
     Attributes:
       name: the per-seed column (True where the claim held in that seed).
-      text: the claim in words.
+      text: the claim in words, short (the maps' titles, the tables' columns).
       threshold: the share of seeds in which it must hold.
+      meaning: when it holds in one run, in words (the chapter's table of claims).
     """
 
     name: str
     text: str
     threshold: float
+    meaning: str
 
 
 @dataclasses.dataclass(frozen=True)
@@ -83,7 +88,8 @@ class Study:
 
     Attributes:
       name: the study's key in `STUDIES`.
-      title: the learner and its task, in words.
+      title: the learner and its task, in words, with the paper's figure it rebuilds.
+      short: the learner alone, for the tables' rows.
       run_fn: the experiment (`run_goal_oriented`, ...).
       fixed: arguments held fixed in every run (the run length of its chapter).
       settings: the swept settings (`Sweep` objects).
@@ -94,6 +100,7 @@ class Study:
 
     name: str
     title: str
+    short: str
     run_fn: object
     fixed: dict
     settings: tuple
@@ -206,35 +213,49 @@ def _sweep(run_fn, name):
     return Sweep(name, spec.label, spec.default, tuple(spec.swept))
 
 
-def _study(name, title, run_fn, fixed, settings, claims, per_seed):
-    return Study(name, title, run_fn, dict(fixed),
+def _study(name, title, short, run_fn, fixed, settings, claims, per_seed):
+    return Study(name, title, short, run_fn, dict(fixed),
                  tuple(_sweep(run_fn, n) for n in settings),
                  tuple(Claim(*c) for c in claims), per_seed)
 
 
 STUDIES = {
     "goal_oriented": _study(
-        "goal_oriented", "goal-oriented learner, button console (Figure 5)",
-        run_goal_oriented, {"n_trials": CHAPTER_TRIALS},
+        "goal_oriented", "goal-oriented learner, button console (the paper's Figure 5)",
+        "goal-oriented learner", run_goal_oriented, {"n_trials": CHAPTER_TRIALS},
         ("action_weight", "presses_per_trial", "reading"),
-        [("red_first", "red mastered first", CLAIM_SHARE),
-         ("interest_later", "interest moves to green later", MAJORITY),
-         ("green_mastered", "green mastered too", CLAIM_SHARE)],
+        [("red_first", "red mastered first", CLAIM_SHARE,
+          "red is mastered (the predictor right about red's box for every press and "
+          "layout, for good) at an earlier trial than green; a red never mastered does "
+          "not count"),
+         ("interest_later", "interest moves to green later", MAJORITY,
+          "the interest-weighted mean trial is later for green than for red (a run with "
+          "no interest in one of them does not count)"),
+         ("green_mastered", "green mastered too", CLAIM_SHARE,
+          "green is mastered within the run")],
         goal_oriented_claims),
     "actor_critic": _study(
-        "actor_critic", "intrinsic actor-critic, button console (Figure 6)",
-        run_actor_critic, {"n_trials": 100},
+        "actor_critic", "intrinsic actor-critic, button console (the paper's Figure 6)",
+        "actor-critic", run_actor_critic, {"n_trials": 100},
         ("action_weight", "presses_per_trial", "variant"),
-        [("red_first", "red predicted well first", CLAIM_SHARE),
-         ("green_learned", "green predicted well too", CLAIM_SHARE)],
+        [("red_first", "red predicted well first", CLAIM_SHARE,
+          "red's prediction error reaches 0 for good (to the end of the run) at an "
+          "earlier trial than green's"),
+         ("green_learned", "green predicted well too", CLAIM_SHARE,
+          "green's prediction error reaches 0 for good within the run")],
         actor_critic_claims),
     "rod_toppling": _study(
-        "rod_toppling", "Q-learner on the rods (Figure 7)",
-        run_rod_toppling, {"n_episodes": 300},
+        "rod_toppling", "Q-learner on the rods (the paper's Figure 7)",
+        "Q-learner on the rods", run_rod_toppling, {"n_episodes": 300},
         ("initial_q", "epsilon"),
-        [("red_toppled_first", "red toppled first", CLAIM_SHARE),
-         ("red_first", "red predicted well first", CLAIM_SHARE),
-         ("blue_found", "blue found", CLAIM_SHARE)],
+        [("red_toppled_first", "red toppled first", CLAIM_SHARE,
+          "the first topple of red comes before the first of blue"),
+         ("red_first", "red predicted well first", CLAIM_SHARE,
+          f"red's error is below {WELL_PREDICTED_ERROR:g} on every move that topples it, "
+          f"found or not (chapter 5's reading \"all\"), from an earlier episode than "
+          f"blue's"),
+         ("blue_found", "blue found", CLAIM_SHARE,
+          "the run topples blue at least once")],
         rod_claims),
 }
 """The three learners' studies, by name."""

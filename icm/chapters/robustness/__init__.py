@@ -7,10 +7,12 @@ of the unpublished settings (`maps`) and the other readings of its unpublished c
 from icm.chapters.robustness import maps, readings
 
 BOLD_CLAIMS = {
-    "Above the threshold, red comes first at every point of the maps, whatever the "
-    "presses and the reading.": ("weight_above_settles_red", "all"),
-    "Red is predicted well first at every point of these maps": ("critic_red_everywhere",
-                                                                 "all"),
+    "red comes first at every point of this map, whatever the presses and the "
+    "reading": ("weight_above_settles_red", "all"),
+    "Red is predicted well first at every point of this map": ("critic_red_everywhere",
+                                                               "all"),
+    "Red toppled first holds at every point of the map": ("rods_toppled_first_everywhere",
+                                                          "all"),
 }
 """The bold claims of the chapter "What the result depends on" that use a word of
 strength (book/_ext/claim_words.py), each with the claim of `CHAPTER_CLAIMS` that
@@ -18,12 +20,14 @@ checks it and the kind of that check: "all", every point's verdict "holds" (a cl
 that must hold at every point of a map is the conjunction of the points' own tests,
 which needs no correction for their number: it fails if any one fails)."""
 
-
 STRONG_WORDS = {
     **{text: (name, kind, "points") for text, (name, kind) in BOLD_CLAIMS.items()},
-    "Red toppled first fails at no point of the map": ("rods_toppled_first_everywhere",
-                                                        "all", "points"),
     "it holds at every point with an initial Q": ("rods_blue_needs_drive", "all", "points"),
+    # Exercise 6.1's rule ("never" is -1), which the exercise's check holds answers to.
+    'the trials counted from 1 and -1 meaning "never"': (
+        "tests/test_exercises.py::test_a_typical_wrong_answer_fails_naming_the_case", "rule"),
+    '"Never" is `-1`, the smallest number': (
+        "tests/test_exercises.py::test_a_typical_wrong_answer_fails_naming_the_case", "rule"),
 }
 """The chapter's sentences that say a word of strength about its maps, in the form the
 reading of all prose takes (book/_ext/claim_words.py: {a fragment of the sentence: (claim

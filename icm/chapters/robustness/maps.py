@@ -8,30 +8,28 @@ claims about them in words (`CHAPTER_CLAIMS`) and their check on the book's maps
 
 from icm import _validate
 from icm.chapters.words import in_seeds
+from icm.experiments.rod_episodes import WELL_PREDICTED_ERROR
 from icm.studies.maps import RobustnessResult
-from icm.studies.robustness import (CLAIM_SHARE, STUDIES,
-                                        check_study, show_value)
+from icm.studies.robustness import CLAIM_SHARE, STUDIES, check_study, show_value
 from icm.stats import share_interval
 
 
-MAP_SEEDS = {"goal_oriented": 200, "actor_critic": 1000, "rod_toppling": 200}
+MAP_SEEDS = {"goal_oriented": 1000, "actor_critic": 1000, "rod_toppling": 1000}
 """Seeds at every point of each learner's map in the chapter "What the result depends
 on" (and in its replication, `run_replication`).
 
-The actor-critic's map has 1,000. The chapter says that red is predicted well first at
-every point of it, which holds only if each of its 28 points clears the 90% bar, and its
-shares there lie between about 94% and 99%. A true share of 95% clears the bar on 200
-seeds only about 70% of the time (`chance_to_hold`: 189 of the 200 must show it), so
-with 200 seeds some point came out unclear on one root in a few (2026-12-05, roots 0 to
-6 and 9003: one point unclear on root 9003, at 91.5%); with 1,000 seeds (919 needed)
-nearly always (the same eight roots at 1,000 seeds: every point held on each, the
-lowest share 94.4%, the lowest lower end of an interval 92.8%). Its map costs about
-6 CPU-seconds at 1,000 seeds. The other two maps keep 200 seeds, and their claims are
-worded at the strength 200 seeds give: the rods' "red toppled first" is said to fail at
-no point, not to hold at every point, since its weakest shares lie near 93% (2,000 seeds
-on root 77: 93.3% at the four points with an initial Q of 0), which 200 seeds clear
-about a quarter of the time (the same eight roots: unclear at 0 to 12 of its 20 points,
-failing at none)."""
+A claim about every point of a map needs each point to clear its threshold, and some
+shares lie near it: the actor-critic's "red predicted well first" at 94% to 99%, the
+rods' "red toppled first" at 93% to 96%. A true share of 95% clears 90% on 200 seeds
+about 70% of the time (`chance_to_hold`), on 1,000 seeds 99.999%. Measured (2026-12-05,
+roots 0 to 8 and 9003): at 200 seeds, one of the actor-critic's points was unclear on
+root 9003 and the rods' "red toppled first" was unclear at 0 to 12 of its 20 points; at
+1,000 seeds both held at every point on each of the ten roots, and every claim of
+`CHAPTER_CLAIMS` held on each. The three maps cost about 20 CPU-seconds. A single point
+whose share lies near its threshold stays unsure on any number of seeds (the
+goal-oriented learner's "interest moves to green later" at the lowest weights, about
+55% against 50%): the chapter quotes its share and verdict and claims only what holds
+with room to spare."""
 
 
 def seeds_needed(n_seeds, threshold=CLAIM_SHARE):
@@ -72,18 +70,20 @@ def chance_to_hold(share, n_seeds, threshold=CLAIM_SHARE):
 
 
 def studies_table(studies=None):
-    """A Markdown table of the studies: for each learner, the settings its maps sweep
-    and the claims they measure, with the share of seeds each needs.
+    """A Markdown table of the claims the maps count: for each learner (with the paper's
+    figure), each claim, when it holds in one run, and the share of seeds it needs.
 
     Args:
       studies: names or `Study` objects (default all of `STUDIES`).
     """
     studies = [check_study(s) for s in (STUDIES if studies is None else studies)]
-    lines = ["| learner | settings swept | claims (share of seeds needed) |", "|---|---|---|"]
+    lines = ["| learner | claim | holds in one run when | seeds needed |",
+             "|---|---|---|---|"]
     for study in studies:
-        lines.append(f"| {study.title} | {', '.join(s.label for s in study.settings)} | "
-                     + "; ".join(f"{c.text} (≥ {c.threshold:.0%})" for c in study.claims)
-                     + " |")
+        for i, claim in enumerate(study.claims):
+            learner = study.title if i == 0 else ""
+            lines.append(f"| {learner} | {claim.text} | {claim.meaning} | "
+                         f"≥ {claim.threshold:.0%} |")
     return "\n".join(lines)
 
 
@@ -107,7 +107,7 @@ def dependency_table(results):
                 held = result.holding_values(claim.name, setting.name)
                 where = "all" if len(held) == len(setting.values) else \
                     (", ".join(show_value(v) for v in held) or "none")
-                lines.append(f"| {result.study.title} | {setting.label} "
+                lines.append(f"| {result.study.short} | {setting.label} "
                              f"({show_value(setting.default)}) | {tried} | {claim.text} "
                              f"(≥ {claim.threshold:.0%}) | {where} |")
     return "\n".join(lines)
@@ -115,8 +115,9 @@ def dependency_table(results):
 
 def interaction_table(results):
     """A Markdown table: for each learner, claim and pair of settings, the strongest
-    interaction on the pair's map (see `RobustnessResult.interaction`), in points of
-    share, with its band and where it is, and whether the pair interacts.
+    interaction on the pair's map (see `RobustnessResult.interaction`), in percentage
+    points of share, with its band, where it is (the pair's two settings and their
+    values) and whether the pair interacts.
 
     Args:
       results: a list of `RobustnessResult` objects.
@@ -125,17 +126,21 @@ def interaction_table(results):
       A Markdown string.
     """
     _check_results(results)
-    lines = ["| learner | claim | pair | strongest interaction (points, band) | at | "
-             "interact? |", "|---|---|---|---|---|---|"]
+
+    def points(share):
+        shown = round(100 * share)
+        return f"{shown:+d}" if shown else "0"
+
+    lines = ["| learner | claim | contrast, points (band) | where | interact? |",
+             "|---|---|---|---|---|"]
     for result in results:
         for claim in result.study.claims:
             for pair in result.study.pairs():
-                a, b = (result.study.setting(n) for n in pair)
                 contrast, low, high, va, vb = result.strongest_interaction(claim.name, pair)
                 lines.append(
-                    f"| {result.study.title} | {claim.text} | {a.label} x {b.label} "
-                    f"| {100 * contrast:+.0f} ({100 * low:+.0f} to {100 * high:+.0f}) "
-                    f"| {show_value(va)}, {show_value(vb)} "
+                    f"| {result.study.short} | {claim.text} | {points(contrast)} "
+                    f"({points(low)} to {points(high)}) | `{pair[0]}` = {show_value(va)}, "
+                    f"`{pair[1]}` = {show_value(vb)} "
                     f"| {'yes' if result.interacts(claim.name, pair) else 'no'} |")
     return "\n".join(lines)
 
@@ -150,31 +155,31 @@ def _check_results(results):
 
 
 CHAPTER_CLAIMS = {
-    "weight_threshold": "red first fails at every action weight below a threshold and "
-                        "holds at every weight from it",
-    "weight_above_settles_red": "above that threshold red comes first at every point of the "
+    "weight_threshold": "red first fails at each action weight up to some weight and holds "
+                        "at each weight above it",
+    "weight_above_settles_red": "above that weight red comes first at every point of the "
                                 "map, whatever the presses and the reading",
     "interest_needs_progress": "interest moves to green later with the progress reading "
                                "and fails with the literal one",
-    "interest_weight_from": "interest moves to green later from some action weight on, "
-                            "and not at the lowest weight tried",
-    "interest_progress_any_presses": "with the progress reading and a weight from the "
-                                     "threshold, interest moves later for every number of "
-                                     "presses",
+    "interest_weight_from": "interest moves to green later at each action weight from the "
+                            "highest at which red first fails on",
+    "interest_progress_any_presses": "with the progress reading and a weight above the "
+                                     "highest at which red first fails, interest moves "
+                                     "later for every number of presses",
     "green_needs_two_presses": "green is mastered at every point but those with the fewest "
                                "presses per trial, where it fails",
     "critic_red_everywhere": "the actor-critic predicts red well first at every point",
-    "printed_td_alone": "with the printed TD error and the other defaults, the actor-critic "
-                        "predicts red well first and learns green",
+    "printed_td_alone": "with only the TD error changed to the printed one, the "
+                        "actor-critic predicts red well first and green well too",
     "printed_td_damage": "with the printed TD error, green fails with the weakest predictor "
                          "and with the fewest presses, where the standard one does not fail",
     "td_interacts": "the TD error interacts with the action weight and with the presses "
                     "for green",
-    "rods_toppled_first_everywhere": "red toppled first fails at no point of the map",
+    "rods_toppled_first_everywhere": "red toppled first holds at every point of the map",
     "rods_small_initial_q": "red is predicted well first only for initial values between "
                             "the smallest and the largest tried",
     "rods_epsilon": "red predicted well first holds at an epsilon other than the default, "
-                    "and not at the largest tried",
+                    "and its share is lowest at the largest epsilon tried",
     "rods_blue_needs_drive": "blue is found at every point with an initial Q above zero, "
                              "whatever epsilon, and fails with no initial Q and no random "
                              "moves (the chapter gives the other epsilons at no initial Q "
@@ -216,13 +221,13 @@ def chapter_claims(goal, critic, rods_result):
     presses = goal.study.setting("presses_per_trial").values
     threshold = goal.holds_from("red_first", "action_weight")
     below = [w for w in weights if threshold is None or w < threshold]
-    interest_from = goal.holds_from("interest_later", "action_weight")
     critic_weights = critic.study.setting("action_weight").values
     critic_presses = critic.study.setting("presses_per_trial").values
     qs = list(rods_result.study.setting("initial_q").values)
     epsilons = rods_result.study.setting("epsilon").values
     q_held = rods_result.holding_values("red_first", "initial_q")
     epsilon_held = rods_result.holding_values("red_first", "epsilon")
+    epsilon_shares = [rods_result.share("red_first", epsilon=e)[0] for e in epsilons]
     default_epsilon = rods_result.study.setting("epsilon").default
     return {
         "weight_threshold": threshold is not None and bool(below) and all(
@@ -231,7 +236,9 @@ def chapter_claims(goal, critic, rods_result):
             goal, "red_first", "holds", action_weight=lambda w: w >= threshold),
         "interest_needs_progress": goal.verdict("interest_later") == "holds"
         and goal.verdict("interest_later", reading="literal") == "fails",
-        "interest_weight_from": interest_from is not None and interest_from > weights[0],
+        "interest_weight_from": bool(below) and all(
+            goal.verdict("interest_later", action_weight=w) == "holds"
+            for w in weights if w >= below[-1]),
         "interest_progress_any_presses": threshold is not None and _every(
             goal, "interest_later", "holds", action_weight=lambda w: w >= threshold,
             reading=lambda r: r == "progress"),
@@ -249,13 +256,12 @@ def chapter_claims(goal, critic, rods_result):
                           {"presses_per_trial": critic_presses[0]})),
         "td_interacts": critic.interacts("green_learned", ("action_weight", "variant"))
         and critic.interacts("green_learned", ("presses_per_trial", "variant")),
-        "rods_toppled_first_everywhere": not (rods_result.points()["red_toppled_first_verdict"]
-                                              == "fails").any(),
+        "rods_toppled_first_everywhere": _every(rods_result, "red_toppled_first", "holds"),
         "rods_small_initial_q": bool(q_held) and q_held[0] != qs[0]
         and q_held[-1] != qs[-1]
         and q_held == qs[qs.index(q_held[0]):qs.index(q_held[-1]) + 1],
         "rods_epsilon": any(e != default_epsilon for e in epsilon_held)
-        and epsilons[-1] not in epsilon_held,
+        and epsilon_shares[-1] < min(epsilon_shares[:-1]),
         "rods_blue_needs_drive": _every(rods_result, "blue_found", "holds",
                                         initial_q=lambda q: q > 0)
         and rods_result.verdict("blue_found", initial_q=qs[0], epsilon=epsilons[0])
@@ -289,12 +295,16 @@ def chapter_numbers(goal, critic, rods_result):
     presses = goal.study.setting("presses_per_trial").values
     threshold = goal.holds_from("red_first", "action_weight")
     above = goal.points().query("action_weight >= @threshold")
+    tie = max(w for w in weight.values if w < threshold)
+    progress_above = above.query("reading == 'progress'")
     numbers.update(
         default_weight=weight.default, goal_lowest_weight=threshold,
-        goal_highest_failing_weight=max(w for w in weight.values if w < threshold),
+        goal_highest_failing_weight=tie,
+        goal_red_first_at_tie=goal.share("red_first", action_weight=tie)[0],
         goal_red_first_above_min=float(above.red_first.min()),
-        goal_later_progress_low=float(above.query("reading == 'progress'")
-                                      .interest_later_low.min()),
+        goal_later_progress_min=float(progress_above.interest_later.min()),
+        goal_later_progress_min_presses=int(progress_above.sort_values(
+            "interest_later", kind="stable").iloc[0].presses_per_trial),
         lowest_weight=weight.values[0],
         goal_later_lowest_weight=goal.share("interest_later",
                                             action_weight=weight.values[0])[0],
@@ -306,10 +316,15 @@ def chapter_numbers(goal, critic, rods_result):
         goal_green_one_press=goal.share("green_mastered", presses_per_trial=min(presses))[0],
         goal_presses_in_run=min(presses) * goal.study.fixed["n_trials"])
     clauses["goal_red_first_by_weight"] = shares_along(goal, "red_first", "action_weight")
+    clauses["goal_later_by_weight"] = shares_along(goal, "interest_later", "action_weight")
     # The actor-critic.
     weakest = critic.study.setting("action_weight").values[0]
     fewest = critic.study.setting("presses_per_trial").values[0]
-    numbers.update(critic_weakest=weakest, critic_fewest=fewest)
+    printed_held = [w for w in critic.study.setting("action_weight").values
+                    if critic.verdict("green_learned", variant="printed_td", action_weight=w)
+                    == "holds"]
+    numbers.update(critic_weakest=weakest, critic_fewest=fewest,
+                   critic_printed_green_from=min(printed_held) if printed_held else None)
     clauses["critic_red_first_weakest"] = weakest_point(critic, "red_first")
     for name, point in (("printed", {"variant": "printed_td"}),
                         ("printed_weakest", {"variant": "printed_td", "action_weight": weakest}),
@@ -323,7 +338,13 @@ def chapter_numbers(goal, critic, rods_result):
     epsilon = rods_result.study.setting("epsilon")
     held = rods_result.holding_values("red_first", "initial_q")
     numbers.update(
+        well_error=WELL_PREDICTED_ERROR,
         rods_q_lowest=min(held), rods_q_highest=max(held), rods_q_none=qs[0],
+        rods_q_too_large=min(q for q in qs if q > max(held)),
+        rods_blue_none=rods_result.share("blue_found", initial_q=qs[0],
+                                         epsilon=epsilon.values[0])[0],
+        rods_epsilon_largest_share=rods_result.share("red_first",
+                                                     epsilon=epsilon.values[-1])[0],
         rods_epsilon_default=epsilon.default, rods_epsilon_largest=epsilon.values[-1],
         rods_epsilon_lowest=epsilon.values[0],
         rods_epsilon_largest_verdict=rods_result.verdict("red_first",
@@ -395,7 +416,7 @@ def run_replication(progress=False):
       well first over its map, with its interval, verdict and point (the point behind
       the chapter's bold "every point" claim of the actor-critic), "rods_toppled_first":
       {verdict: points} of "red toppled first" on the rods' map (the chapter says it
-      fails at no point, and how many points it holds at)}.
+      holds at every point)}.
     """
     from icm.studies import robustness
     from icm.experiments.seeding import REPLICATION_ROOTS
@@ -425,14 +446,16 @@ def run_replication(progress=False):
 def replication_sentences(stored):
     """What the chapter says of its replication (`run_replication`, as
     assets/replications.json keeps it under "robustness"): {"summary": how many of the
-    claims held again and which did not, "critic_everywhere": the sentence beside the
-    bold claim that red is predicted well first at every point, "rods_toppled": how
-    many of the rods' points "red toppled first" held, was unclear or failed at}."""
+    chapter's findings held again and which did not, "critic_everywhere": the sentence
+    beside the bold claim that red is predicted well first at every point of the
+    actor-critic's map, "rods_toppled": the sentence beside the bold claim that red
+    toppled first holds at every point of the rods' map (how many of its points held,
+    were unclear or failed where it did not replicate)}."""
     claims = stored["claims"]
     failed = [CHAPTER_CLAIMS[name] for name, held in claims.items() if not held]
     summary = (f"On a fresh root seed ({stored['root']}, with as many seeds at each point "
-               f"as here), {len(claims) - len(failed)} of the {len(claims)} claims held "
-               f"again")
+               f"as here), {len(claims) - len(failed)} of the chapter's {len(claims)} "
+               f"findings about its maps held again")
     summary += (": all of them." if not failed else
                 "; not replicated: " + "; ".join(f'"{f}"' for f in failed) + ".")
     low = stored["critic_lowest"]
@@ -440,9 +463,8 @@ def replication_sentences(stored):
     seeds = stored["n_seeds"]["actor_critic"]
     if claims["critic_red_everywhere"]:
         critic = (f"On a fresh root seed ({stored['root']}, {seeds:,} seeds at each point) "
-                  f"it held again; its weakest point there was {where}, with red predicted "
-                  f"well first in {low['share']:.1%} of the seeds ({low['low']:.1%} to "
-                  f"{low['high']:.1%}).")
+                  f"it held again, its weakest share seen there {low['share']:.1%} (its "
+                  f"interval {low['low']:.1%} to {low['high']:.1%}).")
     else:
         critic = (f"Not replicated on a fresh root seed ({stored['root']}, {seeds:,} seeds "
                   f"at each point): there, at {where}, red was predicted well first in "
@@ -450,7 +472,14 @@ def replication_sentences(stored):
                   f"verdict: {low['verdict']}, not holds). A claim about all the points of "
                   f"a map is as weak as its weakest point.")
     counts = stored["rods_toppled_first"]
-    rods = (f"on the fresh root seed ({stored['root']}), it holds at {counts['holds']}, is "
-            f"unclear at {counts['unclear'] or 'none'} and fails at "
-            f"{counts['fails'] or 'none'}")
+    points = sum(counts.values())
+    seeds = stored["n_seeds"]["rod_toppling"]
+    if claims["rods_toppled_first_everywhere"]:
+        rods = (f"On a fresh root seed ({stored['root']}, {seeds:,} seeds at each point) it "
+                f"held again, at each of the {points} points.")
+    else:
+        rods = (f"Not replicated on a fresh root seed ({stored['root']}, {seeds:,} seeds at "
+                f"each point): there it holds at {counts['holds']} of the {points} points, "
+                f"is unclear at {counts['unclear'] or 'none'} and fails at "
+                f"{counts['fails'] or 'none'}.")
     return {"summary": summary, "critic_everywhere": critic, "rods_toppled": rods}
