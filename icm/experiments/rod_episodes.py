@@ -67,12 +67,15 @@ def memory_needed(n_rows, n_episodes, reward="prediction_error", window=interest
     learner = n_rows * (8 * pairs * (2 + 2 * n_rods) + LOOP_ROW_BYTES)
     # The reward's slope table, and its last errors, count (and progress) per pair: the
     # compiled loop keeps its own (the batched learner's, never written, take no memory).
-    kmax = 1 if reward == "prediction_error" else window
+    signal = interest.SIGNAL_CLASSES[reward]
+    kmax = 1 if signal.ONE_ERROR_REWARD else window
     learner += 8 * (kmax + 1) ** 2 * kmax
     if physics:
         learner += n_rows * 8 * pairs * (kmax + 2)
-    elif reward != "prediction_error":
-        learner += n_rows * 8 * pairs * ((window if reward == "learning_progress" else 1) + 1)
+    elif signal.KERNEL_FORMULA != "error":  # the compiled loop's kept errors and count
+        # (`_rods_kernel.kept_errors`, not imported here: it loads Numba)
+        kept_errors = window if signal.KERNEL_FORMULA == "slope" else 1
+        learner += n_rows * 8 * pairs * (kept_errors + 1)
     moves = n_episodes * (math.inf if max_moves is None else max_moves)  # at most
     streams = _streams.memory_bound(n_rows, moves * action_selection.DRAWS_PER_CHOICE)
     if physics:  # a simulated table per row

@@ -17,7 +17,7 @@ from icm.experiments.seeding import run_seeds
 from icm.experiments.rod_episodes import (MOMENTS, N_ACTIONS, N_STATES, RODS,
                                           WELL_PREDICTED_ERROR, memory_needed, play_episodes,
                                           summarize, toppling_pairs)
-from icm.learners import q_learning
+from icm.learners import interest, q_learning
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
                        first_from_which)
 
@@ -301,8 +301,8 @@ def _check_run_arguments(n_seeds, n_episodes, wobbly_rod, physics, start_cell, m
         first_run=_validate.integer("first_run", first_run, 0, _validate.MAX_SEED))
     _validate.boolean("progress", progress)
     checked = {**checked, **settings.as_dict()}
-    if checked["max_moves"] is None and checked["reward"] != "random" and \
-            np.any(np.asarray(checked["epsilon"]) == 0):
+    learns = interest.SIGNAL_CLASSES[checked["reward"]].LEARNS_VALUES
+    if checked["max_moves"] is None and learns and np.any(np.asarray(checked["epsilon"]) == 0):
         raise ValueError("max_moves=None (no time limit) needs epsilon > 0: a learner that "
                          "never moves at random can walk in circles for ever, and its "
                          "episode would never end; got epsilon "
