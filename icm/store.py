@@ -1,5 +1,6 @@
 """Where the package keeps its data: the MJCF models and the measured and computed files
-of assets/ (resolved from the package, not from the working directory). Imports nothing
+of assets/, and the book's sources the course kit reads (resolved from the package, not
+from the working directory). Imports nothing
 heavy, so the tabular twins can read their data without loading MuJoCo."""
 
 import pathlib
@@ -12,6 +13,17 @@ ASSETS = next((folder for folder in (_PACKAGE / "assets", _PACKAGE.parent / "ass
 """The folder of MJCF models and data: `icm/assets`, a copy in an installed package and
 a link to the top-level `assets/` in a checkout; the top-level folder itself in a
 checkout without symbolic links."""
+
+
+PROJECT = next((folder for folder in (_PACKAGE / "project", _PACKAGE.parent)
+                if (folder / "book").is_dir() and (folder / "_toc.yml").is_file()),
+               _PACKAGE / "project")
+"""The book's sources the course kit reads (`icm.course.assign`): `_toc.yml`,
+`_config.yml`, `requirements.txt` and the chapters' notebooks in `book/`, package data
+of `icm.project` (declared in pyproject.toml): `icm/project` holds links to the
+project's own files in a checkout and copies of them in an installed package, so the
+course finds the book through the package, wherever it is installed; the top-level
+folder itself in a checkout without symbolic links."""
 
 
 def asset_path(name):
