@@ -22,7 +22,8 @@ def test_the_settings_hold_the_defaults_the_run_used_to_type():
     assert settings.as_dict() == {
         "strategy": "learning_progress", "exploration_noise": 0.05, "epsilon": 0.3,
         "window": 10, "inverse_model": "nearest_neighbour", "measure": "learning_progress",
-        "regions": "fixed", "maturation": "none"}
+        "regions": "fixed", "maturation": "none", "maturation_start": 0.5,
+        "maturation_window": 40, "maturation_plateau": 0.01, "maturation_step": 0.01}
     assert goal_babbling.STRATEGIES == ("random_motor", "random_goal", "learning_progress")
     assert goal_choice.DEFAULT_EPSILON == 0.3 and goal_choice.DEFAULT_WINDOW == 10
     assert MaturationSettings().as_dict() == {"start": 0.5, "window": 40, "plateau": 0.01,
@@ -59,6 +60,40 @@ def test_the_maturation_clock_reads_its_settings():
         MaturationSettings(start=0.0)
     with pytest.raises(ValueError, match="plateau"):
         JointRangeMaturation(1, home, low, high, plateau=-1.0)
+
+
+def test_the_maturation_clock_is_set_from_a_run_the_command_line_and_a_study(monkeypatch):
+    # The clock's settings are the learner's (maturation_start, ...): a run takes them
+    # as keywords (or in `settings`), and its clock starts where they say.
+    assert {f"maturation_{n}" for n in MaturationSettings.names()} <= set(
+        GoalBabblingSettings.names())
+    run = goal_babbling.run_goal_babbling("random_goal", n_seeds=1, n_rollouts=20,
+                                          maturation="joint_range", maturation_start=0.3,
+                                          progress=False)
+    assert run.settings["maturation_start"] == 0.3 and run.maturity[0, 0] == 0.3
+    assert GoalBabblingSettings(maturation_window=8).maturation_settings() == \
+        MaturationSettings(window=8)
+    with pytest.raises(ValueError, match=r"maturation_start must be a number in \(0, 1\]"):
+        goal_babbling.run_goal_babbling(n_seeds=1, n_rollouts=5, maturation_start=0.0,
+                                        progress=False)
+    # The command line offers them, from the same Setting.
+    args = cli.build_parser().parse_args(["goal-babbling", "--maturation", "joint_range",
+                                          "--maturation-start", "0.25"])
+    assert cli._settings_of(args)["maturation_start"] == 0.25
+    # A study's arm is `run_goal_babbling`'s arguments: an arm that grows up from 0.3.
+    from icm.studies.forming_actions import arms
+    monkeypatch.setitem(arms.ARMS, "growing up from 0.3",
+                        {"maturation": "joint_range", "maturation_start": 0.3})
+    entry = arms.run_arm("growing up from 0.3", 100, ("maturity",), n_seeds=1,
+                         n_rollouts=100)
+    # From 0.3, not the default 0.5 (the clock only grows: 0.34 after 100 rollouts).
+    assert 0.3 <= entry["maturity"][0][0] < MaturationSettings.spec("start").default
+
+
+def test_strategy_comes_by_position_or_by_name_not_both():
+    with pytest.raises(TypeError, match="strategy both by position and by name"):
+        goal_babbling.run_goal_babbling("random_goal", strategy="random_motor", n_seeds=1,
+                                        n_rollouts=5, progress=False)
 
 
 def test_a_settings_object_gives_the_run_of_its_keywords():

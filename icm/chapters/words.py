@@ -1,7 +1,7 @@
 """The chapters' words for numbers: a share as a percentage that never says "all" or
 "none" when it is not (`percent`), the fewest seeds in which something held
-(`in_seeds`: a count of the sample or a lower bound, never "every seed"), and a Markdown table of measures with one column per run
-(`measures_table`)."""
+(`in_seeds`: a count of the sample or a lower bound, never "every seed"), and a
+Markdown table of measures with one column per run (`measures_table`)."""
 
 import math
 

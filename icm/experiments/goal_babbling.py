@@ -31,6 +31,7 @@ run on them in `icm.experiments.formed_actions`.
 import numpy as np
 
 from icm import _validate
+from icm._settings import with_settings
 from icm.envs import buttons
 from icm.envs.buttons import movements as _movements
 from icm.envs.buttons.movements import MovementLab
@@ -44,10 +45,8 @@ from icm.experiments.formed_actions import press_each_button
 from icm.experiments.loop import Transition
 from icm.experiments.seeding import check_run_size, run_seeds
 from icm.learners import goal_choice as _goal_choice
-from icm.learners.goal_babbling import GoalBabblingAgent, GoalBabblingSettings
-from icm.learners.goal_choice import DEFAULT_EPSILON, DEFAULT_WINDOW
-from icm.learners.maturation import DEFAULT_MATURATION
-from icm.learners.sensorimotor import DEFAULT_EXPLORATION_NOISE
+from icm.learners.goal_babbling import (MATURATION_FIELDS, GoalBabblingAgent,
+                                        GoalBabblingSettings)
 
 STRATEGIES = tuple(_goal_choice.STRATEGIES)
 """How the next movement is chosen (see the module docstring): the names of the
@@ -97,40 +96,11 @@ def check_demonstrations(demonstrations):
 LEARNER_ARGUMENTS = GoalBabblingSettings.names()
 """The arguments of `run_goal_babbling` that are the learner's settings
 (`icm.learners.goal_babbling.GoalBabblingSettings`: their ranges, defaults and checks
-live there)."""
+live there; `with_settings` makes them its keywords, or `settings=`)."""
 
 
-def learner_settings(arguments, settings=None):
-    """The learner's settings of a run: `settings` (a `GoalBabblingSettings`, None for
-    the library's) with every argument of `arguments` (a dict over
-    `LEARNER_ARGUMENTS`) that differs from its default, each checked by its `Setting`.
-
-    Raises:
-      ValueError: for a value its `Setting` refuses (ArgumentTypeError for a wrong
-        type), or a name that is not a setting.
-    """
-    base = GoalBabblingSettings() if settings is None else _validate.instance(
-        "settings", settings, GoalBabblingSettings)
-    specs = GoalBabblingSettings.specs()
-    changes = {}
-    for name, value in arguments.items():
-        if name not in specs:
-            raise ValueError(f"{name!r} is not a setting of GoalBabblingSettings; its "
-                             f"settings are {', '.join(specs)}")
-        checked = specs[name].check(value, name)
-        if settings is None or checked != specs[name].default:
-            changes[name] = checked
-    return base.replace(**changes) if changes else base
-
-
-def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, exploration_noise,
-                         epsilon, window, outcome_space, inverse_model, measure, regions,
-                         depth_weight, retract, threads, maturation, demonstrations,
-                         settings=None):
-    learner = learner_settings(dict(
-        strategy=strategy, exploration_noise=exploration_noise, epsilon=epsilon,
-        window=window, inverse_model=inverse_model, measure=measure, regions=regions,
-        maturation=maturation), settings)
+def _check_run_arguments(learner, n_seeds, n_rollouts, seed, progress, outcome_space,
+                         depth_weight, retract, threads, demonstrations):
     checked = dict(
         strategy=learner.strategy,
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
@@ -147,6 +117,7 @@ def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, explorat
                                     low_open=True),
         retract=_validate.boolean("retract", retract),
         maturation=learner.maturation,
+        **{name: getattr(learner, name) for name in MATURATION_FIELDS},
         demonstrations=check_demonstrations(demonstrations))
     if checked["n_rollouts"] < len(checked["demonstrations"]):
         raise ValueError(f"n_rollouts must be at least the number of demonstrations "
@@ -171,14 +142,11 @@ def checkpoints_of(n_rollouts):
     return np.unique(np.maximum(spread, 1))
 
 
-def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAULT_N_ROLLOUTS,
-                      seed=0, progress=True, exploration_noise=DEFAULT_EXPLORATION_NOISE,
-                      epsilon=DEFAULT_EPSILON, window=DEFAULT_WINDOW,
-                      outcome_space=DEFAULT_OUTCOME_SPACE, inverse_model=DEFAULT_INVERSE_MODEL,
-                      measure=DEFAULT_MEASURE, regions=DEFAULT_REGIONS,
-                      depth_weight=DEPTH_WEIGHT, retract=False, threads=None,
-                      maturation=DEFAULT_MATURATION, demonstrations=(), settings=None,
-                      first_run=0):
+@with_settings(GoalBabblingSettings, positional=("strategy",))
+def run_goal_babbling(n_seeds=5, n_rollouts=DEFAULT_N_ROLLOUTS, seed=0, progress=True,
+                      outcome_space=DEFAULT_OUTCOME_SPACE, depth_weight=DEPTH_WEIGHT,
+                      retract=False, threads=None, demonstrations=(), first_run=0,
+                      settings=None):
     """Runs goal babbling on the simulated iCub, all seeds at once.
 
     Every rollout is a movement performed in physics from the start of a trial
@@ -192,7 +160,8 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
 
     With `maturation="joint_range"` the arm grows up: it reaches a range of joint
     angles around its resting posture that grows as its competence stops progressing
-    (`icm.learners.maturation.JointRangeMaturation`, with its defaults). With
+    (`icm.learners.maturation.JointRangeMaturation`, its clock set by the
+    `maturation_*` settings). With
     `demonstrations`, a teacher first moves the arm to the scripted press's lowest
     posture of each button listed, one rollout each, counted in `n_rollouts`: the
     movement and what it did enter the inverse model's memory, and the robot then
@@ -202,37 +171,23 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
     goal is run on the physics console, the button lit red.
 
     Args:
-      strategy: one of `STRATEGIES`.
+      strategy: one of `STRATEGIES` (a setting of the learner, which may also come
+        first, by position).
       n_seeds: independent runs (>= 1).
       n_rollouts: movements per run (>= 1).
       seed: the root seed: an integer >= 0, a `numpy.random.Generator` or None; run
         i's seeds depend only on it and i (kept in `settings["seed"]`).
       progress: show a progress bar over the rollouts when the run lasts over a
         second.
-      exploration_noise: the noise's standard deviation as a share of each joint's
-        range, far from the goal, in (0, 1].
-      epsilon: learning progress's share of uniformly drawn regions, in [0, 1].
-      window: distances per region in the progress (>= 2).
       outcome_space: one of `OUTCOME_SPACES`.
-      inverse_model: one of `icm.learners.sensorimotor.INVERSE_MODELS`.
-      measure: how learning progress measures a region's progress, one of
-        `icm.learners.goal_choice.MEASURES`.
-      regions: learning progress's regions, one of `REGION_KINDS`.
       depth_weight: how much a cap's depth counts in "point_and_depths", in (0,
         `MAX_DEPTH_WEIGHT`].
       retract: also simulate each movement's return home while babbling (the depths
         then cover it too); the outcome is read at the end of the hold either way.
       threads: threads stepping the rollouts, 1 to `movements.MAX_THREADS` (None:
         the cores this process may use). The results do not depend on it.
-      maturation: one of `MATURATIONS` ("none" or "joint_range").
       demonstrations: the buttons the teacher shows, in order, each at most once (a
         tuple of integers 0 to 4; empty or None: no teacher).
-      settings: the learner's settings, a
-        `icm.learners.goal_babbling.GoalBabblingSettings` (None: from the arguments
-        above); an argument among `LEARNER_ARGUMENTS` given a value other than its
-        default replaces that setting. The ranges and the sources of `strategy`,
-        `exploration_noise`, `epsilon`, `window`, `inverse_model`, `measure`,
-        `regions` and `maturation` are those of their `Setting` objects.
       first_run: the index of the first run (>= 0): the seeds are runs first_run to
         first_run + n_seeds - 1 of the root seed, so that a large study can be run in
         pieces (run 7 alone is run 7 of any larger batch; kept in
@@ -245,11 +200,9 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
       ValueError: for any argument outside its allowed range, or a run too large for
         this machine's memory.
     """
-    settings = _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress,
-                                    exploration_noise, epsilon, window, outcome_space,
-                                    inverse_model, measure, regions, depth_weight,
-                                    retract, threads, maturation, demonstrations,
-                                    settings)
+    settings = _check_run_arguments(settings, n_seeds, n_rollouts, seed, progress,
+                                    outcome_space, depth_weight, retract, threads,
+                                    demonstrations)
     settings["first_run"] = _validate.integer_at_least("first_run", first_run, 0)
     lab = MovementLab(threads)
     seeds = run_seeds(settings["seed"], n_seeds, 2, first=settings["first_run"])
