@@ -26,7 +26,8 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 
 from reference import reference_seconds  # noqa: E402
 
-from icm.experiments import studies  # noqa: E402
+from icm import studies  # noqa: E402
+from icm.studies import engine  # noqa: E402
 
 
 def _time(name, out, options, **run):
@@ -35,7 +36,7 @@ def _time(name, out, options, **run):
     studies.run_study(name, out, progress=False, **options, **run)
     wall = time.perf_counter() - start
     after = reference_seconds()
-    log = json.loads(studies.run_log_of(out).read_text().splitlines()[-1])
+    log = json.loads(engine.run_log_of(out).read_text().splitlines()[-1])
     return {"wall_seconds": round(wall, 1), "unit_cpu_seconds": log["unit_cpu_seconds_total"],
             "reference_seconds": [round(before, 4), round(after, 4)],
             "wall_over_reference": round(wall / ((before + after) / 2), 0)}

@@ -357,13 +357,23 @@ def settings_doc(cls, indent="    "):
     return "\n".join(lines)
 
 
-def with_settings(settings_cls):
+def with_settings(settings_cls, positional=()):
     """Decorates a run function whose last parameter is `settings`, so that it also
     takes every setting of `settings_cls` as a keyword argument: the wrapper builds
     the settings object once (checked, unknown names refused), from `settings=` if
     given and the keywords, and calls the function with it. Its signature and
     docstring list the settings, so that `inspect.signature`, the API reference and
-    `help()` show them."""
+    `help()` show them.
+
+    Args:
+      settings_cls: the `Settings` class.
+      positional: settings that may also come first, by position, in this order (goal
+        babbling's `strategy`: ``run_goal_babbling("random_goal", n_seeds=3)``).
+    """
+    positional = tuple(positional)
+    for name in positional:
+        settings_cls.spec(name)  # a setting of the class
+
     def decorate(function):
         signature = inspect.signature(function)
         parameters = list(signature.parameters.values())
@@ -375,6 +385,12 @@ def with_settings(settings_cls):
 
         @functools.wraps(function)
         def run(*args, **kwargs):
+            for name, value in zip(positional, args):
+                if name in kwargs:
+                    raise _validate.ArgumentTypeError(
+                        f"{function.__name__} got {name} both by position and by name")
+                kwargs[name] = value
+            args = args[len(positional):]
             unknown = [k for k in kwargs if k not in names and k not in own_names]
             if unknown:
                 raise _validate.ArgumentTypeError(
@@ -391,14 +407,18 @@ def with_settings(settings_cls):
             return function(*args, settings=made, **kwargs)
 
         own = [p for p in parameters[:-1]]
+        specs = settings_cls.specs()
+        leading = [inspect.Parameter(name, inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                                     default=specs[name].default) for name in positional]
         keyword = [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=spec.default)
-                   for name, spec in settings_cls.specs().items()]
+                   for name, spec in specs.items() if name not in positional]
         settings_parameter = parameters[-1].replace(kind=inspect.Parameter.KEYWORD_ONLY,
                                                     default=None)
         own = [p.replace(kind=inspect.Parameter.POSITIONAL_OR_KEYWORD)
                if p.kind == inspect.Parameter.KEYWORD_ONLY else p for p in own]
         # Parameters after the first with a default keep defaults (a valid signature).
-        run.__signature__ = signature.replace(parameters=own + keyword + [settings_parameter])
+        run.__signature__ = signature.replace(
+            parameters=leading + own + keyword + [settings_parameter])
         run.settings_class = settings_cls
         run.__doc__ = (function.__doc__ or "").rstrip() + (
             f"\n\n    Settings of the learner (keyword arguments, or `settings`, a "

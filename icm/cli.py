@@ -11,7 +11,8 @@ import pathlib
 import sys
 
 from icm import experiments, files
-from icm.experiments import goal_babbling, rod_toppling
+from icm.chapters.forming_actions.strategies import strategy_table
+from icm.experiments import babbling_space, goal_babbling, rod_toppling
 from icm.learners import actor_critic, goal_oriented, q_learning
 from icm.learners.goal_babbling import GoalBabblingSettings
 
@@ -219,7 +220,7 @@ def _goal_babbling(args):
             outcome_space=args.outcome_space, threads=args.threads,
             demonstrations=args.demonstrations, **_settings_of(args))
     maturation = _settings_of(args)["maturation"]
-    print(goal_babbling.comparison_table(results))
+    print(strategy_table(results))
     if maturation != "none" or args.demonstrations:
         shown = ", ".join(map(str, args.demonstrations))
         plural = "s" if len(args.demonstrations) > 1 else ""
@@ -239,11 +240,11 @@ def _goal_babbling_options(parser):
                         default=goal_babbling.DEFAULT_N_ROLLOUTS,
                         help="movements per run, each simulated "
                              f"(default {goal_babbling.DEFAULT_N_ROLLOUTS})")
-    parser.add_argument("--outcome-space", choices=goal_babbling.OUTCOME_SPACES,
-                        default=goal_babbling.DEFAULT_OUTCOME_SPACE,
+    parser.add_argument("--outcome-space", choices=babbling_space.OUTCOME_SPACES,
+                        default=babbling_space.DEFAULT_OUTCOME_SPACE,
                         help="what a movement's outcome is: where the finger stopped, or "
                              "that and how far each cap went down "
-                             f"(default {goal_babbling.DEFAULT_OUTCOME_SPACE})")
+                             f"(default {babbling_space.DEFAULT_OUTCOME_SPACE})")
     _settings_options(parser, GoalBabblingSettings, skip=("strategy",))
     parser.add_argument("--demonstrations", type=_buttons, default=(),
                         help="the buttons a teacher shows first, by moving the arm to the "
@@ -271,8 +272,8 @@ COMMANDS = {
 
 
 def _add_study_command(subparsers):
-    """`python -m icm study NAME ...`: runs a long study (`icm.experiments.studies`)."""
-    from icm.experiments import studies
+    """`python -m icm study NAME ...`: runs a long study (`icm.studies`)."""
+    from icm import studies
 
     text = ("Run a long study (every local core with joblib, or a Dask cluster) and write "
             "its JSON file; a run killed half-way continues from its journal "
@@ -314,7 +315,7 @@ def _add_study_command(subparsers):
 
 def run_study_command(args, parser):
     """Runs `python -m icm study` with parsed `args`; returns the exit status."""
-    from icm.experiments import studies
+    from icm import studies
 
     study = studies.STUDIES[args.name]
     options = {o: getattr(args, o) for o in study.options}

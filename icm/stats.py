@@ -514,7 +514,7 @@ def paired_power(differences, n_seeds, alternative, rate=FAMILY_RATE,
     """The power of a replication on `n_seeds` fresh seeds, under the effect measured:
     the share of simulated replications in which the test actually used
     (`paired_p_value`, one-sided in `alternative`, its own flips seeded 0 as in
-    `icm.experiments.replication.replicated`) gives a p-value below `rate`.
+    `icm.chapters.replication.replicated`) gives a p-value below `rate`.
 
     Each simulated replication draws `n_seeds` per-seed differences with replacement
     from the measured ones (`differences`), so it keeps their spread, their ties and

@@ -310,7 +310,7 @@ def test_bad_run_arguments_raise_value_error(kwargs, message):
 
 
 def test_comparison_table_has_one_column_per_run(default_run):
-    table = icm.experiments.actor_critic_table({"a": default_run, "b": default_run})
+    table = icm.chapters.actor_critic.comparison_table({"a": default_run, "b": default_run})
     lines = table.splitlines()
     assert lines[0] == "| measure | a | b |" and lines[1] == "|---|---|---|"
     assert lines[2] == "| seeds | 120 | 120 |"

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from icm.envs import buttons, icub
-from icm.experiments import goal_babbling
+from icm.experiments import babbling_space, goal_babbling
 from icm.learners import goal_choice
 
 N_ROLLOUTS = 200
@@ -52,9 +52,9 @@ def test_the_exploration_noise_shrinks_in_proportion_near_the_goal(run):
     full = 0.05 * (arm.upper - arm.lower)
     near, far = [], []
     for k, i in _with_goals(run):
-        reached = goal_babbling.outcome_vectors(run.outcomes[k, :i], run.depths[k, :i],
+        reached = babbling_space.outcome_vectors(run.outcomes[k, :i], run.depths[k, :i],
                                                 space, weight)
-        wanted = goal_babbling.goal_outcomes(run.goals[k, i], space, weight)
+        wanted = babbling_space.goal_outcomes(run.goals[k, i], space, weight)
         distances = np.linalg.norm(reached - wanted, axis=1)
         nearest = int(np.argmin(distances))
         movement = run.movements[k, i]
@@ -94,9 +94,9 @@ def test_a_regions_interest_is_learning_progress_not_distances_going_up(run):
             if region < 0:
                 assert not run.interest[k, i].any()
                 continue
-            reached = goal_babbling.outcome_vectors(run.outcomes[k, i], run.depths[k, i],
+            reached = babbling_space.outcome_vectors(run.outcomes[k, i], run.depths[k, i],
                                                     space, weight)
-            distance = np.linalg.norm(goal_babbling.goal_outcomes(run.goals[k, i], space,
+            distance = np.linalg.norm(babbling_space.goal_outcomes(run.goals[k, i], space,
                                                                   weight) - reached)
             history.setdefault(int(region), []).append(distance)
             known = {}
@@ -136,7 +136,7 @@ class _Draws:
 
 def test_a_region_is_chosen_uniformly_with_probability_epsilon():
     choose = goal_choice.choose_region
-    n = int(np.prod(goal_babbling.REGION_GRID))
+    n = int(np.prod(babbling_space.REGION_GRID))
     interest = np.zeros(n)
     interest[3] = 1.0
     # Given draws: the first number below epsilon picks the region uniformly by the
@@ -154,7 +154,7 @@ def test_a_region_is_chosen_uniformly_with_probability_epsilon():
     expected[[5, 9]] += 0.7 * np.array([0.25, 0.75])
     np.testing.assert_allclose(counts / 20_000, expected, atol=0.006)
     # The runs' default share is 0.3 (explauto's).
-    assert goal_babbling.DEFAULT_EPSILON == 0.3
+    assert goal_choice.DEFAULT_EPSILON == 0.3
 
 
 def test_a_run_draws_a_share_epsilon_of_its_goals_in_uniformly_chosen_regions(run):

@@ -672,11 +672,11 @@ def test_result_methods(small_results):
 
 
 def test_comparison_tables_need_dicts_of_their_results(small_results):
-    refused(lambda: icm.experiments.comparison_table([small_results["goal"]]), "results",
+    refused(lambda: icm.chapters.goal_oriented_interest.comparison_table([small_results["goal"]]), "results",
             "GoalOrientedResult", "type")
-    refused(lambda: icm.experiments.comparison_table({"rods": small_results["rods"]}),
+    refused(lambda: icm.chapters.goal_oriented_interest.comparison_table({"rods": small_results["rods"]}),
             "results['rods']", "RodTopplingResult", "type")
-    refused(lambda: icm.experiments.actor_critic_table({"goal": small_results["goal"]}),
+    refused(lambda: icm.chapters.actor_critic.comparison_table({"goal": small_results["goal"]}),
             "results['goal']", "GoalOrientedResult", "type")
 
 
@@ -817,7 +817,7 @@ def signal_comparison():
 
 
 def test_a_signal_comparison_refuses_a_world_or_key_it_did_not_run(signal_comparison):
-    refused(lambda: signal_comparison.table(noisy_button=True), "noisy_button", "True",
+    refused(lambda: icm.chapters.curiosity.signal_table(signal_comparison, noisy_button=True), "noisy_button", "True",
             "value")
     refused(lambda: signal_comparison.numbers(["novelty"]), "signal", "['novelty']", "type")
     refused(lambda: signal_comparison.numbers("novelty", "task", True), "noisy_button",
@@ -856,7 +856,7 @@ def test_figures_refuse_bad_sizes_labels_and_kinds():
             "curves", "sideways", "value")
     goal = icm.experiments.run_goal_oriented(n_seeds=2, n_trials=3, progress=False)
     refused(lambda: icm.figures.figure5_grid({1: goal}), "results", "label 1", "type")
-    refused(lambda: icm.experiments.comparison_table({("a",): goal}), "results", "('a',)",
+    refused(lambda: icm.chapters.goal_oriented_interest.comparison_table({("a",): goal}), "results", "('a',)",
             "type")
 
 

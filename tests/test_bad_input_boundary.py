@@ -9,7 +9,7 @@ import pytest
 
 import icm
 from icm import _validate, cli
-from icm.experiments import coin_rewards, goal_babbling, panel_data
+from icm.experiments import babbling_space, coin_rewards, goal_babbling, panel_data
 from icm.figures import panel_plots
 
 ICM_DIR = pathlib.Path(icm.__file__).resolve().parent
@@ -40,7 +40,7 @@ def babbling():
 def test_goal_shares_refuses_bools_among_the_edges(babbling):
     refused(lambda: babbling.goal_shares([True, 10]), "edges", "[True, 10]", "type")
     refused(lambda: _validate.integer_array("counts", [3, np.True_]), "counts", "True", "type")
-    assert babbling.goal_shares([0, 10, 30]).shape == (2, goal_babbling.REGION_GRID[1])
+    assert babbling.goal_shares([0, 10, 30]).shape == (2, babbling_space.REGION_GRID[1])
 
 
 def test_outcome_rewards_refuses_a_call_of_hours_and_says_how_long():

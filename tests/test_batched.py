@@ -16,8 +16,9 @@ import icm
 from icm.envs import buttons, rods
 from icm.experiments import actor_critic as ac_experiment
 from icm.experiments import goal_oriented as go_experiment
+from icm.experiments import goal_oriented_results
 from icm.experiments import rod_toppling as rod_experiment
-from icm.experiments._seeding import run_seeds
+from icm.experiments.seeding import run_seeds
 from icm.learners import (ActorCritic, GoalOrientedAgent, LinearPredictor,
                           NearestNeighbourPredictor, QLearner)
 from icm.learners.goal_oriented import GoalOrientedSettings
@@ -58,7 +59,7 @@ def reference_goal_oriented(n_seeds, n_trials, seed=0, presses_per_trial=3, red_
                 out["presses"][run, trial, action] += 1
                 step = next_step
             if interest_per == "task":
-                for i, task in enumerate(go_experiment.TASKS):
+                for i, task in enumerate(goal_oriented_results.TASKS):
                     out["interest"][run, trial, i] = agent.interest.interest(
                         go_experiment.TASK_KEYS[task])
             else:

@@ -417,7 +417,7 @@ def test_progress_goes_to_the_builders_terminal_not_into_the_cells_outputs(tmp_p
     # standard error, and one straight to file descriptor 2 (as C code writes).
     path = notebook(
         tmp_path / "progress.ipynb",
-        "import os, sys, time\nfrom icm.experiments._progress import progress_bar\n"
+        "import os, sys, time\nfrom icm.experiments.progress import progress_bar\n"
         "for _ in progress_bar(range(4), 4, 'slow loop'):\n    time.sleep(0.6)\n"
         "sys.__stderr__.write('original stderr\\n'); sys.__stderr__.flush()\n"
         "os.write(2, b'file descriptor 2\\n')\nprint('shown')")

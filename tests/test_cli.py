@@ -147,16 +147,16 @@ def test_goal_babbling_shows_its_progress_on_the_terminal(tmp_path, monkeypatch,
     # The run's progress bar is on (tqdm's: on standard error in a terminal, shown once
     # a run lasts over a second, which a short run here may not), the table on
     # standard output.
-    from icm.experiments import goal_babbling
+    from icm.experiments import loop  # every run's bar is the one loop's observer
 
     bars = []
-    real = goal_babbling.progress_bar
+    real = loop.progress_bar
 
     def recording(iterable, total, description, enabled=True, unit="seed"):
         bars.append((description, enabled, unit))
         return real(iterable, total, description, enabled, unit)
 
-    monkeypatch.setattr(goal_babbling, "progress_bar", recording)
+    monkeypatch.setattr(loop, "progress_bar", recording)
     out = tmp_path / "babbling.png"
     status, stdout, _ = in_process(
         ["goal-babbling", "--strategy", "learning_progress", "--seeds", "2", "--rollouts",

@@ -447,3 +447,32 @@ def test_the_instructors_page_reads_objectives_and_exercises_from_the_chapters(t
     assert page.count('href="chapter.html#ex-second"') == 2  # the table and the exref
     assert "20 min" in page and "icm-course.css" in page
     assert (tmp_path / "html" / "_static" / "icm-course.css").exists()
+
+
+def test_the_course_finds_the_book_through_the_packages_data():
+    # Not through a checkout's parents: the book's sources are package data of
+    # icm.project (icm/project links to them here; a wheel holds copies of them).
+    import fnmatch
+    import pathlib
+    import tomllib
+
+    import icm
+    from icm import store
+
+    package = pathlib.Path(icm.__file__).resolve().parent
+    assert assign.ROOT == store.PROJECT == package / "project"
+    chapters = assign.chapters()
+    assert chapters and all(path.parent == package / "project" / "book"
+                            for _, path in chapters)
+    # Here, the links lead to the project's own files.
+    for name in assign.SOURCES:
+        assert (assign.ROOT / name).resolve() == (ROOT / name).resolve(), name
+    # pyproject.toml declares them all as package data, so that an installed icm has them.
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+    patterns = config["package-data"]["icm.project"]
+    needed = ["_toc.yml", "_config.yml", "requirements.txt"] + [
+        f"book/{path.name}" for _, path in chapters]
+    for name in needed:
+        assert any(fnmatch.fnmatch(name, pattern) for pattern in patterns), name
+    # ... and the book's build scripts are not modules of icm.
+    assert "icm.project.book*" in config["packages"]["find"]["exclude"]

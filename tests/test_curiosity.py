@@ -170,14 +170,14 @@ def test_the_chapters_red_first_bound_holds_on_the_tests_own_seeds(comparison):
     # learner: in at least X% of seeds (the lower end of a 95% interval)", from its
     # own run (seed 0). On seed 11, each learner's share is at least that X, and its
     # own interval's lower end at least the claim's threshold.
-    book = curiosity.run_signal_comparison(**curiosity.CHAPTER_RUN, noisy=(False,),
+    book = curiosity.run_signal_comparison(**chapters.curiosity.CHAPTER_RUN, noisy=(False,),
                                            progress=False)
     book_low = min(low for _, _, low, _ in book.red_first_intervals().values())
     own = comparison.red_first_intervals()
     assert len(own) == 8 and set(own) == set(book.red_first_intervals())
     for learner, (count, n, low, high) in own.items():
         assert count / n >= book_low, learner
-        assert low >= curiosity.RED_FIRST_SHARE and low <= count / n <= high, learner
+        assert low >= chapters.curiosity.RED_FIRST_SHARE and low <= count / n <= high, learner
     # The interval is Wilson's: 100 of 100 is not 100%.
     from icm.stats import share_interval
 
@@ -214,8 +214,8 @@ def test_with_interest_per_region_prediction_error_is_trapped_and_progress_is_no
     novelty = comparison.numbers("novelty", "region", True)
     assert error["noisy_share"][1] > 0.6
     assert progress["noisy_share"][2] < 0.4
-    assert progress["noisy_share"][0] > curiosity.CHANCE_SHARE  # drawn a little
-    assert novelty["noisy_share"][0] == pytest.approx(curiosity.CHANCE_SHARE, abs=0.005)
+    assert progress["noisy_share"][0] > chapters.curiosity.CHANCE_SHARE  # drawn a little
+    assert novelty["noisy_share"][0] == pytest.approx(chapters.curiosity.CHANCE_SHARE, abs=0.005)
     # trapped, prediction error learns late or never; progress still learns both
     assert error["green_mastered"][0] < 0.75
     assert error["red_mastery"][0] > 2 * progress["red_mastery"][0]
@@ -230,20 +230,21 @@ def test_the_noisy_button_costs_every_learner_a_little(comparison):
 
 
 def test_the_chapters_claims_on_the_buttons_hold_here_and_fail_when_they_should(comparison):
-    found = comparison.claims()
+    found = chapters.curiosity.signal_claims(comparison)
     assert set(found) == set(chapters.curiosity.SIGNAL_CLAIMS) and all(found.values()), found
     assert comparison.fastest() == ("novelty", "region")
     results = dict(comparison.results)
     swapped = curiosity.SignalComparison(comparison.settings, {
         **results, ("prediction_error", "region", True): results[("random", "region", True)],
         ("novelty", "task", False): results[("random", "task", False)]})
-    wrong = [name for name, held in swapped.claims().items() if not held]
+    wrong = [name for name, held in chapters.curiosity.signal_claims(swapped).items()
+             if not held]
     assert wrong == ["novelty_task_balanced", "region_error_trapped",
                      "noise_delays_green"], wrong
     partial = curiosity.SignalComparison(comparison.settings, {
         k: v for k, v in results.items() if k[2] is False})
     with pytest.raises(ValueError, match="every signal"):
-        partial.claims()
+        chapters.curiosity.signal_claims(partial)
 
 
 def test_tables_and_summary_hold_every_setting(comparison):
@@ -251,7 +252,7 @@ def test_tables_and_summary_hold_every_setting(comparison):
     assert len(comparison.results) == 16
     assert summary["prediction_error_region_noisy_noisy_share"] == \
         comparison.numbers("prediction_error", "region", True)["noisy_share"][0]
-    assert comparison.table(noisy_button=True).count("\n") == 2 + 7
+    assert chapters.curiosity.signal_table(comparison, noisy_button=True).count("\n") == 2 + 7
     assert len(comparison.seed_summaries()) == 100
 
 
@@ -285,13 +286,14 @@ def test_novelty_and_the_random_walk_are_not_trapped_but_slow(rewards):
 
 
 def test_the_chapters_claims_on_the_rods_hold_here_and_fail_when_they_should(rewards):
-    found = rewards.claims()
+    found = chapters.curiosity.reward_claims(rewards)
     assert set(found) == set(chapters.curiosity.REWARD_CLAIMS) and all(found.values()), found
     results = dict(rewards.results)
     swapped = curiosity.RewardComparison(rewards.settings, {
         **results, ("prediction_error", True): results[("novelty", True)],
         ("learning_progress", True): results[("random", True)]})
-    wrong = [name for name, held in swapped.claims().items() if not held]
+    wrong = [name for name, held in chapters.curiosity.reward_claims(swapped).items()
+             if not held]
     assert wrong == ["error_trapped", "progress_learns_anyway", "progress_not_immune"], wrong
 
 
@@ -418,19 +420,20 @@ def test_the_noise_delays_green_for_each_learner_on_average(comparison):
 def test_the_paired_verdicts_are_holm_corrected_over_the_chapters_family(comparison):
     from icm import stats
 
-    paired = comparison.paired_verdicts()
-    assert set(paired) == set(curiosity.SignalComparison.PAIRED)
+    paired = chapters.curiosity.paired_verdicts(comparison)
+    assert set(paired) == set(chapters.curiosity.PAIRED)
     for name, v in paired.items():
-        assert v["n_family"] == len(curiosity.SignalComparison.PAIRED)
+        assert v["n_family"] == len(chapters.curiosity.PAIRED)
         assert v["p_holm"] >= v["p"] and v["clear"] == (v["p_holm"] < stats.FAMILY_RATE)
         assert v["low"] <= v["mean"] <= v["high"] and 1 <= v["n_seeds"] <= 100
 
 
 def test_a_paired_verdict_the_replication_contradicts_is_not_called_clear(comparison):
-    paired = comparison.paired_verdicts()
+    paired = chapters.curiosity.paired_verdicts(comparison)
     failed = {"verdicts": {name: {"replicated": False} for name in paired}}
     held = {"verdicts": {name: {"replicated": True} for name in paired}}
-    contradicted, replicated = (comparison.paired_words(r) for r in (failed, held))
+    contradicted, replicated = (chapters.curiosity.paired_words(comparison, r)
+                                for r in (failed, held))
     for name, v in paired.items():
         if v["clear"]:
             assert contradicted[name].endswith("not replicated on a fresh root")
@@ -440,40 +443,34 @@ def test_a_paired_verdict_the_replication_contradicts_is_not_called_clear(compar
 
 
 def test_every_clear_paired_verdict_of_the_chapter_is_replicated():
-    # The chapter's run (curiosity.CHAPTER_RUN) and the stored replications: every
-    # clear verdict has one, rerun here on the fresh root (slow: conftest.SLOW).
-    from icm.experiments import replication
+    # The chapter's run (chapters.curiosity.CHAPTER_RUN) and the stored replications:
+    # every clear verdict has one, rerun here on the fresh root (slow: conftest.SLOW).
+    from icm.chapters import replication
+    from icm.experiments.seeding import REPLICATION_ROOTS
 
     stored = replication.load_replications()["curiosity"]
-    assert stored["of"] == curiosity.CHAPTER_RUN
-    assert stored["root"] == replication.REPLICATION_ROOTS["curiosity"] != SEED
-    assert stored["n_seeds"] == curiosity.REPLICATION_SEEDS
-    chapter = curiosity.run_signal_comparison(**curiosity.CHAPTER_RUN, noisy=(False,),
-                                              progress=False).paired_verdicts()
+    assert stored["of"] == chapters.curiosity.CHAPTER_RUN
+    assert stored["root"] == REPLICATION_ROOTS["curiosity"] != SEED
+    assert stored["n_seeds"] == chapters.curiosity.REPLICATION_SEEDS
+    chapter = chapters.curiosity.paired_verdicts(curiosity.run_signal_comparison(
+        **chapters.curiosity.CHAPTER_RUN, noisy=(False,), progress=False))
     clear = {name: "less" if v["mean"] < 0 else "greater"
              for name, v in chapter.items() if v["clear"]}
     assert set(clear) <= set(stored["verdicts"])
-    assert curiosity.replicate(clear) == {name: stored["verdicts"][name] for name in clear}
+    assert chapters.curiosity.replicate(clear) == {name: stored["verdicts"][name] for name in clear}
 
 
 def test_the_word_clear_needs_holms_correction_over_the_whole_family():
     from icm import chapters
 
-    class Fake:
-        def __init__(self, verdicts):
-            self.verdicts = verdicts
-
-        def paired_verdicts(self):
-            return self.verdicts
-
     holm = {"a": {"n_family": 2, "clear": True, "p_holm": 0.01},
             "b": {"n_family": 2, "clear": False, "p_holm": 0.5}}
-    assert chapters.curiosity.verdict_claims(Fake(holm)) == {"clear_is_holm": True}
+    assert chapters.curiosity.verdict_claims(holm) == {"clear_is_holm": True}
     partial = {**holm, "a": {**holm["a"], "n_family": 1}}  # corrected in a smaller family
-    assert chapters.curiosity.verdict_claims(Fake(partial)) == {"clear_is_holm": False}
+    assert chapters.curiosity.verdict_claims(partial) == {"clear_is_holm": False}
     loose = {**holm, "a": {**holm["a"], "p_holm": 0.2}}  # called clear past the rate
-    assert chapters.curiosity.verdict_claims(Fake(loose)) == {"clear_is_holm": False}
-    assert chapters.curiosity.verdict_claims(Fake({})) == {"clear_is_holm": False}
+    assert chapters.curiosity.verdict_claims(loose) == {"clear_is_holm": False}
+    assert chapters.curiosity.verdict_claims({}) == {"clear_is_holm": False}
 
 
 # --- the chapter's words after a student's reading (issue 43/44 follow-up) -----------------
@@ -501,7 +498,7 @@ def test_a_paired_gap_reads_in_plain_words(mean, low, high, words):
 
 
 def test_the_paired_words_say_clear_only_for_holms_and_name_a_failed_replication(comparison):
-    paired = comparison.paired_verdicts()
+    paired = chapters.curiosity.paired_verdicts(comparison)
     held = {"verdicts": {name: {"replicated": True} for name in paired}}
     failed = {"verdicts": {name: {"replicated": False} for name in paired}}
     words, contradicted = (chapters.curiosity.paired_plain_words(comparison, r)
@@ -523,11 +520,11 @@ def test_random_is_faster_than_progress_on_green_on_the_tests_own_seeds(comparis
     # rests on its run's paired verdict (clear after Holm, replicated on a fresh root).
     # With these 100 seeds Holm's test may not call it clear, but the direction holds:
     # the whole band of the per-seed difference lies below zero.
-    v = comparison.paired_verdicts()["random_vs_progress_green"]
+    v = chapters.curiosity.paired_verdicts(comparison)["random_vs_progress_green"]
     assert v["mean"] < 0 and v["high"] < 0
 
 
-def test_the_paired_claim_needs_a_clear_sooner_verdict_that_replicated():
+def test_the_paired_claim_needs_a_clear_sooner_verdict_that_replicated(monkeypatch):
     class Fake(curiosity.SignalComparison):
         def __init__(self, verdict):
             object.__setattr__(self, "settings", {})
@@ -535,8 +532,8 @@ def test_the_paired_claim_needs_a_clear_sooner_verdict_that_replicated():
             object.__setattr__(self, "_numbers", {})
             object.__setattr__(self, "verdict", verdict)
 
-        def paired_verdicts(self):
-            return {"random_vs_progress_green": self.verdict}
+    monkeypatch.setattr(chapters.curiosity, "paired_verdicts",
+                        lambda comparison: {"random_vs_progress_green": comparison.verdict})
 
     held = {"verdicts": {"random_vs_progress_green": {"replicated": True}}}
     failed = {"verdicts": {"random_vs_progress_green": {"replicated": False}}}

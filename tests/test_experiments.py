@@ -138,7 +138,7 @@ def test_summary_holds_the_numbers_the_book_quotes(default_run):
 def test_progress_bar_is_tqdm_when_on_and_absent_when_off():
     from tqdm.auto import tqdm
 
-    from icm.experiments._progress import progress_bar
+    from icm.experiments.progress import progress_bar
 
     items = range(3)
     assert isinstance(progress_bar(items, 3, "runs", True), tqdm)
@@ -153,12 +153,11 @@ def test_progress_bar_is_tqdm_when_on_and_absent_when_off():
     (icm.experiments.run_rod_toppling, dict(n_episodes=2)),
 ])
 def test_every_run_reports_progress_unless_told_not_to(run, kwargs, monkeypatch):
-    import importlib
+    from icm.experiments import loop  # every run's bar is the one loop's observer
 
-    module = importlib.import_module(run.__module__)
     calls = []
-    real = module.progress_bar
-    monkeypatch.setattr(module, "progress_bar",
+    real = loop.progress_bar
+    monkeypatch.setattr(loop, "progress_bar",
                         lambda *args, **kw: calls.append(args[3]) or real(*args, **kw))
     run(n_seeds=2, seed=0, **kwargs)
     run(n_seeds=2, seed=0, progress=False, **kwargs)
@@ -169,7 +168,7 @@ def test_every_run_reports_progress_unless_told_not_to(run, kwargs, monkeypatch)
 
 def test_comparison_table_has_one_column_per_run():
     run = icm.experiments.run_goal_oriented(n_seeds=6, n_trials=30, progress=False)
-    table = icm.experiments.comparison_table({"first": run, "second": run})
+    table = icm.chapters.goal_oriented_interest.comparison_table({"first": run, "second": run})
     lines = table.splitlines()
     assert lines[0] == "| measure | first | second |" and lines[2] == "| seeds | 6 | 6 |"
     s = run.summary()
@@ -192,7 +191,7 @@ def test_either_rule_for_a_task_seen_once_keeps_the_order_and_changes_the_first_
 
 def test_the_peaks_are_described_in_the_order_the_data_gives(default_run):
     red, green = default_run.peak_trial("red"), default_run.peak_trial("green")
-    text = default_run.describe_peaks()
+    text = icm.chapters.goal_oriented_interest.describe_peaks(default_run)
     assert f"trial {red}" in text and (green == red or f"trial {green}" in text)
     expected = "agree" if green > red else "do not show" if green == red else "opposite"
     assert expected in text
@@ -209,12 +208,12 @@ def test_every_order_of_the_peaks_has_its_own_words(default_run, red_peak, green
     interest[:, red_peak - 1, 0] = 1.0
     interest[:, green_peak - 1, 1] = 1.0
     result = dataclasses.replace(default_run, interest=interest)
-    text = result.describe_peaks()
+    text = icm.chapters.goal_oriented_interest.describe_peaks(result)
     assert word in text and f"trial {red_peak}" in text and f"trial {green_peak}" in text
 
 
 def test_the_fewest_seeds_in_words_stay_true():
-    from icm.experiments.results import in_seeds
+    from icm.chapters.words import in_seeds
 
     # A lower end of an interval: "at least", rounded down; never 100%, never "every".
     assert in_seeds(0.965) == "in at least 96.5% of the seeds"  # 96.49999... in floats
@@ -238,7 +237,7 @@ def test_the_fewest_seeds_in_words_stay_true():
 def test_a_percentage_says_all_or_none_only_when_it_is():
     # 199 seeds of 200 read as "100%" to a reader, who takes it for every seed: a share
     # that is neither 0 nor 1 never shows as 0% or 100%, at any precision asked for.
-    from icm.experiments.results import MAX_DECIMALS, percent
+    from icm.chapters.words import MAX_DECIMALS, percent
 
     assert percent(199 / 200) == "99.5%" and percent(1 / 200) == "0.5%"
     assert percent(1) == "100%" and percent(0) == "0%" and percent(1, 1) == "100.0%"

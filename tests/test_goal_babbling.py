@@ -11,8 +11,12 @@ import numpy as np
 import pytest
 
 import icm
+import icm.chapters
 from icm.envs import buttons, icub
-from icm.experiments import goal_babbling, goal_babbling_study, remedies_study
+from icm.experiments import babbling_results, babbling_space, formed_actions, goal_babbling
+from icm.studies.forming_actions import arms
+from icm.studies.forming_actions import remedies as remedies_study
+from icm.studies.forming_actions import strategies as goal_babbling_study
 from icm.envs.buttons.movements import MovementLab, first_press, lowest_capsule_point
 from icm.figures import forming_actions
 from icm.learners import goal_babbling as learners_goal_babbling
@@ -41,7 +45,7 @@ def scripted_downs(lab):
 # --- the API -------------------------------------------------------------------------------
 
 def test_result_has_the_documented_arrays(small):
-    n_goals = len(goal_babbling.console_geometry()["test_goals"])
+    n_goals = len(babbling_space.console_geometry()["test_goals"])
     assert small.n_seeds == 2 and small.n_rollouts == 40
     assert small.test_error.shape == (2, len(small.checkpoints))
     assert small.checkpoints[-1] == 40 and np.all(np.diff(small.checkpoints) > 0)
@@ -51,16 +55,16 @@ def test_result_has_the_documented_arrays(small):
     assert small.movements.shape == (2, 40, 7) and small.outcomes.shape == (2, 40, 3)
     assert small.touched.shape == small.pressed.shape == small.regions.shape == (2, 40)
     assert small.goals.shape == (2, 40, 3)
-    n_regions = int(np.prod(goal_babbling.REGION_GRID))
+    n_regions = int(np.prod(babbling_space.REGION_GRID))
     assert small.interest.shape == (2, 40, n_regions)
     # The first N_BOOTSTRAP rollouts are random motor commands: no goal, no region.
-    boot = goal_babbling.N_BOOTSTRAP
+    boot = learners_goal_babbling.N_BOOTSTRAP
     assert np.isnan(small.goals[:, :boot]).all() and (small.regions[:, :boot] == -1).all()
     assert np.isfinite(small.goals[:, boot:]).all()
-    assert np.array_equal(small.regions[:, boot:], goal_babbling.region_of(small.goals[:, boot:]))
+    assert np.array_equal(small.regions[:, boot:], babbling_space.region_of(small.goals[:, boot:]))
     # Every goal lies in the goal space; every movement within the joint ranges.
-    assert (small.goals[:, boot:] >= goal_babbling.GOAL_LOW).all()
-    assert (small.goals[:, boot:] <= goal_babbling.GOAL_HIGH).all()
+    assert (small.goals[:, boot:] >= babbling_space.GOAL_LOW).all()
+    assert (small.goals[:, boot:] <= babbling_space.GOAL_HIGH).all()
     lab = MovementLab()
     assert (small.movements >= lab.lower).all() and (small.movements <= lab.upper).all()
     summary = small.summary()
@@ -72,9 +76,9 @@ def test_result_has_the_documented_arrays(small):
 def test_test_error_is_the_distance_to_the_nearest_outcome_so_far(small):
     # In the outcome space: the point and the caps' depths, these times DEPTH_WEIGHT.
     assert small.settings["outcome_space"] == "point_and_depths"
-    goals = np.concatenate([small.test_goals, goal_babbling.DEPTH_WEIGHT
-                            * goal_babbling.goal_depths(small.test_goals)], axis=1)
-    outcomes = np.concatenate([small.outcomes, goal_babbling.DEPTH_WEIGHT * small.depths],
+    goals = np.concatenate([small.test_goals, babbling_space.DEPTH_WEIGHT
+                            * babbling_space.goal_depths(small.test_goals)], axis=1)
+    outcomes = np.concatenate([small.outcomes, babbling_space.DEPTH_WEIGHT * small.depths],
                               axis=2)
     for k in range(small.n_seeds):
         for c, done in enumerate(small.checkpoints):
@@ -86,9 +90,9 @@ def test_test_error_is_the_distance_to_the_nearest_outcome_so_far(small):
 
 
 def test_the_press_movements_are_the_inverse_models_answers(small):
-    press_goals = goal_babbling.goal_outcomes(goal_babbling.console_geometry()["press_goals"],
+    press_goals = babbling_space.goal_outcomes(babbling_space.console_geometry()["press_goals"],
                                               "point_and_depths")
-    outcomes = goal_babbling.outcome_vectors(small.outcomes, small.depths, "point_and_depths")
+    outcomes = babbling_space.outcome_vectors(small.outcomes, small.depths, "point_and_depths")
     for k in range(small.n_seeds):
         for b in range(5):
             nearest = np.argmin(np.linalg.norm(outcomes[k] - press_goals[b], axis=1))
@@ -97,7 +101,7 @@ def test_the_press_movements_are_the_inverse_models_answers(small):
 
 
 def test_goal_geometry_follows_the_model():
-    geometry = goal_babbling.console_geometry()
+    geometry = babbling_space.console_geometry()
     physics = buttons.load_physics()
     physics.forward()
     for b in range(5):
@@ -113,17 +117,17 @@ def test_goal_geometry_follows_the_model():
     clearance = np.linalg.norm(grid[:, None, :2] - caps[None], axis=2).min(axis=1)
     assert clearance.min() >= geometry["cap_radius"] + 0.01
     # Each button sits in its own column of regions, at its centre.
-    columns = [np.unravel_index(goal_babbling.region_of(g), goal_babbling.REGION_GRID)[1]
+    columns = [np.unravel_index(babbling_space.region_of(g), babbling_space.REGION_GRID)[1]
                for g in geometry["press_goals"]]
     assert columns == [5, 4, 3, 2, 1]
-    bounds = goal_babbling.region_bounds()
-    assert bounds.shape == (int(np.prod(goal_babbling.REGION_GRID)), 2, 3)
+    bounds = babbling_space.region_bounds()
+    assert bounds.shape == (int(np.prod(babbling_space.REGION_GRID)), 2, 3)
     for region, (low, high) in enumerate(bounds):
-        assert goal_babbling.region_of((low + high) / 2) == region
+        assert babbling_space.region_of((low + high) / 2) == region
 
 
 def test_a_goal_asks_for_the_cap_under_it_pushed_down_to_it_and_no_other():
-    geometry = goal_babbling.console_geometry()
+    geometry = babbling_space.console_geometry()
     cap, top, travel = geometry["caps"][3], geometry["cap_top"], geometry["travel"]
     radius = geometry["cap_radius"]
     points = np.array([[cap[0], cap[1], top - 0.006],  # on cap 3, 6 mm down
@@ -131,12 +135,12 @@ def test_a_goal_asks_for_the_cap_under_it_pushed_down_to_it_and_no_other():
                        [cap[0] + 1.1 * radius, cap[1], top - 0.006],  # beside it
                        [cap[0], cap[1], top + 0.02],  # above it
                        [cap[0], cap[1], top - 0.05]])  # below its travel: all the way
-    depths = goal_babbling.goal_depths(points)
+    depths = babbling_space.goal_depths(points)
     expected = np.zeros((5, 5))
     expected[[0, 1], 3] = 0.006
     expected[4, 3] = travel
     assert np.allclose(depths, expected, atol=1e-12)
-    assert np.allclose(goal_babbling.goal_depths(geometry["press_goals"]), travel * np.eye(5))
+    assert np.allclose(babbling_space.goal_depths(geometry["press_goals"]), travel * np.eye(5))
 
 
 def test_with_the_depths_a_press_at_a_caps_edge_is_nearer_its_goal_than_a_touch():
@@ -144,17 +148,17 @@ def test_with_the_depths_a_press_at_a_caps_edge_is_nearer_its_goal_than_a_touch(
     # cap's top above its centre (1.5 cm above the press goal) nearer the press goal
     # than a full press near the cap's edge; with the depths the press is nearer, and
     # a press that also pushes a neighbour is farther than the clean one.
-    geometry = goal_babbling.console_geometry()
+    geometry = babbling_space.console_geometry()
     goal, travel = geometry["press_goals"][2], geometry["travel"]
     edge = goal + [0.0, 0.8 * geometry["cap_radius"], 0.0]
     touch = goal + [0.0, 0.0, travel]
     press_depths, touch_depths = travel * np.eye(5)[2], np.zeros(5)
     both_depths = press_depths + travel * np.eye(5)[3]
     distance = {}
-    for space in goal_babbling.OUTCOME_SPACES:
-        wanted = goal_babbling.goal_outcomes(goal, space)
+    for space in babbling_space.OUTCOME_SPACES:
+        wanted = babbling_space.goal_outcomes(goal, space)
         distance[space] = {
-            name: np.linalg.norm(goal_babbling.outcome_vectors(point, depths, space) - wanted)
+            name: np.linalg.norm(babbling_space.outcome_vectors(point, depths, space) - wanted)
             for name, point, depths in [("press at the edge", edge, press_depths),
                                         ("touch at the centre", touch, touch_depths),
                                         ("press and neighbour", goal, both_depths)]}
@@ -193,8 +197,8 @@ run = goal_babbling.run_goal_babbling
     (lambda: run(epsilon=-0.1), "epsilon", "-0.1", "value"),
     (lambda: run(window=1), "window", "1", "value"),
     (lambda: run(n_seeds=10 ** 6, n_rollouts=10 ** 6), "run_goal_babbling", "memory", "value"),
-    (lambda: goal_babbling.region_of([0.3, 0.1]), "points", "(2,)", "value"),
-    (lambda: goal_babbling.run_formed_actions("babbling"), "babbling", "'babbling'", "type"),
+    (lambda: babbling_space.region_of([0.3, 0.1]), "points", "(2,)", "value"),
+    (lambda: formed_actions.run_formed_actions("babbling"), "babbling", "'babbling'", "type"),
     (lambda: buttons.PhysicsButtonConsole(press_motions=[[]] * 5), "press_motions[0]", "[]",
      "value"),
     (lambda: buttons.PhysicsButtonConsole(press_motions=[[(icub.POSTURE, 0.4)]] * 4),
@@ -226,8 +230,8 @@ run = goal_babbling.run_goal_babbling
     (lambda: run(inverse_model="lwpr"), "inverse_model", "'lwpr'", "value"),
     (lambda: run(measure="novelty"), "measure", "'novelty'", "value"),
     (lambda: run(regions="tree"), "regions", "'tree'", "value"),
-    (lambda: goal_babbling.region_of(["0.3", "0.1", "0.5"]), "points", "'0.3'", "type"),
-    (lambda: goal_babbling.region_of([0.3 + 1j, 0.1, 0.5]), "points", "j", "type"),
+    (lambda: babbling_space.region_of(["0.3", "0.1", "0.5"]), "points", "'0.3'", "type"),
+    (lambda: babbling_space.region_of([0.3 + 1j, 0.1, 0.5]), "points", "j", "type"),
     (lambda: goal_babbling.checkpoints_of(0), "n_rollouts", "0", "value"),
 ])
 def test_bad_input_is_refused(call, name, shown, kind):
@@ -247,7 +251,7 @@ def test_bad_input_to_the_figures_and_the_loop_is_refused(small):
     refused(lambda: forming_actions.record_learned_press(small, seed=2), "seed", "2", "value")
     refused(lambda: forming_actions.record_learned_press(small, camera="top"), "camera",
             "'top'", "value")
-    refused(lambda: goal_babbling.run_formed_actions(small, n_trials=0), "n_trials", "0",
+    refused(lambda: formed_actions.run_formed_actions(small, n_trials=0), "n_trials", "0",
             "value")
     refused(lambda: small.goal_shares([0, 50]), "edges", "50", "value")
     # Booleans and fractions gave zero-width stretches.
@@ -280,7 +284,7 @@ def test_the_environment_and_the_learners_refuse_bad_input(lab):
     refused(lambda: sensorimotor.LocallyWeightedInverse(2, 5, lab.lower, lab.upper, 3,
                                                         neighbours=1),
             "neighbours", "1", "value")
-    grid = goal_choice.RegionGrid(goal_babbling.GOAL_LOW, goal_babbling.GOAL_HIGH, (1, 7, 2))
+    grid = goal_choice.RegionGrid(babbling_space.GOAL_LOW, babbling_space.GOAL_HIGH, (1, 7, 2))
     refused(lambda: goal_choice.RegionGrid([0, 0], [1, 0], (1, 1)), "high", "low", "value")
     refused(lambda: goal_choice.RegionGrid([0, 0], [1, 1], (1,)), "cells", "(1,)", "value")
     choice = goal_choice.RegionProgress(grid, 2)
@@ -310,8 +314,8 @@ def test_the_checkpoints_are_never_at_rollout_zero():
     short = goal_babbling.run_goal_babbling("random_motor", n_seeds=1, n_rollouts=5, seed=3,
                                             progress=False)
     assert short.checkpoints.tolist() == [1, 2, 3, 4, 5]
-    first = np.linalg.norm(goal_babbling.goal_outcomes(short.test_goals, "point_and_depths")
-                           - goal_babbling.outcome_vectors(short.outcomes[0, 0],
+    first = np.linalg.norm(babbling_space.goal_outcomes(short.test_goals, "point_and_depths")
+                           - babbling_space.outcome_vectors(short.outcomes[0, 0],
                                                            short.depths[0, 0],
                                                            "point_and_depths"), axis=1).mean()
     assert short.test_error[0, 0] == pytest.approx(first, abs=1e-12)
@@ -362,7 +366,7 @@ def test_the_strategies_choose_differently():
     assert np.isnan(motor.goals).all() and (motor.regions == -1).all()
     assert not motor.interest.any() and not goal.interest.any()
     # The same random start, then different choices.
-    boot = goal_babbling.N_BOOTSTRAP
+    boot = learners_goal_babbling.N_BOOTSTRAP
     assert np.array_equal(motor.movements[:, :boot], goal.movements[:, :boot])
     assert not np.array_equal(motor.movements[:, boot:], goal.movements[:, boot:])
 
@@ -377,7 +381,7 @@ def test_a_movement_that_misses_the_console_presses_nothing(lab):
     assert done["pressed"].tolist() == [-1, -1]
     assert not done["touched"].any()
     # Both end in the air, above the caps.
-    assert (done["point"][:, 2] > goal_babbling.console_geometry()["cap_top"]).all()
+    assert (done["point"][:, 2] > babbling_space.console_geometry()["cap_top"]).all()
     # On the console too: no press, no box.
     console = buttons.PhysicsButtonConsole(seed=0, press_motions=[lab.phases(raised)] * 5)
     console.reset()
@@ -391,7 +395,7 @@ def test_outcomes_are_where_the_physics_stops_the_finger(lab, scripted_downs):
     done = lab.perform(scripted_downs)
     assert done["pressed"].tolist() == [0, 1, 2, 3, 4]
     assert done["touched"].all()
-    geometry = goal_babbling.console_geometry()
+    geometry = babbling_space.console_geometry()
     arm = icub.Arm(lab.physics)
     scratch = mujoco.MjData(lab.model)
     for target, outcome in zip(scripted_downs, done["point"]):
@@ -442,7 +446,7 @@ def test_buttons_pressed_is_measured_on_the_console(lab, scripted_downs, small):
     movements = small.press_movements.copy()
     movements[0] = lab.home
     movements[0, [1, 3]] = scripted_downs[[1, 3]]
-    pressed = goal_babbling._press_each_button(lab, movements, [0, 1])
+    pressed = formed_actions.press_each_button(lab, movements, [0, 1])
     assert pressed[0].tolist() == [False, True, False, True, False]
 
 
@@ -453,7 +457,7 @@ def test_formed_actions_that_press_like_the_script_give_the_scripted_run(small,
     # Movements that press exactly like the scripted primitive: the learner on the
     # physics console makes the choices it makes on the tabular console, seed for seed.
     formed = dataclasses.replace(small, press_movements=np.stack([scripted_downs] * 2))
-    run = goal_babbling.run_formed_actions(formed, n_trials=6, seed=5, progress=False)
+    run = formed_actions.run_formed_actions(formed, n_trials=6, seed=5, progress=False)
     tabular = icm.experiments.run_goal_oriented(n_seeds=2, n_trials=6, seed=5,
                                                 progress=False)
     assert run.as_scripted == 1.0 and run.n_presses == 2 * 6 * 3
@@ -461,7 +465,7 @@ def test_formed_actions_that_press_like_the_script_give_the_scripted_run(small,
     assert np.array_equal(run.learner.mastery_trial, tabular.mastery_trial)
     # Movements that press nothing: no box ever opens, unlike the script.
     missing = dataclasses.replace(small, press_movements=np.stack([[MovementLab().home] * 5] * 2))
-    run = goal_babbling.run_formed_actions(missing, n_trials=2, seed=5, progress=False)
+    run = formed_actions.run_formed_actions(missing, n_trials=2, seed=5, progress=False)
     assert run.learner.practice.sum() == 0 and run.as_scripted < 1.0
 
 
@@ -478,7 +482,7 @@ def test_figures_draw(small):
         assert len(figure.png()) > 10_000
     record = forming_actions.record_learned_press(small, seed=1, button=2)
     assert record["frame"].shape == (240, 320, 3) and record["frame"].std() > 1
-    assert "| random motor | 2 | 30 |" in goal_babbling.comparison_table(results)
+    assert "| random motor | 2 | 30 |" in icm.chapters.forming_actions.strategies.strategy_table(results)
 
 
 # --- the claim -----------------------------------------------------------------------------
@@ -509,7 +513,7 @@ def claim_runs(n_seeds=CLAIM_SEEDS, first_run=0):
                      "test_error": result.final_test_error().tolist()}
         if name == "learning progress":
             assert result.settings["outcome_space"] == "point_and_depths"
-            loop = goal_babbling.run_formed_actions(result, seed=CLAIM_ROOT, progress=False,
+            loop = formed_actions.run_formed_actions(result, seed=CLAIM_ROOT, progress=False,
                                                     first_run=first_run)
             out["formed"] = {"red_first": loop.red_first().astype(int).tolist(),
                              "as_scripted": loop.as_scripted_per_seed.tolist()}
@@ -548,7 +552,7 @@ def test_no_outcome_lies_inside_the_console(lab):
     # Soft contacts let a finger driven hard sink into the console's top; the outcome
     # is read on the surface. Movements into the console from random targets, seeded.
     rng = np.random.default_rng(2)
-    geometry = goal_babbling.console_geometry()
+    geometry = babbling_space.console_geometry()
     downs = np.array(buttons.ButtonsTask().motions(lab.physics).down)
     targets = lab.clip(downs[rng.integers(5, size=60)] + rng.normal(0, 0.15, (60, 7)))
     done = lab.perform(targets)
@@ -588,8 +592,8 @@ def test_the_learner_copes_with_formed_actions_that_open_both_boxes(small, scrip
     movements = np.stack([scripted_downs] * 2)
     movements[0, 2] = TWO_BUTTONS
     formed = dataclasses.replace(small, press_movements=movements)
-    run = goal_babbling.run_formed_actions(formed, n_trials=8, seed=5, progress=False)
-    clean = goal_babbling.run_formed_actions(
+    run = formed_actions.run_formed_actions(formed, n_trials=8, seed=5, progress=False)
+    clean = formed_actions.run_formed_actions(
         dataclasses.replace(small, press_movements=np.stack([scripted_downs] * 2)),
         n_trials=8, seed=5, progress=False)
     assert clean.as_scripted == 1.0 and run.as_scripted < 1.0
@@ -603,7 +607,7 @@ def test_the_learner_copes_with_formed_actions_that_open_both_boxes(small, scrip
 
 def test_press_failures_says_what_each_formed_movement_did(lab, small, scripted_downs):
     above = buttons.ButtonsTask().motions(lab.physics).above
-    geometry = goal_babbling.console_geometry()
+    geometry = babbling_space.console_geometry()
     cap = geometry["caps"][1]
     touch = icub.Arm(lab.physics).solve([cap[0], cap[1], geometry["cap_top"]],
                                         start=above[1])
@@ -613,11 +617,11 @@ def test_press_failures_says_what_each_formed_movement_did(lab, small, scripted_
     movements[0, 2] = TWO_BUTTONS  # button 2 and button 3
     movements[0, 3] = scripted_downs[4]  # the neighbour instead
     done = lab.perform(movements.reshape(-1, 7))
-    pressed = goal_babbling._press_each_button(lab, movements, [0, 1])
+    pressed = formed_actions.press_each_button(lab, movements, [0, 1])
     result = dataclasses.replace(small, press_movements=movements,
                                  press_outcomes=done["point"].reshape(2, 5, 3),
                                  buttons_pressed=pressed)
-    names = np.array(goal_babbling.PRESS_FAILURES)[goal_babbling.press_failures(result)]
+    names = np.array(formed_actions.PRESS_FAILURES)[formed_actions.press_failures(result)]
     assert names[0].tolist() == ["off the cap", "not pushed in far enough",
                                  "a neighbour pushed too", "a neighbour pushed instead",
                                  "formed"]
@@ -625,7 +629,7 @@ def test_press_failures_says_what_each_formed_movement_did(lab, small, scripted_
 
 
 def test_presses_formed_tests_the_best_movement_so_far(small):
-    formed = goal_babbling.presses_formed(small, [1, 20, small.n_rollouts])
+    formed = formed_actions.presses_formed(small, [1, 20, small.n_rollouts])
     assert formed.shape == (3, small.n_seeds, 5)
     assert np.array_equal(formed[-1], small.buttons_pressed)
     # After one rollout every button has the same, first, movement: a press of one
@@ -634,22 +638,22 @@ def test_presses_formed_tests_the_best_movement_so_far(small):
     # A budget's presses are those tested afresh at that budget alone, whatever the
     # budgets before it.
     budgets = [1, 5, 10, 20, 30, 40]
-    together = goal_babbling.presses_formed(small, budgets)
+    together = formed_actions.presses_formed(small, budgets)
     for i, n in enumerate(budgets):
-        assert np.array_equal(together[i], goal_babbling.presses_formed(small, [n])[0]), n
-    refused(lambda: goal_babbling.presses_formed(small, [0, 10]), "rollouts", "0", "value")
-    refused(lambda: goal_babbling.presses_formed(small, [10, 5]), "rollouts", "5", "value")
-    refused(lambda: goal_babbling.presses_formed(small, [41]), "rollouts", "41", "value")
-    refused(lambda: goal_babbling.presses_formed(small, [2.5]), "rollouts", "2.5", "type")
-    refused(lambda: goal_babbling.presses_formed("small", [1]), "result", "'small'", "type")
+        assert np.array_equal(together[i], formed_actions.presses_formed(small, [n])[0]), n
+    refused(lambda: formed_actions.presses_formed(small, [0, 10]), "rollouts", "0", "value")
+    refused(lambda: formed_actions.presses_formed(small, [10, 5]), "rollouts", "5", "value")
+    refused(lambda: formed_actions.presses_formed(small, [41]), "rollouts", "41", "value")
+    refused(lambda: formed_actions.presses_formed(small, [2.5]), "rollouts", "2.5", "type")
+    refused(lambda: formed_actions.presses_formed("small", [1]), "result", "'small'", "type")
 
 
 def test_press_distances_are_those_of_the_outcome_spaces():
-    geometry = goal_babbling.console_geometry()
-    distances = goal_babbling.press_distances(1)
+    geometry = babbling_space.console_geometry()
+    distances = babbling_space.press_distances(1)
     travel = geometry["travel"]
-    weight = goal_babbling.DEPTH_WEIGHT
-    edge = goal_babbling.EDGE_SHARE * geometry["cap_radius"]
+    weight = babbling_space.DEPTH_WEIGHT
+    edge = babbling_space.EDGE_SHARE * geometry["cap_radius"]
     assert distances["point"]["touch at the centre"] == pytest.approx(travel)
     assert distances["point"]["press at the edge"] == pytest.approx(edge)
     assert distances["point"]["press and neighbour"] == 0.0
@@ -658,7 +662,7 @@ def test_press_distances_are_those_of_the_outcome_spaces():
     assert distances["point_and_depths"]["press at the edge"] == pytest.approx(edge)
     assert distances["point_and_depths"]["press and neighbour"] == pytest.approx(
         weight * travel)
-    refused(lambda: goal_babbling.press_distances(5), "button", "5", "value")
+    refused(lambda: babbling_space.press_distances(5), "button", "5", "value")
 
 
 # --- the longer runs, kept in a file ---------------------------------------------------------
@@ -670,24 +674,24 @@ def study():
 
 def test_the_study_file_holds_every_variant_on_its_root_seeds(study):
     st = goal_babbling_study
-    assert study["budgets"] == list(st.BUDGETS) and study["n_seeds"] == st.N_SEEDS
-    assert study["n_rollouts"] == goal_babbling.DEFAULT_N_ROLLOUTS == st.BUDGETS[-1]
+    assert study["budgets"] == list(arms.BUDGETS) and study["n_seeds"] == st.N_SEEDS
+    assert study["n_rollouts"] == goal_babbling.DEFAULT_N_ROLLOUTS == arms.BUDGETS[-1]
     assert list(study["runs"]) == list(st.VARIANTS)
     for label, by_root in study["runs"].items():
-        roots = st.TUNING_ROOTS + (st.HELD_OUT_ROOTS if label in st.HELD_OUT_VARIANTS else ())
+        roots = arms.TUNING_ROOTS + (arms.HELD_OUT_ROOTS if label in st.HELD_OUT_VARIANTS else ())
         assert sorted(map(int, by_root)) == sorted(roots)
         for entry in by_root.values():
-            assert np.array(entry["pressed"]).shape == (st.N_SEEDS, len(st.BUDGETS), 5)
+            assert np.array(entry["pressed"]).shape == (st.N_SEEDS, len(arms.BUDGETS), 5)
             assert np.array(entry["failures"]).shape == (st.N_SEEDS, 5)
             assert ("red_first" in entry) == (label in st.LOOP_VARIANTS)
     # The study's root seeds are none of the tests' (3, 5, 7, 8, 11 here).
-    assert not {3, 5, 7, 8, 11} & set(st.TUNING_ROOTS + st.HELD_OUT_ROOTS)
+    assert not {3, 5, 7, 8, 11} & set(arms.TUNING_ROOTS + arms.HELD_OUT_ROOTS)
 
 
 def test_the_study_file_is_what_the_library_computes(study):
     # Seed i of a root seed is the same in any run: rerun the second seed of two
     # variants alone and expect the file's numbers (python -m
-    # icm.experiments.goal_babbling_study writes it again after a change).
+    # icm.studies.forming_actions.strategies writes it again after a change).
     for label, root in [("learning progress", 100), ("where the finger stopped only", 200)]:
         entry = goal_babbling_study.run_variant(label, root, n_seeds=1, first_run=1)
         cached = study["runs"][label][str(root)]
@@ -706,33 +710,33 @@ def test_the_studys_verdicts_are_phrased_from_its_numbers(study):
         fake["runs"] = {
             "learning progress": {str(r): {"pressed": lp(8), "failures": [[0] * 5] * 8,
                                            "test_error": [0.01] * 8, **loop(8, 1, 0.97)}
-                                  for r in goal_babbling_study.TUNING_ROOTS
-                                  + goal_babbling_study.HELD_OUT_ROOTS},
+                                  for r in arms.TUNING_ROOTS
+                                  + arms.HELD_OUT_ROOTS},
             "random goal babbling": {str(r): {"pressed": rg(8), "failures": [[0] * 5] * 8,
                                               "test_error": [0.02] * 8, **loop(8, 0, 0.9)}
-                                     for r in goal_babbling_study.TUNING_ROOTS
-                                     + goal_babbling_study.HELD_OUT_ROOTS}}
-        verdicts = goal_babbling_study.verdicts(fake)
+                                     for r in arms.TUNING_ROOTS
+                                     + arms.HELD_OUT_ROOTS}}
+        verdicts = icm.chapters.forming_actions.strategies.verdicts(fake)
         assert words in verdicts["margin_verdict"]
         assert verdicts["n_held_seeds"] == 16 and verdicts["loop_red_first"] == 1.0
-        assert verdicts["n_family"] == len(remedies_study.chapter_family(babbling=fake))
+        assert verdicts["n_family"] == len(icm.chapters.forming_actions.family.chapter_family(babbling=fake))
         assert verdicts["target_red_first"] == verdicts["target_as_scripted"] == "met"
         met = "met" if lp is pressed else "not met"
         assert verdicts["target_presses_tuning"] == verdicts["target_presses_held_out"] == met
     # The held-out rule: a margin on the tuning seeds alone is no clear margin.
-    for r in goal_babbling_study.HELD_OUT_ROOTS:
+    for r in arms.HELD_OUT_ROOTS:
         fake["runs"]["random goal babbling"][str(r)]["pressed"] = pressed(8)
     fake["runs"]["learning progress"] = {
         r: {**entry, "pressed": pressed(8)}
         for r, entry in fake["runs"]["learning progress"].items()}
-    for r in goal_babbling_study.TUNING_ROOTS:
+    for r in arms.TUNING_ROOTS:
         fake["runs"]["random goal babbling"][str(r)]["pressed"] = missed(8)
-    assert "no clear difference" in goal_babbling_study.verdicts(fake)["margin_verdict"]
+    assert "no clear difference" in icm.chapters.forming_actions.strategies.verdicts(fake)["margin_verdict"]
     counts = goal_babbling_study.failure_counts(study, "learning progress")
     assert sum(counts.values()) == 5 * goal_babbling_study.N_SEEDS * 2
-    table = goal_babbling_study.failures_table(study, "learning progress")
-    assert table.count("\n") == 1 + len(goal_babbling.PRESS_FAILURES)
-    assert "| learning progress | 100, 200 | 20 |" in goal_babbling_study.study_table(study)
+    table = icm.chapters.forming_actions.strategies.failures_table(study, "learning progress")
+    assert table.count("\n") == 1 + len(formed_actions.PRESS_FAILURES)
+    assert "| learning progress | 100, 200 | 20 |" in icm.chapters.forming_actions.strategies.study_table(study)
 
 
 def test_the_presses_formed_figure_draws_and_refuses_bad_input(study):

@@ -6,15 +6,15 @@ import numpy as np
 import pytest
 
 from icm import cli
-from icm.experiments import goal_babbling
+from icm.experiments import babbling_space, goal_babbling
 from icm.learners import goal_choice
 from icm.learners.goal_babbling import GoalBabblingSettings
 from icm.learners.maturation import JointRangeMaturation, MaturationSettings
 
 
 def _grid():
-    return goal_choice.RegionGrid(goal_babbling.GOAL_LOW, goal_babbling.GOAL_HIGH,
-                                  goal_babbling.REGION_GRID)
+    return goal_choice.RegionGrid(babbling_space.GOAL_LOW, babbling_space.GOAL_HIGH,
+                                  babbling_space.REGION_GRID)
 
 
 def test_the_settings_hold_the_defaults_the_run_used_to_type():
@@ -22,9 +22,10 @@ def test_the_settings_hold_the_defaults_the_run_used_to_type():
     assert settings.as_dict() == {
         "strategy": "learning_progress", "exploration_noise": 0.05, "epsilon": 0.3,
         "window": 10, "inverse_model": "nearest_neighbour", "measure": "learning_progress",
-        "regions": "fixed", "maturation": "none"}
+        "regions": "fixed", "maturation": "none", "maturation_start": 0.5,
+        "maturation_window": 40, "maturation_plateau": 0.01, "maturation_step": 0.01}
     assert goal_babbling.STRATEGIES == ("random_motor", "random_goal", "learning_progress")
-    assert goal_babbling.DEFAULT_EPSILON == 0.3 and goal_babbling.DEFAULT_WINDOW == 10
+    assert goal_choice.DEFAULT_EPSILON == 0.3 and goal_choice.DEFAULT_WINDOW == 10
     assert MaturationSettings().as_dict() == {"start": 0.5, "window": 40, "plateau": 0.01,
                                               "step": 0.01}
 
@@ -59,6 +60,40 @@ def test_the_maturation_clock_reads_its_settings():
         MaturationSettings(start=0.0)
     with pytest.raises(ValueError, match="plateau"):
         JointRangeMaturation(1, home, low, high, plateau=-1.0)
+
+
+def test_the_maturation_clock_is_set_from_a_run_the_command_line_and_a_study(monkeypatch):
+    # The clock's settings are the learner's (maturation_start, ...): a run takes them
+    # as keywords (or in `settings`), and its clock starts where they say.
+    assert {f"maturation_{n}" for n in MaturationSettings.names()} <= set(
+        GoalBabblingSettings.names())
+    run = goal_babbling.run_goal_babbling("random_goal", n_seeds=1, n_rollouts=20,
+                                          maturation="joint_range", maturation_start=0.3,
+                                          progress=False)
+    assert run.settings["maturation_start"] == 0.3 and run.maturity[0, 0] == 0.3
+    assert GoalBabblingSettings(maturation_window=8).maturation_settings() == \
+        MaturationSettings(window=8)
+    with pytest.raises(ValueError, match=r"maturation_start must be a number in \(0, 1\]"):
+        goal_babbling.run_goal_babbling(n_seeds=1, n_rollouts=5, maturation_start=0.0,
+                                        progress=False)
+    # The command line offers them, from the same Setting.
+    args = cli.build_parser().parse_args(["goal-babbling", "--maturation", "joint_range",
+                                          "--maturation-start", "0.25"])
+    assert cli._settings_of(args)["maturation_start"] == 0.25
+    # A study's arm is `run_goal_babbling`'s arguments: an arm that grows up from 0.3.
+    from icm.studies.forming_actions import arms
+    monkeypatch.setitem(arms.ARMS, "growing up from 0.3",
+                        {"maturation": "joint_range", "maturation_start": 0.3})
+    entry = arms.run_arm("growing up from 0.3", 100, ("maturity",), n_seeds=1,
+                         n_rollouts=100)
+    # From 0.3, not the default 0.5 (the clock only grows: 0.34 after 100 rollouts).
+    assert 0.3 <= entry["maturity"][0][0] < MaturationSettings.spec("start").default
+
+
+def test_strategy_comes_by_position_or_by_name_not_both():
+    with pytest.raises(TypeError, match="strategy both by position and by name"):
+        goal_babbling.run_goal_babbling("random_goal", strategy="random_motor", n_seeds=1,
+                                        n_rollouts=5, progress=False)
 
 
 def test_a_settings_object_gives_the_run_of_its_keywords():
@@ -119,7 +154,7 @@ def test_a_strategy_not_registered_is_refused():
 
 def test_the_public_loop_is_the_runs_loop_and_observes_each_rollout():
     from icm.envs.buttons.movements import MovementLab
-    from icm.experiments._seeding import run_seeds
+    from icm.experiments.seeding import run_seeds
 
     run = goal_babbling.run_goal_babbling("learning_progress", n_seeds=2, n_rollouts=30,
                                           seed=4, progress=False)
@@ -127,7 +162,7 @@ def test_the_public_loop_is_the_runs_loop_and_observes_each_rollout():
     seen = []
     seeds = [s[0] for s in run_seeds(4, 2, 2)]
     played = goal_babbling.babble(goal_babbling.make_agent(lab, seeds, 30), lab, 30,
-                                  observe=lambda i, movements, done: seen.append(i))
+                                  observe=lambda step: seen.append(int(step.episode[0])))
     assert seen == list(range(30))
     for name in ("movements", "outcomes", "regions", "interest"):
         np.testing.assert_array_equal(played[name], getattr(run, name))

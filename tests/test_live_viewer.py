@@ -120,15 +120,15 @@ def babbling():
 
 
 def test_the_formed_presses_are_the_results(babbling):
-    from icm.experiments import goal_babbling
+    from icm.envs.buttons import movements
 
     formed = viewer.formed_presses(babbling, run=1)
     assert formed["pressed"] == babbling.buttons_pressed[1].tolist()
     for b, press in enumerate(formed["presses"]):
         assert press[0][0] == press[1][0] == babbling.press_movements[1, b].tolist()
         assert [segment[1] for segment in press] == [
-            round(t / 0.02) for t in (goal_babbling.REACH_TIME, goal_babbling.HOLD_TIME,
-                                      goal_babbling.RETRACT_TIME)]
+            round(t / 0.02) for t in (movements.REACH_TIME, movements.HOLD_TIME,
+                                      movements.RETRACT_TIME)]
         assert formed["lights"][b][b] == buttons.RED
 
 
@@ -400,10 +400,10 @@ def test_the_formed_presses_run_in_the_browser_as_in_python(simulations, babblin
     # presses to 1e-16 m. Checked here: the browser performs the exported movement
     # update for update as Python does until the finger comes near the caps, and
     # wherever the two physics agree to the end, the rules make the same outcome of it.
-    from icm.experiments import goal_babbling
+    from icm.experiments import babbling_space
 
     formed = viewer.formed_presses(babbling, run=0)
-    cap_top = goal_babbling.console_geometry()["cap_top"]
+    cap_top = babbling_space.console_geometry()["cap_top"]
     agreeing_to_the_end = 0
     for button in range(buttons.N_BUTTONS):
         run = simulations.page.evaluate(RUN_PRESS, {

@@ -24,7 +24,9 @@ import pytest
 
 from icm import chapters, figures
 from icm.envs import buttons
-from icm.experiments import goal_babbling, panel_data, remedies_study
+from icm.experiments import formed_actions, goal_babbling, panel_data
+from icm.studies.forming_actions import arms
+from icm.studies.forming_actions import remedies as remedies_study
 from icm.learners import goal_choice, maturation, sensorimotor
 
 
@@ -118,7 +120,7 @@ def test_presses_formed_uses_the_rollouts_within_its_budget_and_none_beyond(show
     # Rollout n is the teacher's press of button n - 1, so within a budget of n
     # rollouts exactly the buttons 0 .. n-1 have a press formed.
     assert shown_five.pressed[0, :5].tolist() == [0, 1, 2, 3, 4]
-    formed = goal_babbling.presses_formed(shown_five, [1, 2, 3, 4, 5])[:, 0]
+    formed = formed_actions.presses_formed(shown_five, [1, 2, 3, 4, 5])[:, 0]
     expected = np.tril(np.ones((5, 5), dtype=bool))
     assert formed.tolist() == expected.tolist()
 
@@ -126,7 +128,7 @@ def test_presses_formed_uses_the_rollouts_within_its_budget_and_none_beyond(show
 def _study(first_presses, n_rollouts=1000):
     """A study of one root seed and as many seeds as `first_presses` has rows per
     condition: {label: [seed][button] first presses (-1 never)}; every press formed."""
-    budgets = list(remedies_study.BUDGETS)
+    budgets = list(arms.BUDGETS)
     runs = {}
     for label in remedies_study.CONDITIONS:
         first = first_presses.get(label, [[-1] * buttons.N_BUTTONS])
@@ -140,7 +142,7 @@ def _study(first_presses, n_rollouts=1000):
 
 
 def test_the_others_pressed_early_count_a_first_press_at_the_bound_itself():
-    early = remedies_study.EARLY
+    early = arms.EARLY
     label = "shown button 2"  # the others: 0, 1, 3, 4
     study = _study({label: [[early, early + 1, 5, -1, 1]]})
     counted = remedies_study.seed_values(study, label, "others_pressed_early")
@@ -150,12 +152,12 @@ def test_the_others_pressed_early_count_a_first_press_at_the_bound_itself():
 def test_a_shown_button_pressed_as_soon_as_without_a_teacher_is_not_sooner():
     baseline = [[300, 300, 300, 300, 300]]
     sooner = {label: [[100] * buttons.N_BUTTONS] for label in remedies_study.TEACHING}
-    sentence = chapters.forming_actions.shown_sooner_sentence(
+    sentence = chapters.forming_actions.remedies.shown_sooner_sentence(
         _study({"learning progress": baseline, **sooner}))
     assert sentence.startswith("sooner than learning progress alone in all")
     tied = copy.deepcopy(sooner)
     tied["shown button 2"] = [[100, 100, 300, 100, 100]]  # button 2, the one shown: a tie
-    sentence = chapters.forming_actions.shown_sooner_sentence(
+    sentence = chapters.forming_actions.remedies.shown_sooner_sentence(
         _study({"learning progress": baseline, **tied}))
     assert sentence.startswith("not sooner in shown button 2, button 2"), sentence
 

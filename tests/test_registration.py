@@ -55,7 +55,7 @@ def test_a_signal_is_one_class(surprise_squared):
     # The command line offers it.
     args = cli.build_parser().parse_args(["figure5", "--interest", name])
     assert cli._settings_of(args)["interest"] == name
-    # The rods' compiled loop does not compute it (no KERNEL_CODE), and says so by name.
+    # The rods' compiled loop does not compute it (no KERNEL_FORMULA), and says so by name.
     with pytest.raises(ValueError, match="'surprise_squared' is an interest signal the "
                                          "compiled rod loop does not compute"):
         rod_toppling.run_rod_toppling(n_seeds=1, n_episodes=2, reward=name, progress=False)
@@ -64,8 +64,12 @@ def test_a_signal_is_one_class(surprise_squared):
 def test_the_library_signals_carry_their_colour_and_kernel_code():
     from icm.experiments import _rods_kernel
 
-    assert _rods_kernel.signal_codes() == {"learning_progress": 1, "prediction_error": 0,
-                                           "novelty": 2, "random": 3}
+    assert _rods_kernel.signal_codes() == {
+        "learning_progress": _rods_kernel.SLOPE, "prediction_error": _rods_kernel.ERROR,
+        "novelty": _rods_kernel.NOVELTY, "random": _rods_kernel.NONE}
+    assert [_rods_kernel.FORMULAS[c] for c in (_rods_kernel.ERROR, _rods_kernel.SLOPE,
+                                               _rods_kernel.NOVELTY, _rods_kernel.NONE)] \
+        == ["error", "slope", "novelty", "none"]
     colours = dict(curiosity_figures.SIGNAL_COLOURS)
     assert set(colours) == set(interest.SIGNALS) and len(set(colours.values())) == 4
 

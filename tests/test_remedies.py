@@ -1,5 +1,5 @@
 """The paper's two remedies on goal babbling (icm.learners.maturation, the teacher's
-demonstrations of icm.learners.goal_babbling, icm.experiments.remedies_study): the
+demonstrations of icm.learners.goal_babbling, icm.studies.forming_actions.remedies): the
 maturational clock, the demonstrations, the options off, bad input, determinism, the
 study file and the chapter's verdicts (its claims on fresh seeds, and the replication:
 tests/test_remedies_replication.py)."""
@@ -12,7 +12,11 @@ import pytest
 from icm.envs import buttons
 from icm.envs.buttons.movements import MovementLab
 from icm import chapters, stats
-from icm.experiments import goal_babbling, remedies_study, replication
+from icm.chapters import replication
+from icm.experiments import babbling_space, goal_babbling
+from icm.studies.forming_actions import arms
+from icm.studies.forming_actions import remedies as remedies_study
+from icm.experiments.seeding import REPLICATION_ROOTS
 from icm.figures import forming_actions
 from icm.learners import goal_babbling as agents
 from icm.learners import goal_choice, maturation, sensorimotor
@@ -96,8 +100,8 @@ def test_the_clock_refuses_bad_input():
 
 def _agent(lab, n_rows=2, grow=False, shown=None, seed=0):
     model = sensorimotor.NearestNeighbourInverse(n_rows, 100, lab.lower, lab.upper, 3)
-    grid = goal_choice.RegionGrid(goal_babbling.GOAL_LOW, goal_babbling.GOAL_HIGH,
-                                  goal_babbling.REGION_GRID)
+    grid = goal_choice.RegionGrid(babbling_space.GOAL_LOW, babbling_space.GOAL_HIGH,
+                                  babbling_space.REGION_GRID)
     clock = maturation.JointRangeMaturation(n_rows, lab.home, lab.lower, lab.upper) \
         if grow else None
     generators = [np.random.default_rng(seed + k) for k in range(n_rows)]
@@ -133,7 +137,7 @@ def test_a_growing_agent_moves_within_its_reachable_range(lab):
         lower, upper = agent.maturation.bounds()
         movements, goals, _ = agent.produce()
         assert np.all(movements >= lower - 1e-12) and np.all(movements <= upper + 1e-12)
-        agent.perceive(movements, rng.uniform(goal_babbling.GOAL_LOW, goal_babbling.GOAL_HIGH,
+        agent.perceive(movements, rng.uniform(babbling_space.GOAL_LOW, babbling_space.GOAL_HIGH,
                                                (2, 3)))
     # Random outcomes make no progress: the clock has advanced.
     assert np.all(agent.maturation.psi > maturation.DEFAULT_START)
@@ -189,7 +193,7 @@ def test_the_teachers_demonstrations_are_the_scripted_presses(grown_and_shown, l
     # Then the random start the untaught run makes in its first rollouts.
     alone = run("learning_progress", n_seeds=2, n_rollouts=25, seed=5, progress=False,
                 maturation="joint_range")
-    boot = goal_babbling.N_BOOTSTRAP
+    boot = agents.N_BOOTSTRAP
     assert np.array_equal(result.movements[:, 2:2 + boot], alone.movements[:, :boot])
 
 
@@ -249,10 +253,10 @@ def test_the_same_seed_gives_the_same_run_whatever_the_threads(grown_and_shown):
     (lambda: run(demonstrations=((1, 2),)), "demonstrations", "1 dimension", "value"),
     (lambda: run(n_rollouts=1, demonstrations=(0, 1)), "n_rollouts", "demonstrations",
      "value"),
-    (lambda: goal_babbling.touch_shares([0.5, 0.2]), "shares", "0.5", "value"),
-    (lambda: goal_babbling.touch_shares([0.0, 0.5]), "shares", "0.0", "value"),
-    (lambda: goal_babbling.touch_shares([0.5, 1.5]), "shares", "1.5", "value"),
-    (lambda: goal_babbling.touch_shares(n_movements=0), "n_movements", "0", "value"),
+    (lambda: babbling_space.touch_shares([0.5, 0.2]), "shares", "0.5", "value"),
+    (lambda: babbling_space.touch_shares([0.0, 0.5]), "shares", "0.0", "value"),
+    (lambda: babbling_space.touch_shares([0.5, 1.5]), "shares", "1.5", "value"),
+    (lambda: babbling_space.touch_shares(n_movements=0), "n_movements", "0", "value"),
 ])
 def test_bad_input_to_the_remedies_is_refused(call, name, shown, kind):
     refused(call, name, shown, kind)
@@ -267,7 +271,7 @@ def _range_targets(lab, rng, share, n):
 
 
 def test_touch_shares_rolls_out_random_movements_within_each_range(lab):
-    reach = goal_babbling.touch_shares([0.3, 1.0], n_movements=300, seed=2, threads=1)
+    reach = babbling_space.touch_shares([0.3, 1.0], n_movements=300, seed=2, threads=1)
     assert reach["shares"] == [0.3, 1.0]
     rng = np.random.default_rng(2)
     for i, share in enumerate((0.3, 1.0)):
@@ -308,7 +312,7 @@ def test_the_remedies_figures_draw_readably_and_refuse_bad_input(study):
              if line.get_markerfacecolor() == "white"]
     assert [line.get_label() for line in shown] == ["shown buttons 0 and 4"]
     # The alternative text gives the medians the chapter's table gives.
-    medians = chapters.forming_actions.summary(study)["growing up"]["median_first_press"]
+    medians = chapters.forming_actions.remedies.summary(study)["growing up"]["median_first_press"]
     assert "growing up: " + ", ".join(f"{m:.0f}" for m in medians) in first.summary
     alone = forming_actions.first_press_figure(study, ["learning progress"])
     assert not any("teacher" in t.get_text() for t in alone.axes[-1].get_legend().get_texts())
@@ -323,16 +327,16 @@ def test_the_remedies_figures_draw_readably_and_refuse_bad_input(study):
 
 def test_the_study_file_holds_every_condition_on_every_root(study):
     st = remedies_study
-    assert study["budgets"] == list(st.BUDGETS) and study["n_seeds"] == st.N_SEEDS
+    assert study["budgets"] == list(arms.BUDGETS) and study["n_seeds"] == st.N_SEEDS
     assert study["n_rollouts"] == goal_babbling.DEFAULT_N_ROLLOUTS
     assert list(study["runs"]) == list(st.CONDITIONS)
-    x_edges, y_edges = st.coverage_edges()
+    x_edges, y_edges = arms.coverage_edges()
     for label, by_root in study["runs"].items():
         assert sorted(map(int, by_root)) == sorted(st.ROOTS)
         for entry in by_root.values():
-            assert np.array(entry["pressed"]).shape == (st.N_SEEDS, len(st.BUDGETS), 5)
+            assert np.array(entry["pressed"]).shape == (st.N_SEEDS, len(arms.BUDGETS), 5)
             assert np.array(entry["first_press"]).shape == (st.N_SEEDS, 5)
-            assert np.array(entry["maturity"]).shape == (st.N_SEEDS, len(st.BUDGETS))
+            assert np.array(entry["maturity"]).shape == (st.N_SEEDS, len(arms.BUDGETS))
             for stretch in ("early", "all"):
                 counts = np.array(entry["coverage"][stretch])
                 assert counts.shape == (len(x_edges) - 1, len(y_edges) - 1)
@@ -346,7 +350,7 @@ def test_the_study_file_holds_every_condition_on_every_root(study):
 def test_the_study_file_is_what_the_library_computes(study):
     # Seed i of a root seed is the same in any run: rerun the second seed of two
     # conditions alone and expect the file's numbers (python -m
-    # icm.experiments.remedies_study writes it again after a change); the coverage,
+    # icm.studies.forming_actions.remedies writes it again after a change); the coverage,
     # summed over the seeds, holds at least that seed's.
     for label, root in [("growing up", 100), ("shown buttons 0 and 4", 300)]:
         entry = remedies_study.run_condition(label, root, n_seeds=1, first_run=1)
@@ -364,7 +368,7 @@ def test_the_study_file_is_what_the_library_computes(study):
     # That `touch_shares` performs each range's movements so is
     # test_touch_shares_rolls_out_random_movements_within_each_range's.
     reach = study["reach"]
-    assert reach["shares"] == list(goal_babbling.RANGE_SHARES)
+    assert reach["shares"] == list(babbling_space.RANGE_SHARES)
     lab, n = MovementLab(threads=1), remedies_study.REACH_MOVEMENTS
     rng = np.random.default_rng(remedies_study.REACH_SEED)
     for share in reach["shares"]:
@@ -406,7 +410,7 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
     # clear difference; a lower test error: better (lower is better).
     for lp_first in ([300] * 5, [-1] * 5):
         fake = _fake_study(study, lp_first, [50] * 5)
-        verdicts = chapters.forming_actions.verdicts(fake)
+        verdicts = chapters.forming_actions.remedies.verdicts(fake)
         assert verdicts["grow_others_pressed_early"] == 5.0
         assert verdicts["shown2_others_pressed_early"] == 3.0  # buttons 1, 2, 3
         assert verdicts["grow_others_pressed_early_verdict"].startswith("clearly better")
@@ -414,20 +418,20 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
         assert verdicts["grow_test_error"] == pytest.approx(-0.01)
         assert verdicts["grow_test_error_verdict"].startswith("clearly better")
         assert "shown5_others_formed" not in verdicts  # no button left unshown
-    worse = chapters.forming_actions.verdicts(_fake_study(study, [50] * 5, [300] * 5))
+    worse = chapters.forming_actions.remedies.verdicts(_fake_study(study, [50] * 5, [300] * 5))
     assert worse["shown1_others_pressed_early_verdict"] == (
         "clearly worse (learning progress at the ceiling; shown button 2 at the floor)")
-    sentence = chapters.forming_actions.first_press_comparison(
+    sentence = chapters.forming_actions.remedies.first_press_comparison(
         _fake_study(study, [-1] * 5, [50] * 5), "shown button 2")
     assert sentence.startswith("button 0 at rollout 50 (never (median) with learning "
                                "progress alone)") and "button 2" not in sentence
     slow = _fake_study(study, [50] * 5, [300] * 5)
-    assert chapters.forming_actions.shown_sooner_sentence(
+    assert chapters.forming_actions.remedies.shown_sooner_sentence(
         _fake_study(study, [-1] * 5, [50] * 5)).startswith("sooner than learning progress "
                                                            "alone in all 8 cases")
     # The held-out rule: worse on the tuning roots, the same on the held-out ones, is
     # no clear difference (the tuning roots do not count; pooled, it would be worse).
-    held = chapters.forming_actions.verdicts(_fake_study(study, [50] * 5, [50] * 5,
+    held = chapters.forming_actions.remedies.verdicts(_fake_study(study, [50] * 5, [50] * 5,
                                                tuning_first=[300] * 5))
     assert held["grow_others_pressed_early_verdict"].startswith("no clear difference")
     assert held["grow_others_pressed_early"] == 0.0
@@ -435,20 +439,20 @@ def test_the_verdicts_are_phrased_from_the_studys_numbers(study):
     # An arm at the ceiling is named: every seed formed all five.
     assert held["grow_all_pressed_verdict"] == ("no clear difference (learning progress "
                                                 "at the ceiling; growing up at the ceiling)")
-    assert chapters.forming_actions.shown_sooner_sentence(slow).startswith(
+    assert chapters.forming_actions.remedies.shown_sooner_sentence(slow).startswith(
         "not sooner in shown button 2, button 2 (at rollout 300, against at rollout 50)")
-    assert [c["button"] for c in chapters.forming_actions.shown_first_presses(slow)] == [
+    assert [c["button"] for c in chapters.forming_actions.remedies.shown_first_presses(slow)] == [
         2, 0, 4, 0, 1, 2, 3, 4]
-    table = chapters.forming_actions.comparison_table(study)
+    table = chapters.forming_actions.remedies.comparison_table(study)
     assert table.count("\n") == 1 + len(remedies_study.CONDITIONS)
     n_seeds = len(remedies_study.ROOTS) * study["n_seeds"]
     assert f"| shown all five | {n_seeds} | " in table and "none left" in table
-    firsts = chapters.forming_actions.first_press_table(study)
+    firsts = chapters.forming_actions.remedies.first_press_table(study)
     assert firsts.count("\n") == 1 + len(remedies_study.CONDITIONS)
     assert firsts.count("(shown)") == 1 + 2 + 5 and "| random motor babbling | never |" in firsts
     assert all(line.count("|") == 7 for line in firsts.splitlines())  # condition and 5 buttons
-    refused(lambda: chapters.forming_actions.verdicts({"runs": {}}), "study", "runs", "type")
-    refused(lambda: chapters.forming_actions.paired_difference(
+    refused(lambda: chapters.forming_actions.remedies.verdicts({"runs": {}}), "study", "runs", "type")
+    refused(lambda: chapters.forming_actions.remedies.paired_difference(
         study, "growing up", "learning progress", "speed"), "measure", "'speed'", "value")
     refused(lambda: remedies_study.pooled(study, "growing up", roots=[5]), "roots", "'5'",
             "value")
@@ -460,9 +464,9 @@ def test_the_chapters_verdicts_are_holm_corrected(study):
     # Without the correction, the family's raw p-values would call some comparison
     # clear that Holm does not (on the stored study: growing up's test error, p about
     # 0.005 alone); the chapter's words follow Holm.
-    corrected = remedies_study.chapter_verdicts(study)
-    words = chapters.forming_actions.verdicts(study)
-    assert words["n_family"] == len(corrected) == len(remedies_study.chapter_family(study))
+    corrected = chapters.forming_actions.family.chapter_verdicts(study)
+    words = chapters.forming_actions.remedies.verdicts(study)
+    assert words["n_family"] == len(corrected) == len(chapters.forming_actions.family.chapter_family(study))
     raw_only = [name for name, v in corrected.items()
                 if v["p"] < stats.FAMILY_RATE and not v["clear"]]
     assert raw_only, "no comparison separates raw from corrected: the test cannot fail"
@@ -477,27 +481,27 @@ def test_the_chapters_verdicts_are_holm_corrected(study):
 
 def test_every_clear_verdict_has_its_replication(study):
     # A verdict the chapter calls clear is rerun on a fresh root (assets/replications.json,
-    # python -m icm.experiments.replication): none is missing there.
+    # python -m icm.chapters.replicate): none is missing there.
     stored = replication.load_replications()["forming_actions"]
-    assert stored["root"] == replication.REPLICATION_ROOTS["forming_actions"]
+    assert stored["root"] == REPLICATION_ROOTS["forming_actions"]
     assert stored["root"] not in remedies_study.ROOTS
-    clear = {n for n, v in remedies_study.chapter_verdicts(study).items() if v["clear"]}
+    clear = {n for n, v in chapters.forming_actions.family.chapter_verdicts(study).items() if v["clear"]}
     assert clear <= set(stored["verdicts"]), clear - set(stored["verdicts"])
 
 
 def test_a_verdict_the_replication_contradicts_is_not_called_clear(study):
     stored = replication.load_replications()["forming_actions"]
-    words = chapters.forming_actions.verdicts(study)
+    words = chapters.forming_actions.remedies.verdicts(study)
     for name, outcome in stored["verdicts"].items():
         if not outcome["replicated"]:
             assert "not replicated" in words[f"{name}_verdict"], name
     # Made up: every replication failed; every clear verdict then says so.
     failed = {**stored, "verdicts": {name: {**outcome, "replicated": False}
                                      for name, outcome in stored["verdicts"].items()}}
-    contradicted = chapters.forming_actions.verdicts(study, replications=failed)
+    contradicted = chapters.forming_actions.remedies.verdicts(study, replications=failed)
     for name in stored["verdicts"]:
         verdict = contradicted[f"{name}_verdict"]
-        power = chapters.forming_actions.replication_words(
+        power = chapters.verdicts.replication_words(
             {**failed["verdicts"][name], "n_seeds": stored["n_seeds"]})
         assert not verdict.startswith("clearly") or verdict.endswith(power), (name, verdict)
         assert power.startswith(f"not replicated on {stored['n_seeds']} fresh seeds, "
@@ -509,15 +513,15 @@ def test_a_replication_states_its_seeds_and_power_beside_its_verdict(study):
     # clear verdict names its replication's seeds and power, the power computed with
     # the test the replication uses (stats.paired_power) and stored with it.
     stored = replication.load_replications()["forming_actions"]
-    words = chapters.forming_actions.verdicts(study)
+    words = chapters.forming_actions.remedies.verdicts(study)
     for name, outcome in stored["verdicts"].items():
         assert 0 <= outcome["power"] <= 1
         verdict = words[f"{name}_verdict"]
         assert f"replicated on {stored['n_seeds']} fresh seeds" in verdict, verdict
         shown = "over 99%" if outcome["power"] > 0.99 else \
-            chapters.forming_actions.percent(outcome["power"])
+            chapters.words.percent(outcome["power"])
         assert shown in verdict, (verdict, outcome["power"])
-    words = chapters.forming_actions.replication_words
+    words = chapters.verdicts.replication_words
     assert words({"replicated": False, "n_seeds": 8, "power": 0.5}) == (
         "not replicated on 8 fresh seeds, which detect an effect of this size 50% of the "
         "time")
@@ -525,9 +529,9 @@ def test_a_replication_states_its_seeds_and_power_beside_its_verdict(study):
         "replicated on 40 fresh seeds (power over 99%)")
     # The power stored is the library's (2000 simulations, seed 0): one rechecked.
     name = min(stored["verdicts"], key=lambda n: stored["verdicts"][n]["power"])
-    assert remedies_study.replication_power(name, study, stored["n_seeds"]) == \
+    assert chapters.forming_actions.family.replication_power(name, study, stored["n_seeds"]) == \
         stored["verdicts"][name]["power"]
-    sentence = chapters.forming_actions.replication_power_sentence(study, stored,
+    sentence = chapters.forming_actions.family.replication_power_sentence(study, stored,
                                                                   simulations=100)
     weak = [n for n, o in stored["verdicts"].items() if o["power"] < 0.9]
     assert ("weak evidence" in sentence) == bool(weak)
@@ -536,22 +540,22 @@ def test_a_replication_states_its_seeds_and_power_beside_its_verdict(study):
 def test_the_numbers_beside_the_verdicts_are_the_held_out_seeds(study):
     # Issue 44: the shares quoted beside held-out verdicts were 80-seed means. The
     # chapter quotes summary(roots=VERDICT_ROOTS), which differs from the pooled one.
-    held = chapters.forming_actions.summary(study, remedies_study.VERDICT_ROOTS)
-    pooled = chapters.forming_actions.summary(study)
+    held = chapters.forming_actions.remedies.summary(study, chapters.forming_actions.family.VERDICT_ROOTS)
+    pooled = chapters.forming_actions.remedies.summary(study)
     assert held["growing up"]["n_seeds"] == 2 * study["n_seeds"]
     assert held["growing up"]["all_pressed_share"] != pooled["growing up"][
         "all_pressed_share"]
-    sentence = chapters.forming_actions.shown_sooner_sentence(
-        study, remedies_study.VERDICT_ROOTS)
+    sentence = chapters.forming_actions.remedies.shown_sooner_sentence(
+        study, chapters.forming_actions.family.VERDICT_ROOTS)
     assert sentence.endswith(f"medians over the {2 * study['n_seeds']} held-out seeds, "
                              f"not tested)")
-    assert chapters.forming_actions.seeds_words(study) == f"all {4 * study['n_seeds']} seeds"
+    assert chapters.forming_actions.remedies.seeds_words(study) == f"all {4 * study['n_seeds']} seeds"
 
 
 def test_red_first_is_claimed_as_its_intervals_lower_bound(study):
     # Issue 44: "mastered red first in 100% of the study's seeds" (40 seeds) where the
     # chapter's own 80 give 97.5%. The claim is the Wilson interval's lower bound.
-    found = chapters.forming_actions.red_first_share(study)
+    found = chapters.forming_actions.remedies.red_first_share(study)
     assert found["n"] == 4 * study["n_seeds"]
     assert found["low"] < found["share"] <= found["high"] <= 1
     assert found["low"] < 1  # never "every seed"
@@ -566,7 +570,7 @@ def test_the_split_test_error_is_the_studys_on_the_same_seeds(study):
     split = remedies_study.load_test_error_split()
     assert set(split["runs"]) == set(remedies_study.SPLIT_CONDITIONS)
     for label, by_root in split["runs"].items():
-        assert sorted(map(int, by_root)) == sorted(remedies_study.VERDICT_ROOTS)
+        assert sorted(map(int, by_root)) == sorted(chapters.forming_actions.family.VERDICT_ROOTS)
         for root, parts in by_root.items():
             n = split["n_seeds"]
             np.testing.assert_allclose(parts["all"], study["runs"][label][root]["test_error"][:n],
@@ -574,8 +578,8 @@ def test_the_split_test_error_is_the_studys_on_the_same_seeds(study):
             assert (np.array(parts["own"]) >= np.array(parts["all"]) - 1e-12).all()
             if label == "learning progress":
                 assert parts["own"] == parts["all"]
-    rows = chapters.forming_actions.teacher_test_error(split)
-    table = chapters.forming_actions.teacher_test_error_table(split)
+    rows = chapters.forming_actions.remedies.teacher_test_error(split)
+    table = chapters.forming_actions.remedies.teacher_test_error_table(split)
     assert table.count("\n") == 1 + len(remedies_study.TEACHING)
     assert f"{100 * rows['shown1_own'][0]:+.2f}" in table
 
@@ -589,9 +593,9 @@ def test_leaving_the_demonstrations_out_is_measured_on_the_robots_own_rollouts(g
     space, weight = result.settings["outcome_space"], result.settings["depth_weight"]
     start = result.n_demonstrations
     for seed in range(result.n_seeds):
-        reached = goal_babbling.outcome_vectors(result.outcomes[seed, start:],
+        reached = babbling_space.outcome_vectors(result.outcomes[seed, start:],
                                                 result.depths[seed, start:], space, weight)
-        wanted = goal_babbling.goal_outcomes(result.test_goals, space, weight)
+        wanted = babbling_space.goal_outcomes(result.test_goals, space, weight)
         nearest = [min(np.linalg.norm(r - w) for r in reached) for w in wanted]
         assert split["own"][seed] == pytest.approx(np.mean(nearest), abs=1e-12)
         assert split["own_grid"][seed] == pytest.approx(np.mean(nearest[5:]), abs=1e-12)

@@ -14,8 +14,10 @@ import pytest
 from conftest import ROOT
 from test_bad_input import refused
 from icm import chapters, stats
-from icm.experiments import (robustness, robustness_readings, run_actor_critic,
-                             run_goal_oriented, run_rod_toppling, sweep)
+from icm.experiments import run_actor_critic, run_goal_oriented, run_rod_toppling, sweep
+from icm.studies import readings as robustness_readings
+from icm.studies import maps as maps_module
+from icm.studies import robustness
 from icm.figures import Figure, robustness_map
 
 SEED = 1
@@ -229,11 +231,11 @@ def test_interaction_is_the_contrast_of_the_shares(small):
 
 
 def test_tables_name_every_setting_and_claim(small):
-    dependencies = chapters.robustness.dependency_table([small])
+    dependencies = chapters.robustness.maps.dependency_table([small])
     for text in ("weight", "presses", "reading", "red mastered first", "always"):
         assert text in dependencies
     assert dependencies.count("\n") == 1 + 3 * 4
-    interactions = chapters.robustness.interaction_table([small])
+    interactions = chapters.robustness.maps.interaction_table([small])
     assert interactions.count("\n") == 1 + 3 * 4
 
 
@@ -264,8 +266,8 @@ def test_the_map_draws_every_pair_and_claim_with_marks_and_the_default(small):
     (lambda r: r.pair_table("red_first", ("reading", "action_weight")), "pair",
      "('reading', 'action_weight')", "value"),
     (lambda r: r.holding_values("red_first", "epsilon"), "setting", "'epsilon'", "value"),
-    (lambda r: chapters.robustness.dependency_table([]), "results", "[]", "type"),
-    (lambda r: chapters.robustness.interaction_table(["x"]), "results[0]", "'x'", "type"),
+    (lambda r: chapters.robustness.maps.dependency_table([]), "results", "[]", "type"),
+    (lambda r: chapters.robustness.maps.interaction_table(["x"]), "results[0]", "'x'", "type"),
     (lambda r: robustness_map("x"), "result", "'x'", "type"),
     (lambda r: robustness.check_point("goal_oriented", "red_first", epsilon=0.1), "setting",
      "'epsilon'", "value"),
@@ -449,16 +451,17 @@ def test_a_reading_that_changes_a_verdict_is_named_and_the_others_are_not():
     changed = _fake_readings(0.2)
     assert [r.key for r in changed.changes()] == [("short_history", "zero")]
     assert changed.changed(("short_history", "zero")) == ["interest_later"]
-    text = changed.describe()
+    text = chapters.robustness.readings.describe_readings(changed)
     assert text.startswith(f"Of the {len(changed.readings)} other readings, 1 changes")
     assert "zero" in text and "interest moves to green later\" fails (20.0%" in text
     assert "witnessed" not in text and "earliest" not in text
-    table = changed.table()
+    table = chapters.robustness.readings.readings_table(changed)
     assert table.count("\n") == 2 + len(changed.readings)
     assert table.count("**") == 2 and "**20.0% ✗**" in table
     same = _fake_readings(1.0)
-    assert same.changes() == [] and same.describe().startswith("None of the")
-    assert "**" not in same.table()
+    assert same.changes() == [] and chapters.robustness.readings.describe_readings(
+        same).startswith("None of the")
+    assert "**" not in chapters.robustness.readings.readings_table(same)
 
 
 @pytest.mark.parametrize("call, name, shown, kind", [
@@ -495,8 +498,8 @@ def test_the_rods_measure_the_moves_off_the_grid_in_both_readings():
 
 def _maps(seed):
     """The chapter's three maps on root `seed`, each with the chapter's seeds at every
-    point (`chapters.robustness.MAP_SEEDS`: 1,000 for each)."""
-    return {name: robustness.run_robustness(name, n_seeds=chapters.robustness.MAP_SEEDS[name],
+    point (`chapters.robustness.maps.MAP_SEEDS`: 1,000 for each)."""
+    return {name: robustness.run_robustness(name, n_seeds=chapters.robustness.maps.MAP_SEEDS[name],
                                             seed=seed, progress=False)
             for name in robustness.STUDIES}
 
@@ -507,9 +510,9 @@ def maps():
 
 
 def test_the_chapters_claims_about_its_maps_hold_on_our_seeds(maps):
-    found = chapters.robustness.chapter_claims(maps["goal_oriented"], maps["actor_critic"],
+    found = chapters.robustness.maps.chapter_claims(maps["goal_oriented"], maps["actor_critic"],
                                       maps["rod_toppling"])
-    assert set(found) == set(chapters.robustness.CHAPTER_CLAIMS) and all(found.values()), found
+    assert set(found) == set(chapters.robustness.maps.CHAPTER_CLAIMS) and all(found.values()), found
 
 
 def _with_claim_set(result, claim, value, **where):
@@ -527,28 +530,28 @@ def _with_claim_set(result, claim, value, **where):
             match &= np.asarray(column == wanted)
         frame.loc[match, claim] = value
         frames[pair] = frame
-    return robustness.RobustnessResult(result.study, result.settings, frames)
+    return maps_module.RobustnessResult(result.study, result.settings, frames)
 
 
 def test_a_map_that_contradicts_the_chapter_fails_its_claims(maps):
     goal, critic, rods = maps["goal_oriented"], maps["actor_critic"], maps["rod_toppling"]
     broken = _with_claim_set(goal, "red_first", True, action_weight=1.0)  # red first at 1
-    found = chapters.robustness.chapter_claims(broken, critic, rods)
+    found = chapters.robustness.maps.chapter_claims(broken, critic, rods)
     assert not found["weight_threshold"] and found["presses_not_needed"]
     broken = _with_claim_set(rods, "blue_found", False, initial_q=1.0)
-    assert not chapters.robustness.chapter_claims(goal, critic, broken)["rods_blue_needs_drive"]
+    assert not chapters.robustness.maps.chapter_claims(goal, critic, broken)["rods_blue_needs_drive"]
     # One point of the rods' map where red toppled first is unclear (half the seeds).
     broken = _with_claim_set(rods, "red_toppled_first", False, initial_q=0.0,
                              epsilon=0.0, seed_index=lambda k: k % 2 == 0)
-    found = chapters.robustness.chapter_claims(goal, critic, broken)
+    found = chapters.robustness.maps.chapter_claims(goal, critic, broken)
     assert not found["rods_toppled_first_everywhere"] and found["rods_small_initial_q"]
     # The interest no longer moving later at the weight where red first ties.
     broken = _with_claim_set(goal, "interest_later", False, action_weight=2.0)
-    assert not chapters.robustness.chapter_claims(broken, critic, rods)["interest_weight_from"]
+    assert not chapters.robustness.maps.chapter_claims(broken, critic, rods)["interest_weight_from"]
     # Red predicted well first at the largest epsilon as often as at the smallest.
     broken = _with_claim_set(rods, "red_first", True, epsilon=0.3)
-    assert not chapters.robustness.chapter_claims(goal, critic, broken)["rods_epsilon"]
-    refused(lambda: chapters.robustness.chapter_claims(critic, goal, rods), "goal", "actor_critic",
+    assert not chapters.robustness.maps.chapter_claims(goal, critic, broken)["rods_epsilon"]
+    refused(lambda: chapters.robustness.maps.chapter_claims(critic, goal, rods), "goal", "actor_critic",
             "value")
 
 
@@ -559,7 +562,8 @@ def test_holds_from_and_shares_along(maps):
     rods = maps["rod_toppling"]
     held = rods.holding_values("red_first", "initial_q")
     assert held and held[0] > 0 and rods.holds_from("red_first", "initial_q") is None
-    text = goal.shares_along("red_first", "action_weight", presses_per_trial=1)
+    text = chapters.robustness.maps.shares_along(goal, "red_first", "action_weight",
+                                           presses_per_trial=1)
     parts = text.split(", ")
     assert len(parts) == len(goal.study.setting("action_weight").values)
     assert parts[-1] == f"{goal.share('red_first', presses_per_trial=1)[0]:.1%} at 10"
@@ -568,7 +572,7 @@ def test_holds_from_and_shares_along(maps):
 def test_the_studies_table_defines_every_claim_for_one_run():
     # The chapter's first table: one row per claim, each with when it holds in one run
     # and the share of seeds it needs, the learner (and the paper's figure) named once.
-    table = chapters.robustness.studies_table()
+    table = chapters.robustness.maps.studies_table()
     claims = [c for study in robustness.STUDIES.values() for c in study.claims]
     assert table.count("\n") == 1 + len(claims)
     for study in robustness.STUDIES.values():
@@ -580,27 +584,28 @@ def test_the_studies_table_defines_every_claim_for_one_run():
 def test_the_readings_summary_names_what_changes_a_verdict():
     changed, same = _fake_readings(0.2), _fake_readings(1.0)
     total = 2 * len(changed.readings)
-    text = robustness_readings.readings_summary([changed, same])
+    text = chapters.robustness.readings.readings_summary([changed, same])
     assert text.startswith(f"1 of the {total} other readings changes a claim's verdict")
     assert "fewer than k times: zero (goal-oriented learner: interest moves to green " \
            "later fails, 20.0%)" in text and text.endswith(f"the other {total - 1} change none")
-    assert robustness_readings.changed_readings([changed, same], shares=False) == (
+    assert chapters.robustness.readings.changed_readings([changed, same], shares=False) == (
         "interest of a task seen fewer than k times: zero (goal-oriented learner)")
-    assert robustness_readings.changed_readings([same]) == "none"
-    assert robustness_readings.readings_summary([same]).startswith("none of the")
-    refused(lambda: robustness_readings.readings_summary([]), "results", "[]", "type")
+    assert chapters.robustness.readings.changed_readings([same]) == "none"
+    assert chapters.robustness.readings.readings_summary([same]).startswith("none of the")
+    refused(lambda: chapters.robustness.readings.readings_summary([]), "results", "[]", "type")
 
 
 def test_the_chapters_numbers_come_from_its_maps(maps):
     goal, critic, rods = maps["goal_oriented"], maps["actor_critic"], maps["rod_toppling"]
-    numbers, clauses = chapters.robustness.chapter_numbers(goal, critic, rods)
+    numbers, clauses = chapters.robustness.maps.chapter_numbers(goal, critic, rods)
     assert numbers["goal_lowest_weight"] == goal.holds_from("red_first", "action_weight")
     assert numbers["goal_highest_failing_weight"] < numbers["goal_lowest_weight"]
     assert numbers["goal_red_first"] == goal.summary()["red_first"]
     assert numbers["critic_green_printed_fewest"] == critic.share(
         "green_learned", variant="printed_td", presses_per_trial=1)[0]
     assert numbers["rods_q_lowest"] <= numbers["rods_q_highest"]
-    assert clauses["rods_red_first_by_q"] == rods.shares_along("red_first", "initial_q")
+    assert clauses["rods_red_first_by_q"] == chapters.robustness.maps.shares_along(
+        rods, "red_first", "initial_q")
     # "In at least X% of the seeds" quotes the lowest lower end of the points'
     # intervals (the share the seeds vouch for), never the sample's 100%.
     lowest = float(rods.points().query("initial_q > 0").blue_found_low.min())
@@ -616,21 +621,22 @@ def test_the_chapters_numbers_come_from_its_maps(maps):
     assert clauses["critic_red_first_weakest"] == ", ".join(
         f"{name} = {robustness.show_value(weakest[name])}"
         for name in ("action_weight", "presses_per_trial", "variant"))
-    refused(lambda: chapters.robustness.chapter_numbers(goal, goal, rods), "critic",
+    refused(lambda: chapters.robustness.maps.chapter_numbers(goal, goal, rods), "critic",
             "goal_oriented", "value")
 
 
 def test_the_readings_numbers_come_from_the_runs():
     found = {name: robustness_readings.run_readings(name, n_seeds=10, seed=SEED, progress=False)
              for name in robustness.STUDIES}
-    numbers, clauses = chapters.robustness.readings_numbers(found)
+    numbers, clauses = chapters.robustness.readings.readings_numbers(found)
     book = found["rod_toppling"].run()
     assert numbers["edge_share"] == book.edge_share() > 0
     assert numbers["time_limit_share"] == book.time_limit_share()
     assert numbers["no_limit_longest"] >= numbers["book_longest"]
     assert numbers["edge_ended_share"] > 0
-    assert clauses["readings_actor_critic"] == found["actor_critic"].describe()
-    refused(lambda: chapters.robustness.readings_numbers(
+    assert clauses["readings_actor_critic"] == \
+        chapters.robustness.readings.describe_readings(found["actor_critic"])
+    refused(lambda: chapters.robustness.readings.readings_numbers(
         {"goal_oriented": found["goal_oriented"]}), "found", "goal_oriented", "type")
 
 
@@ -639,22 +645,23 @@ def test_the_readings_numbers_come_from_the_runs():
 def test_the_replication_is_what_the_library_computes():
     # assets/replications.json's "robustness" entry is the chapter's three maps run again
     # on the fresh root, every claim rechecked there (python -m icm.chapters.robustness).
-    from icm.experiments import replication
+    from icm.chapters import replication
+    from icm.experiments.seeding import REPLICATION_ROOTS
     stored = replication.load_replications()["robustness"]
-    assert stored["root"] == replication.REPLICATION_ROOTS["robustness"]
+    assert stored["root"] == REPLICATION_ROOTS["robustness"]
     assert stored["root"] not in (0, SEED, OTHER_SEED)
-    assert stored["n_seeds"] == chapters.robustness.MAP_SEEDS
-    assert chapters.robustness.run_replication() == stored
-    assert set(stored["claims"]) == set(chapters.robustness.CHAPTER_CLAIMS)
+    assert stored["n_seeds"] == chapters.robustness.maps.MAP_SEEDS
+    assert chapters.robustness.maps.run_replication() == stored
+    assert set(stored["claims"]) == set(chapters.robustness.maps.CHAPTER_CLAIMS)
 
 
 def test_a_claim_that_did_not_replicate_is_said_so_beside_it():
-    from icm.experiments import replication
+    from icm.chapters import replication
     stored = replication.load_replications()["robustness"]
-    sentences = chapters.robustness.replication_sentences(stored)
+    sentences = chapters.robustness.maps.replication_sentences(stored)
     failed = [name for name, held in stored["claims"].items() if not held]
     for name in failed:
-        assert chapters.robustness.CHAPTER_CLAIMS[name] in sentences["summary"]
+        assert chapters.robustness.maps.CHAPTER_CLAIMS[name] in sentences["summary"]
     assert ("Not replicated" in sentences["critic_everywhere"]) == (
         "critic_red_everywhere" in failed)
     # A bold claim of the chapter that did not replicate has the sentence beside it.
@@ -667,10 +674,10 @@ def test_a_claim_that_did_not_replicate_is_said_so_beside_it():
             assert "replication_" in text, bold
     # Made up: every claim held, or the actor-critic's did not.
     held = {**stored, "claims": dict.fromkeys(stored["claims"], True)}
-    assert "all of them" in chapters.robustness.replication_sentences(held)["summary"]
-    assert "held again" in chapters.robustness.replication_sentences(held)["critic_everywhere"]
+    assert "all of them" in chapters.robustness.maps.replication_sentences(held)["summary"]
+    assert "held again" in chapters.robustness.maps.replication_sentences(held)["critic_everywhere"]
     lost = {**held, "claims": {**held["claims"], "critic_red_everywhere": False}}
-    assert "Not replicated" in chapters.robustness.replication_sentences(lost)[
+    assert "Not replicated" in chapters.robustness.maps.replication_sentences(lost)[
         "critic_everywhere"]
     # The rods' counts are said as they are, with "none" for a count of zero.
     counts = stored["rods_toppled_first"]
@@ -679,7 +686,7 @@ def test_a_claim_that_did_not_replicate_is_said_so_beside_it():
             "epsilon").values)
     assert ("Not replicated" in sentences["rods_toppled"]) == (
         "rods_toppled_first_everywhere" in failed)
-    rods = chapters.robustness.replication_sentences(
+    rods = chapters.robustness.maps.replication_sentences(
         {**stored, "claims": {**stored["claims"], "rods_toppled_first_everywhere": False},
          "rods_toppled_first": {"holds": 14, "unclear": 6, "fails": 0}})["rods_toppled"]
     assert rods.startswith("Not replicated") and rods.endswith(
@@ -690,15 +697,15 @@ def test_a_claim_that_did_not_replicate_is_said_so_beside_it():
 
 def test_seeds_needed_is_the_fewest_whose_interval_clears_the_threshold():
     for n in (50, 200, 1000):
-        needed = chapters.robustness.seeds_needed(n)
+        needed = chapters.robustness.maps.seeds_needed(n)
         assert stats.share_interval(needed, n)[0] >= robustness.CLAIM_SHARE
         assert stats.share_interval(needed - 1, n)[0] < robustness.CLAIM_SHARE
-    assert chapters.robustness.seeds_needed(200) == 189  # the chapter's question 6.2
-    assert chapters.robustness.seeds_needed(10) is None  # 10 of 10: 72% to 100%
+    assert chapters.robustness.maps.seeds_needed(200) == 189  # the chapter's question 6.2
+    assert chapters.robustness.maps.seeds_needed(10) is None  # 10 of 10: 72% to 100%
 
 
 def test_the_chance_to_hold_grows_with_the_seeds_and_the_share():
-    chance = chapters.robustness.chance_to_hold
+    chance = chapters.robustness.maps.chance_to_hold
     assert chance(0.95, 200) < chance(0.95, 1000) < 1
     assert chance(0.93, 200) < chance(0.95, 200) < chance(0.97, 200)
     assert chance(0.9, 1000) < 0.05  # a share at the threshold seldom clears it
@@ -707,11 +714,11 @@ def test_the_chance_to_hold_grows_with_the_seeds_and_the_share():
     held = np.random.default_rng(SEED).binomial(200, 0.95, size=20_000)
     assert np.mean(held >= 189) == pytest.approx(chance(0.95, 200), abs=0.01)
     refused(lambda: chance(1.5, 200), "share", "1.5", "value")
-    refused(lambda: chapters.robustness.seeds_needed(0), "n_seeds", "0", "value")
+    refused(lambda: chapters.robustness.maps.seeds_needed(0), "n_seeds", "0", "value")
 
 
 def test_the_first_episode_a_quiet_move_loses_a_little_unless_untried_moves_are_worth_nothing():
-    from icm.experiments import robustness_readings
+    from icm.studies import readings as robustness_readings
     from icm.learners.q_learning import QLearnerSettings
     book = QLearnerSettings()
     for q in (0.0, 0.1, 1.0):
@@ -719,26 +726,26 @@ def test_the_first_episode_a_quiet_move_loses_a_little_unless_untried_moves_are_
         # Equation 3 with no reward and untried moves ahead: q + alpha (gamma q - q).
         assert after == pytest.approx(q + book.alpha * (book.gamma * q - q))
         assert (after < q) if q > 0 else (after == 0)
-    checks, numbers = robustness_readings.first_episode([0.0, 0.1])
+    checks, numbers = chapters.robustness.readings.first_episode([0.0, 0.1])
     assert checks == {"quiet_move_loses": True, "red_nearer": True}
     assert numbers["quiet_move_after"] == robustness_readings.value_after_a_quiet_move(
         book.initial_q) < numbers["quiet_move_before"] == book.initial_q
-    refused(lambda: robustness_readings.first_episode([]), "initial_q_values", "[]", "type")
+    refused(lambda: chapters.robustness.readings.first_episode([]), "initial_q_values", "[]", "type")
 
 
 def test_with_untried_moves_worth_nothing_red_passes_chapter_5s_reading_not_the_strict_one():
     # Why the rods' map reads "predicted well" strictly, on the tests' own seeds.
     zero = run_rod_toppling(n_seeds=200, n_episodes=300, seed=SEED, initial_q=0.0,
                             progress=False)
-    checks, numbers = robustness_readings.strict_reading(zero)
-    assert checks == dict.fromkeys(chapters.robustness.STRICT_READING_CLAIMS, True), numbers
+    checks, numbers = chapters.robustness.readings.strict_reading(zero)
+    assert checks == dict.fromkeys(chapters.robustness.readings.STRICT_READING_CLAIMS, True), numbers
     well = zero.well_predicted("toppled")
     assert numbers["zero_red_first_toppled"] == np.mean(stats.comes_first(well[:, 0],
                                                                            well[:, 1]))
     assert numbers["zero_seeds"] == 200
     book = run_rod_toppling(n_seeds=5, n_episodes=20, seed=SEED, progress=False)
-    refused(lambda: robustness_readings.strict_reading(book), "zero_run", "0.1", "value")
-    refused(lambda: robustness_readings.strict_reading("run"), "zero_run", "'run'", "type")
+    refused(lambda: chapters.robustness.readings.strict_reading(book), "zero_run", "0.1", "value")
+    refused(lambda: chapters.robustness.readings.strict_reading("run"), "zero_run", "'run'", "type")
 
 
 @pytest.mark.parametrize("rod", ["red", "blue"])
@@ -746,7 +753,7 @@ def test_the_fewest_moves_to_topple_a_rod_are_those_of_the_table(rod):
     # Every sequence of moves from the start, played on the tabular twin: the shortest
     # that topples `rod` is as long as the breadth-first search says.
     from icm.envs import load, rods
-    from icm.experiments import robustness_readings
+    from icm.studies import readings as robustness_readings
     fewest = robustness_readings.fewest_moves_to_topple(rod)
     env = load("rods")
     index = rods.ROD_NAMES.index(rod)
@@ -776,9 +783,9 @@ def test_the_claims_about_all_points_hold_on_a_second_root():
     # point whose share lies near its threshold is quoted with its verdict, not
     # claimed: MAP_SEEDS).
     found = _maps(OTHER_SEED)
-    claims = chapters.robustness.chapter_claims(found["goal_oriented"],
+    claims = chapters.robustness.maps.chapter_claims(found["goal_oriented"],
                                                 found["actor_critic"], found["rod_toppling"])
-    assert claims == dict.fromkeys(chapters.robustness.CHAPTER_CLAIMS, True)
+    assert claims == dict.fromkeys(chapters.robustness.maps.CHAPTER_CLAIMS, True)
 
 
 def test_a_map_cell_reads_100_only_when_every_seed_held(small):
@@ -812,7 +819,7 @@ def test_the_maps_colour_bars_are_in_percent_as_the_cells_are(small):
                         if t is not fig._suptitle]
     assert keys(fig) == []  # four claims in two columns: no place free for the key
     # Three claims in two columns: the key fills the free place beside the third.
-    three = robustness.RobustnessResult(
+    three = maps_module.RobustnessResult(
         dataclasses.replace(small.study, claims=small.study.claims[:3]), small.settings,
         small.frames)
     assert keys(robustness_map(three)) == [f"{KEY} {KEY_MORE_SETTINGS}"]

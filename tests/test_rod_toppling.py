@@ -326,7 +326,7 @@ def test_the_value_of_untried_moves_decides_the_story():
 
 
 def test_the_chapters_claims_hold_on_the_tests_seeds(default_run):
-    claims = default_run.claims()
+    claims = chapters.rod_toppling.claims(default_run)
     assert set(claims) == set(chapters.rod_toppling.CLAIMS)
     assert all(claims.values()), claims
     runs = [run_rod_toppling(n_seeds=60, n_episodes=300, initial_q=q0, seed=TEST_ROOT,
@@ -347,7 +347,7 @@ def test_the_chapters_claims_fail_on_runs_that_contradict_them(default_run):
         default_run, toppled=toppled,
         predicted_well=default_run.predicted_well[:, ::-1].copy(),
         predicted_well_toppled=default_run.predicted_well_toppled[:, ::-1].copy())
-    claims = swapped.claims()
+    claims = chapters.rod_toppling.claims(swapped)
     assert not any(claims.values()), claims
     # The initial Q runs given in the wrong roles: refused; the same run thrice: no claim.
     low = dataclasses.replace(default_run, settings={**default_run.settings, "initial_q": 0.0})
@@ -492,7 +492,7 @@ def test_the_run_figure7_shows_is_chosen_by_a_rule_and_described_in_its_order(de
     assert story[shown] and not story[:shown].any()
     assert default_run.toppled[shown, 0] == 0  # (a): the first episode toppled red
     for run in range(default_run.n_seeds):
-        text = default_run.describe_order(run, "toppled")
+        text = chapters.rod_toppling.describe_order(default_run, run, "toppled")
         red = default_run.predicted_well_toppled[run, 0]
         blue = default_run.first_topple("blue")[run]
         assert (f"episode {red}" in text) == (red >= 1)

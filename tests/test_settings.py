@@ -13,7 +13,8 @@ import icm
 from icm import _settings, cli, widgets
 from icm.envs import buttons
 from icm.envs.rods import rules as rod_rules
-from icm.experiments import panel_data, robustness
+from icm.experiments import panel_data
+from icm.studies import robustness
 from icm.learners import action_selection, actor_critic, goal_oriented, interest, q_learning
 from icm.learners.goal_oriented import GoalOrientedBatch, GoalOrientedSettings
 

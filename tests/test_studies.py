@@ -1,4 +1,4 @@
-"""The long studies on the sweep engine (icm.experiments.studies, sweep.run_units): the
+"""The long studies on the sweep engine (icm.studies, sweep.run_units): the
 same bytes on any backend, a killed run resumed, a killed Dask worker's unit retried,
 every registered study run tiny, and bad input refused."""
 
@@ -16,7 +16,11 @@ import pytest
 from icm import chapters, cli
 import importlib
 
-from icm.experiments import goal_babbling_study, remedies_study, studies
+from icm import studies
+from icm.studies import engine, registry
+from icm.studies.forming_actions import arms
+from icm.studies.forming_actions import remedies as remedies_study
+from icm.studies.forming_actions import strategies as goal_babbling_study
 from icm.experiments.goal_oriented import run_goal_oriented
 from icm.experiments.sweep import read_journal, run_units, sweep
 
@@ -57,12 +61,12 @@ def test_a_study_is_byte_identical_serially_on_joblib_and_on_a_dask_cluster(tmp_
     first = run_goal_oriented(n_seeds=3, n_trials=10, interest="learning_progress",
                               interest_per="task", noisy_button=False, seed=0, progress=False)
     assert data["signals"]["learning_progress|task|False"] == \
-        json.loads(json.dumps(studies.plain(first.seed_summaries())))
+        json.loads(json.dumps(registry.plain(first.seed_summaries())))
     # The run log (times, backend) is beside the file, not in it; the journal is gone.
     log = [json.loads(line) for line in
-           studies.run_log_of(tmp_path / "joblib.json").read_text().splitlines()]
+           engine.run_log_of(tmp_path / "joblib.json").read_text().splitlines()]
     assert log[0]["backend"] == "joblib" and log[0]["units"] == len(made["units"])
-    assert not studies.journal_of(tmp_path / "joblib.json").exists()
+    assert not engine.journal_of(tmp_path / "joblib.json").exists()
 
 
 def _journal_lines(path):
@@ -73,7 +77,7 @@ def _journal_lines(path):
 def test_a_study_killed_half_way_resumes_from_its_journal_to_the_same_bytes(tmp_path,
                                                                             serial_bytes):
     out = tmp_path / "study.json"
-    journal = studies.journal_of(out)
+    journal = engine.journal_of(out)
     command = [sys.executable, "-m", "icm", "study", "curiosity", "--seeds", "3",
                "--trials", "10", "--episodes", "10", "--backend", "serial",
                "--no-progress", "--out", str(out)]
@@ -95,13 +99,13 @@ def test_a_study_killed_half_way_resumes_from_its_journal_to_the_same_bytes(tmp_
     assert len(read_journal(journal, {**TINY})) == saved
     subprocess.run(command, env=env, cwd=tmp_path, check=True, capture_output=True)
     assert out.read_bytes() == serial_bytes
-    log = json.loads(studies.run_log_of(out).read_text().splitlines()[-1])
+    log = json.loads(engine.run_log_of(out).read_text().splitlines()[-1])
     assert log["units_from_journal"] == saved
 
 
 def test_a_journal_of_other_settings_is_refused(tmp_path):
     out = tmp_path / "study.json"
-    studies.journal_of(out).write_text(json.dumps({"header": {**TINY, "trials": 11}})
+    engine.journal_of(out).write_text(json.dumps({"header": {**TINY, "trials": 11}})
                                        + "\n")
     with pytest.raises(ValueError, match="written by a run of other settings"):
         _tiny(out, backend="serial")
@@ -166,7 +170,7 @@ def test_every_registered_study_runs_tiny(tmp_path):
     remedies = json.loads((tmp_path / "remedies.json").read_text())
     assert remedies["n_seeds"] == 1 and remedies["budgets"] == [12]
     assert remedies["n_rollouts"] == 12 and remedies["n_trials"] == 3
-    chapters.forming_actions.summary(remedies)
+    chapters.forming_actions.remedies.summary(remedies)
     batched = remedies_study.run_condition("growing up", 300, n_seeds=1, n_rollouts=12,
                                            n_trials=3)
     assert remedies["runs"]["growing up"]["300"] == json.loads(json.dumps(batched))
@@ -181,11 +185,11 @@ def test_every_registered_study_runs_tiny(tmp_path):
     assert list(babbling["runs"]["learning progress"]) == ["100", "200", "300", "400"]
     assert list(babbling["runs"]["LWLR inverse model"]) == ["100", "200"]
     data = json.loads((tmp_path / "robustness.json").read_text())
-    maps = studies.robustness_results(data)
+    maps = studies.robustness.results_of(data)
     assert set(maps) == {"goal_oriented", "actor_critic", "rod_toppling"}
     assert len(maps["goal_oriented"].points()) > 0
     # A map point's unit gives the rows run_robustness's sweep gives for that point.
-    from icm.experiments import robustness
+    from icm.studies import robustness
 
     study = robustness.STUDIES["rod_toppling"]
     (a, b), grid = robustness.pair_grids(study)[0]
@@ -196,19 +200,19 @@ def test_every_registered_study_runs_tiny(tmp_path):
                   **{**study.fixed, "n_episodes": 3}, **others)
     rows = [r for r in data["maps"]["rod_toppling"][f"{a}|{b}"]
             if r[a] == point[a] and r[b] == point[b]]
-    assert rows == json.loads(json.dumps(studies.plain(frame.to_dict("records"))))
+    assert rows == json.loads(json.dumps(registry.plain(frame.to_dict("records"))))
 
 
 def test_the_trials_asked_for_are_the_trials_on_the_formed_presses(monkeypatch, tmp_path):
-    from icm.experiments import goal_babbling
+    from icm.experiments import formed_actions
 
-    asked, real = [], goal_babbling.run_formed_actions
+    asked, real = [], formed_actions.run_formed_actions
 
-    def recording(result, n_trials=goal_babbling.DEFAULT_TRIALS, **others):
+    def recording(result, n_trials=formed_actions.DEFAULT_TRIALS, **others):
         asked.append(n_trials)
         return real(result, n_trials=n_trials, **others)
 
-    monkeypatch.setattr(goal_babbling, "run_formed_actions", recording)
+    monkeypatch.setattr(formed_actions, "run_formed_actions", recording)
     for name, unit in [("remedies", ["growing up", 100, 0, 1]),
                        ("goal-babbling", ["learning progress", 100, 0, 1])]:
         settings = studies.check_settings(name, rollouts=12, trials=3)
@@ -225,7 +229,7 @@ def test_the_trials_asked_for_are_the_trials_on_the_formed_presses(monkeypatch, 
 def test_seed_blocks_join_into_one_entry():
     a = {"x": [1, 2], "coverage": {"all": [[1, 0], [0, 2]]}}
     b = {"x": [3], "coverage": {"all": [[0, 5], [1, 1]]}}
-    assert studies.join_entries([a, b]) == {"x": [1, 2, 3],
+    assert arms.join_entries([a, b]) == {"x": [1, 2, 3],
                                             "coverage": {"all": [[1, 5], [1, 3]]}}
 
 
@@ -233,7 +237,7 @@ def test_remedies_seeds_run_one_at_a_time_are_those_of_a_batched_run():
     batched = remedies_study.run_condition("shown button 2", 200, n_seeds=2, n_rollouts=15)
     parts = [remedies_study.run_condition("shown button 2", 200, n_seeds=1, first_run=i,
                                           n_rollouts=15) for i in (0, 1)]
-    assert studies.join_entries(parts) == batched
+    assert arms.join_entries(parts) == batched
     assert parts[0] != parts[1]
 
 
@@ -337,4 +341,4 @@ def test_the_remedies_file_records_what_produced_it_and_its_imported_seeds_were_
 
 def test_the_engine_module_is_the_sweep_module():
     # One engine: the studies run on sweep's run_units, not a copy of it.
-    assert studies.run_units is sweep_module.run_units
+    assert engine.run_units is sweep_module.run_units

@@ -57,7 +57,7 @@ here, not inside Sphinx, gives:
   so `icm.widgets` panels are drawn as their static, precomputed versions, which move
   in the HTML without a kernel (in Jupyter they are the live ipywidgets panels).
 - **Progress on the terminal, not in the page**: the kernels run with
-  `ICM_BOOK_BUILD=1`, so the library's progress bars (`icm/experiments/_progress.py`)
+  `ICM_BOOK_BUILD=1`, so the library's progress bars (`icm/experiments/progress.py`)
   write to the kernel's original standard error, `sys.__stderr__`; and they are
   started with ipykernel's `capture_fd_output` off, so that this standard error is the
   terminal of whoever builds (by default ipykernel redirects it into the cell's

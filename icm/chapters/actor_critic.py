@@ -1,6 +1,15 @@
 """The chapter "Actor-critic" (book/actor_critic.ipynb): the claims about Figure 6 it
-states in words (`CLAIMS`), checked by `icm.experiments.actor_critic.ActorCriticResult.
-claims` on the chapter's run."""
+states in words (`CLAIMS`) and their check on a run (`claims`), how the learner paid
+for green learns red (`red_from_first_press`, `PAID_CLAIMS`), and its table of runs
+(`comparison_table`), all read from an `ActorCriticResult`."""
+
+import numpy as np
+
+from icm import _validate
+from icm.chapters.words import measures_table, percent
+from icm.experiments.actor_critic_results import LATE_TRIALS, ActorCriticResult
+from icm.experiments.results import check_results
+from icm.stats import share_interval
 
 
 CLAIMS = {
@@ -9,7 +18,57 @@ CLAIMS = {
     "green_below_only_before_red_press": "the green error is below the red one only before "
                                          "the red button was first pressed",
 }
-"""The claims about Figure 6 that the book states in words (`ActorCriticResult.claims`)."""
+"""The claims about Figure 6 that the book states in words (`claims`)."""
+
+
+def claims(result):
+    """{claim name: whether it holds in `result`, an `ActorCriticResult`}, for each of
+    `CLAIMS` (checked on the book's run when it is built, and by the tests on their own
+    seeds)."""
+    result = _validate.instance("result", result, ActorCriticResult,
+                                "an ActorCriticResult (from icm.experiments.run_actor_critic)")
+    s = result.summary()
+    return {"red_sooner": s["red_zero_mean"] < s["green_zero_mean"],
+            "red_first_mostly": s["red_first"] > 0.5,
+            "green_below_only_before_red_press":
+                result.green_below_red_only_before_red_press()}
+
+
+def comparison_table(results):
+    """A Markdown table of the numbers that tell actor-critic runs apart, one column per
+    run.
+
+    Args:
+      results: a dict {column label: ActorCriticResult}.
+
+    Returns:
+      A Markdown string (display it with `IPython.display.Markdown`); the trials
+      marked † are means over the seeds whose error does reach 0.
+    """
+    check_results("results", results, ActorCriticResult)
+    summaries = {id(r): r.summary() for r in results.values()}
+
+    def shown(value, fmt):  # fmt: a format spec, or a function such as `percent`
+        return fmt(value) if callable(fmt) else f"{value:{fmt}}"
+
+    def number(key, fmt):
+        return lambda r: shown(summaries[id(r)][key], fmt)
+
+    def pair(key, fmt):
+        return lambda r: (f"{shown(summaries[id(r)]['red_' + key], fmt)} / "
+                          f"{shown(summaries[id(r)]['green_' + key], fmt)}")
+
+    table = measures_table(results, [
+        ("seeds", lambda r: str(r.n_seeds)),
+        ("error 0 from trial (mean†): red / green", pair("zero_mean", ".1f")),
+        ("green learned", number("green_zero_share", percent)),
+        ("red first", number("red_first", percent)),
+        ("green below red at some trial", number("green_below_red", percent)),
+        (f"presses opening red / green, last {LATE_TRIALS} trials",
+         pair("late_practice_share", percent)),
+        ("largest abs(V)", number("max_abs_value", ".3g")),
+    ])
+    return table + "\n\n† mean over the seeds whose error reaches 0 for good within the run."
 
 
 def red_from_first_press(result):
@@ -20,12 +79,6 @@ def red_from_first_press(result):
     that trial; and the learner's mean probability of pressing green then and at the
     end. A dict {"learned", "n_seeds", "from_first", "share", "low", "high", "single",
     "first_median", "green_probability_then", "green_probability_end"}."""
-    import numpy as np
-
-    from icm.experiments.actor_critic import ActorCriticResult
-    from icm.stats import share_interval
-    from icm import _validate
-
     _validate.instance("result", result, ActorCriticResult)
     zero = result.zero_trial[:, 0]
     red_presses = result.practice[:, :, 0]  # presses that opened the red box, per trial

@@ -1,15 +1,24 @@
 """The chapter "Which curiosity?" (book/curiosity.ipynb): its claims in words about
-the buttons (`SIGNAL_CLAIMS`, checked by `icm.experiments.curiosity.SignalComparison.
-claims`), the rods (`REWARD_CLAIMS`, by `RewardComparison.claims`) and a coin
-(`COIN_CLAIMS`, by `coin_claims` on what `icm.experiments.coin_rewards.outcome_rewards`
-pays), and its bold claims with a word of strength (`BOLD_CLAIMS`).
+the buttons (`SIGNAL_CLAIMS`, checked by `signal_claims` on a
+`icm.experiments.curiosity.SignalComparison`), the rods (`REWARD_CLAIMS`, by
+`reward_claims` on a `RewardComparison`) and a coin (`COIN_CLAIMS`, by `coin_claims`
+on what `icm.experiments.coin_rewards.outcome_rewards` pays), its bold claims with a
+word of strength (`BOLD_CLAIMS`), its tables (`signal_table`, `reward_table`), and its
+family of paired verdicts (`PAIRED`, `paired_verdicts`, `paired_words`) with their
+replication on a fresh root (`replicate`, `run_replications`).
 """
 
 import numpy as np
 
 from icm import _validate, stats
-from icm.experiments.curiosity import CHANCE_SHARE, RewardComparison, SignalComparison
+from icm.chapters import replication, verdicts
+from icm.chapters.words import percent
+from icm.experiments.curiosity import (RewardComparison, SignalComparison,
+                                      run_signal_comparison)
+from icm.experiments.goal_oriented_results import TASKS
 from icm.experiments.rod_toppling import RODS
+from icm.experiments.seeding import REPLICATION_ROOTS
+from icm.learners import goal_oriented, interest
 
 
 SIGNAL_CLAIMS = {
@@ -33,7 +42,7 @@ SIGNAL_CLAIMS = {
                           "each of the eight learners (signal and place of interest)",
 }
 """The claims of the chapter "Which curiosity?" about the buttons
-(`SignalComparison.claims`)."""
+(`signal_claims`)."""
 
 
 REWARD_CLAIMS = {
@@ -49,7 +58,7 @@ REWARD_CLAIMS = {
                                            "and neither predicts red well in most seeds",
 }
 """The claims of the chapter "Which curiosity?" about the rods
-(`RewardComparison.claims`)."""
+(`reward_claims`)."""
 
 
 VERDICT_CLAIMS = {
@@ -59,18 +68,22 @@ VERDICT_CLAIMS = {
 """The claim behind the chapter's word "clear" (`verdict_claims`)."""
 
 
-def verdict_claims(comparison):
+def verdict_claims(paired):
     """Whether the chapter's paired verdicts are Holm's over its whole family: each one
     was corrected in a family of all of them, and each called clear has an adjusted
     p-value within the family-wise rate.
 
     Args:
-      comparison: the chapter's `SignalComparison`.
+      paired: the chapter's verdicts, as `paired_verdicts` gives them ({name: {"clear",
+        "p_holm", "n_family", ...}}).
 
     Returns:
       {"clear_is_holm": bool}.
     """
-    paired = comparison.paired_verdicts()
+    if not isinstance(paired, dict):
+        raise _validate.ArgumentTypeError(f"paired must be the chapter's verdicts, as "
+                                          f"paired_verdicts gives them, got "
+                                          f"{_validate.show(paired)}")
     return {"clear_is_holm": bool(paired) and all(
         v["n_family"] == len(paired) and (not v["clear"] or v["p_holm"] <= stats.FAMILY_RATE)
         for v in paired.values())}
@@ -193,8 +206,6 @@ learning progress" (`paired_claims`)."""
 
 def _stored_verdicts(replications):
     """The stored replications of the chapter's paired verdicts ({name: dict})."""
-    from icm.experiments import replication
-
     if replications is None:
         replications = replication.load_replications().get("curiosity", {})
     return replications.get("verdicts", {})
@@ -202,12 +213,12 @@ def _stored_verdicts(replications):
 
 def paired_claims(comparison, replications=None):
     """{claim name: whether it holds}, for each of `PAIRED_CLAIMS`, from
-    `SignalComparison.paired_verdicts` and the stored replications (`replications`,
+    `paired_verdicts` and the stored replications (`replications`,
     default those of assets/replications.json for this chapter)."""
     _validate.instance("comparison", comparison, SignalComparison,
                        "a SignalComparison (from icm.experiments.curiosity."
                        "run_signal_comparison)")
-    v = comparison.paired_verdicts()["random_vs_progress_green"]
+    v = paired_verdicts(comparison)["random_vs_progress_green"]
     stored = _stored_verdicts(replications).get("random_vs_progress_green", {})
     return {"random_sooner_on_green": bool(v["clear"] and v["mean"] < 0
                                            and stored.get("replicated") is not False)}
@@ -268,7 +279,7 @@ def paired_plain_words(comparison, replications=None):
                        "run_signal_comparison)")
     stored = _stored_verdicts(replications)
     out = {}
-    for name, v in comparison.paired_verdicts().items():
+    for name, v in paired_verdicts(comparison).items():
         gap, band = gap_words(v["mean"], v["low"], v["high"])
         verdict = "a clear difference" if v["clear"] else "no clear difference"
         if v["clear"] and stored.get(name, {}).get("replicated") is False:
@@ -328,3 +339,253 @@ def well_intervals(comparison, reward, wobbly_rod=False):
         count, n = int((well[:, i] >= 1).sum()), well.shape[0]
         out[rod] = (count, n, *stats.share_interval(count, n))
     return out
+
+
+CHANCE_SHARE = 1.0 / 6.0
+"""The share of presses a learner pressing at random gives each of the six buttons."""
+TRAPPED_SHARE = 0.5
+"""A learner is *trapped* by a source of noise when it spends more than this share of
+its presses on the noisy button (of its late episodes at the wobbly rod), the whole
+band of that share above it; *not trapped* when the whole band is below it."""
+EQUAL_SHARE_TOLERANCE = 0.01
+"""How far from chance a button's share of presses may be for the chapter to say that a
+learner presses every button equally."""
+LEARNED_SHARE = 0.9
+"""The share of seeds in which a rod must be predicted well for the chapter to say that
+a learner learns it (`REWARD_CLAIMS`): the lower end of the share's 95% interval
+(`icm.stats.share_interval`) must be at least this."""
+RED_FIRST_SHARE = 0.9
+"""The share of seeds in which red must be mastered before green, under each learner,
+for the chapter to say that easy comes before hard whatever the signal: the lower end
+of the share's 95% interval (`icm.stats.share_interval`) must be at least this."""
+TASKS_AND_NOTHING = ("red", "green", "nothing")
+"""What a press of the console can do: open the red box, the green box, or nothing."""
+
+
+def _signals(comparison):
+    return _validate.instance("comparison", comparison, SignalComparison,
+                              "a SignalComparison (from icm.experiments.curiosity."
+                              "run_signal_comparison)")
+
+
+def _rewards(comparison):
+    return _validate.instance("comparison", comparison, RewardComparison,
+                              "a RewardComparison (from icm.experiments.curiosity."
+                              "run_reward_comparison)")
+
+
+def signal_claims(comparison):
+    """{claim name: whether it holds in `comparison`, a `SignalComparison` of every
+    signal, both places of interest and both worlds}, for each of `SIGNAL_CLAIMS`: what
+    the chapter states in words, checked on the book's runs when it is built, and by
+    the tests on theirs."""
+    comparison = _signals(comparison)
+    runs = set(comparison.results)
+    signals, designs = comparison.settings["signals"], comparison.settings["designs"]
+    needed = {(s, d, w) for s in interest.SIGNALS for d in goal_oriented.INTEREST_PER
+              for w in (False, True)}
+    if not needed <= runs:
+        raise ValueError("the chapter's claims need every signal, both places of "
+                         "interest and both worlds: run_signal_comparison with its "
+                         "default signals, designs and noisy")
+    n = comparison.numbers
+    plain = [(s, d) for s in signals for d in designs]
+    progress, random = n("learning_progress", "task"), n("random", "task")
+    balanced = [n("novelty", "task")[f"{t}_presses"][0] for t in TASKS_AND_NOTHING]
+    per_region = {s: n(s, "region", True)["noisy_share"] for s in signals}
+    return {
+        "red_first_share": all(low >= RED_FIRST_SHARE for _, _, low, _
+                               in comparison.red_first_intervals().values()),
+        "random_not_slower": all(random[f"{t}_mastery"][0] <= progress[f"{t}_mastery"][2]
+                                 for t in ("red", "green")),
+        "novelty_region_fastest": comparison.fastest() == ("novelty", "region"),
+        "novelty_task_balanced": max(balanced) - min(balanced) <= 1,
+        "task_not_trapped": all(n(s, "task", True)["noisy_share"][2] < TRAPPED_SHARE
+                                for s in signals),
+        "region_error_trapped": per_region["prediction_error"][1] > TRAPPED_SHARE,
+        "region_progress_drawn_not_trapped":
+            per_region["learning_progress"][2] < TRAPPED_SHARE
+            and per_region["learning_progress"][1] > CHANCE_SHARE,
+        "region_novelty_equal": all(abs(share[0] - CHANCE_SHARE) < EQUAL_SHARE_TOLERANCE
+                                    for share in n("novelty", "region", True)
+                                    ["button_share"]),
+        "noise_delays_green": all(n(*sd, True)["green_mastery"][0]
+                                  > n(*sd)["green_mastery"][0] for sd in plain),
+    }
+
+
+def reward_claims(comparison):
+    """{claim name: whether it holds in `comparison`, a `RewardComparison` of every
+    reward in both worlds}, for each of `REWARD_CLAIMS`: what the chapter states in
+    words, checked on the book's runs when it is built, and by the tests on theirs."""
+    comparison = _rewards(comparison)
+    needed = {(r, w) for r in ("prediction_error", "learning_progress", "novelty",
+                               "random") for w in (False, True)}
+    if not needed <= set(comparison.results):
+        raise ValueError("the chapter's claims need the rewards prediction_error, "
+                         "learning_progress, novelty and random in both worlds")
+    n = comparison.numbers
+    error, progress = n("prediction_error", True), n("learning_progress", True)
+    slow = [n(r, True) for r in ("novelty", "random")]
+    return {
+        "error_trapped": error["wobbly_share_late"][1] > TRAPPED_SHARE
+        and error["red_well"][0] < n("prediction_error", False)["red_well"][0],
+        "progress_learns_anyway": all(  # each rod's interval's lower end
+            stats.share_interval(int((well >= 1).sum()), len(well))[0] >= LEARNED_SHARE
+            for well in comparison.results[("learning_progress", True)].predicted_well.T),
+        "progress_not_immune": progress["wobbly_share_late"][1] > TRAPPED_SHARE,
+        "novelty_random_not_trapped_but_slow": all(
+            m["wobbly_share_late"][2] < TRAPPED_SHARE and m["red_well"][0] < 0.5
+            for m in slow),
+    }
+
+
+PAIRED = {"novelty_region_vs_random_green": (("novelty", "region"), ("random", "task"),
+                                             "green"),
+          "random_vs_progress_red": (("random", "task"), ("learning_progress", "task"),
+                                     "red"),
+          "random_vs_progress_green": (("random", "task"),
+                                       ("learning_progress", "task"), "green")}
+"""The chapter's paired comparisons of mastery trials in the world without the noisy
+button: {name: (arm, baseline, task)}, arm and baseline (signal, interest_per)."""
+
+
+def paired_family(comparison, names=None):
+    """The mastery trials of `PAIRED`'s comparisons (those named in `names`, default
+    all) in `comparison` (a `SignalComparison` of the world without the noisy button),
+    arm minus baseline on the seeds where both master the task
+    (`icm.chapters.verdicts.differences`): {name: per-seed differences}."""
+    comparison = _signals(comparison)
+    family = {}
+    for name in PAIRED if names is None else names:
+        arm, baseline, task = PAIRED[_validate.one_of("names[i]", name, tuple(PAIRED))]
+        i = TASKS.index(task)
+        family[name] = verdicts.differences(
+            comparison.results[(*arm, False)].mastery_trial[:, i],
+            comparison.results[(*baseline, False)].mastery_trial[:, i], events=True)
+    return family
+
+
+def paired_verdicts(comparison):
+    """The chapter's family of paired comparisons (`PAIRED`), decided together
+    (`icm.chapters.verdicts.decide`: Holm at a family-wise 5%, sign-flip p-values): for
+    each, over the seeds in which both arms master the task (the same seeds), the mean
+    difference of the mastery trials (arm minus baseline; negative: the arm masters
+    sooner) with its 95% bootstrap band, its p-values, whether it is clear, the seeds
+    compared and the family's size. {name: dict}."""
+    return verdicts.decide(paired_family(comparison))
+
+
+def paired_words(comparison, replications=None):
+    """The chapter's words for each of `paired_verdicts`: {name: "-1.4 trials (-3.5
+    to +0.9): no clear difference"}, "clearly sooner" or "clearly later" for a
+    clear one (the arm against the baseline, `icm.chapters.verdicts.phrase`), followed
+    by ", not replicated on a fresh root" where the stored replication (`replications`,
+    default that of assets/replications.json for this chapter) did not hold it."""
+    if replications is None:
+        replications = replication.load_replications().get("curiosity", {})
+    stored = replications.get("verdicts", {})
+    out = {}
+    for name, v in paired_verdicts(comparison).items():
+        kept = stored.get(name)
+        words = verdicts.phrase(v["mean"], v["clear"], "sooner", "later", replication=(
+            None if kept is None else verdicts.replication_words(kept, detail=False)))
+        out[name] = (f"{v['mean']:+.1f} trials ({v['low']:+.1f} to {v['high']:+.1f}): "
+                     f"{words}")
+    return out
+
+
+def signal_table(comparison, noisy_button=False):
+    """A Markdown table of `comparison` (a `SignalComparison`), one row per (signal,
+    interest_per) of the world with or without the noisy button: mastery trials of red
+    and green (mean over the seeds that master, 95% band, share that master), red
+    first, presses per task, and the noisy button's share of presses."""
+    comparison = _signals(comparison)
+    noisy_button = _validate.boolean("noisy_button", noisy_button)
+    worlds = sorted({noisy for _, _, noisy in comparison.results})
+    if noisy_button not in worlds:
+        raise ValueError(f"noisy_button must be one of the worlds this comparison ran "
+                         f"({', '.join(map(str, worlds))}), got {noisy_button!r}")
+    lines = ["| signal | interest per | red mastered, trial | green mastered, trial "
+             "| red first | presses opening red / green / nothing | noisy button, "
+             "share of presses |", "|" + "---|" * 7]
+    for (signal, per, noisy), result in comparison.results.items():
+        if noisy != noisy_button:
+            continue
+        n = comparison.numbers(signal, per, noisy)
+        cells = [signal.replace("_", " "), per]
+        for task in TASKS:
+            mean, low, high = n[f"{task}_mastery"]
+            cells.append(f"{mean:.1f} [{low:.1f}, {high:.1f}] "
+                         f"({percent(n[f'{task}_mastered'][0])} of seeds)")
+        cells.append(percent(n['red_first']))
+        cells.append(" / ".join(f"{n[f'{t}_presses'][0]:.0f}"
+                                for t in ("red", "green", "nothing")))
+        mean, low, high = n["noisy_share"]
+        cells.append("-" if np.isnan(mean) else f"{mean:.3f} [{low:.3f}, {high:.3f}]")
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def reward_table(comparison):
+    """A Markdown table of `comparison` (a `RewardComparison`), one row per (reward,
+    world): the share of episodes ending at each rod over the second half of the runs,
+    and how many seeds predict red and blue well (and from which episode: the mean over
+    the seeds that get there)."""
+    comparison = _rewards(comparison)
+    lines = ["| reward | wobbly rod | episodes ending at red / blue / wobbly / none, "
+             "second half | red predicted well: seeds (episode) "
+             "| blue predicted well: seeds (episode) |", "|" + "---|" * 5]
+    for reward, wobbly in comparison.results:
+        n = comparison.numbers(reward, wobbly)
+        shares = " / ".join(
+            f"{n[f'{rod}_share_late'][0]:.2f}" if f"{rod}_share_late" in n else "-"
+            for rod in ("red", "blue", "wobbly", "none"))
+        cells = [reward.replace("_", " "), "yes" if wobbly else "no", shares]
+        for rod in RODS:
+            episode = n[f"{rod}_well_episode"][0]
+            cells.append(f"{percent(n[f'{rod}_well'][0])} "
+                         f"({'-' if np.isnan(episode) else f'{episode:.0f}'})")
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+CHAPTER_RUN = {"n_seeds": 100, "n_trials": 100, "seed": 0}
+"""The arguments of the chapter's `run_signal_comparison`, whose clear paired verdicts
+`run_replications` replicates (the chapter checks that it ran these)."""
+REPLICATION_SEEDS = 200
+"""Seeds of a replication of a paired verdict (`replicate`). The chapter's one clear
+verdict, pressing at random against learning progress in green's mastery trial, is
+-2.1 trials with a per-seed spread (standard deviation) of about 7.5 over 100 seeds;
+with 200 seeds the standard error is about 0.53, and a one-sided paired test at 5%
+detects it with a probability of about 0.99 (normal approximation: z = 2.1 / 0.53 = 4.0
+against 1.645). The six runs it needs take well under a CPU-minute."""
+
+
+def replicate(directions, root=None, n_seeds=REPLICATION_SEEDS):
+    """Reruns the paired comparisons of `PAIRED` named in `directions` ({name: "less" or
+    "greater", the direction the chapter found}) on the first `n_seeds` seeds of a
+    fresh root (default the chapter's of `icm.experiments.seeding.REPLICATION_ROOTS`),
+    with the chapter's trials, and tests each in its direction: {name:
+    `icm.chapters.replication.replicated` dict}."""
+    root = REPLICATION_ROOTS["curiosity"] if root is None else root
+    for name in directions:
+        _validate.one_of("directions' names", name, tuple(PAIRED))
+    fresh = run_signal_comparison(n_seeds=n_seeds, n_trials=CHAPTER_RUN["n_trials"],
+                                  signals=("learning_progress", "novelty", "random"),
+                                  noisy=(False,), seed=root, progress=False)
+    family = paired_family(fresh, list(directions))
+    return {name: replication.replicated(family[name], direction)
+            for name, direction in directions.items()}
+
+
+def run_replications():
+    """The replications of every paired verdict the chapter's run (`CHAPTER_RUN`) calls
+    clear (`replicate`), as assets/replications.json keeps them: {"root", "n_seeds",
+    "of": `CHAPTER_RUN`, "verdicts": {name: ...}}."""
+    chapter = run_signal_comparison(**CHAPTER_RUN, noisy=(False,), progress=False)
+    found = paired_verdicts(chapter)
+    directions = {name: "less" if v["mean"] < 0 else "greater"
+                  for name, v in found.items() if v["clear"]}
+    return {"root": REPLICATION_ROOTS["curiosity"], "n_seeds": REPLICATION_SEEDS,
+            "of": CHAPTER_RUN, "verdicts": replicate(directions)}

@@ -1,6 +1,13 @@
 """The chapter "Goal-oriented interest" (book/goal_oriented_interest.ipynb): the
-claims of the paper about Figure 5 it states in words (`CLAIMS`), checked by
-`icm.experiments.goal_oriented.GoalOrientedResult.claims` on the chapter's run."""
+claims of the paper about Figure 5 it states in words (`CLAIMS`) and their check on a
+run (`claims`, on the chapter's run when it is built and on the tests' own seeds), the
+clause it quotes about the curves' peaks (`describe_peaks`), and its table of runs
+(`comparison_table`), all read from a `GoalOrientedResult`."""
+
+from icm import _validate
+from icm.chapters.words import measures_table, percent
+from icm.experiments.goal_oriented_results import GoalOrientedResult
+from icm.experiments.results import check_results
 
 
 CLAIMS = {
@@ -10,6 +17,67 @@ CLAIMS = {
     "green_stays_longer": "the interest in green is spent later than the interest in red",
 }
 """The claims of the paper about Figure 5 that the book states (`claims`)."""
+
+
+def _result(result):
+    return _validate.instance("result", result, GoalOrientedResult,
+                              "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
+
+
+def claims(result):
+    """{claim name: whether it holds in `result`, a `GoalOrientedResult`}, for each of
+    `CLAIMS`: what the chapter states in words, checked on the book's run when it is
+    built (and by the tests on their own seeds)."""
+    s = _result(result).summary()
+    return {
+        "red_first_mostly": s["red_first"] > 0.5,
+        "red_sooner": s["red_mastery_mean"] < s["green_mastery_mean"],
+        "red_fades_first": 0 < s["red_fade_trial"] < s["green_fade_trial"]
+        or (s["red_fade_trial"] > 0 > s["green_fade_trial"]),
+        "green_stays_longer": s["green_interest_centre"] > s["red_interest_centre"],
+    }
+
+
+def describe_peaks(result):
+    """In words, whether the mean interest in green peaks after the mean interest in red
+    in `result` (a `GoalOrientedResult`), as the paper's "interest rise slower" would
+    have it: a clause that the chapter quotes, phrased from the data."""
+    result = _result(result)
+    red, green = result.peak_trial("red"), result.peak_trial("green")
+    if green > red:
+        return (f"the mean curves agree, green's peaking at trial {green}, after red's "
+                f"at trial {red}")
+    if green == red:
+        return f"the mean curves do not show it: both peak at trial {red}"
+    return (f"the mean curves show the opposite, green's peaking at trial {green}, "
+            f"before red's at trial {red}")
+
+
+def comparison_table(results):
+    """A Markdown table of the numbers that tell runs apart, one column per run.
+
+    Args:
+      results: a dict {column label: GoalOrientedResult}.
+
+    Returns:
+      A Markdown string (display it with `IPython.display.Markdown`).
+    """
+    check_results("results", results, GoalOrientedResult)
+    summaries = {id(r): r.summary() for r in results.values()}
+
+    def pair(key, fmt):
+        return lambda r: (f"{summaries[id(r)]['red_' + key]:{fmt}} / "
+                          f"{summaries[id(r)]['green_' + key]:{fmt}}")
+
+    return measures_table(results, [
+        ("seeds", lambda r: str(r.n_seeds)),
+        ("mastered, mean trial: red / green", pair("mastery_mean", ".1f")),
+        ("red mastered first", lambda r: percent(summaries[id(r)]['red_first'])),
+        ("peak interest: red / green", pair("peak_interest", ".3f")),
+        ("centre of interest, trial: red / green", pair("interest_centre", ".1f")),
+        ("interest below 10% of its peak from trial: red / green", pair("fade_trial", "")),
+        ("most practised at trial: red / green", pair("practice_peak_trial", "")),
+    ])
 
 _LEARNERS = "tests/test_learners.py::"
 _GOAL = "tests/test_goal_oriented.py::"

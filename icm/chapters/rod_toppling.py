@@ -1,11 +1,18 @@
 """The chapter "Rod toppling" (book/rod_toppling.ipynb): the claims about Figure 7's
-story it states in words (`CLAIMS`, checked by `icm.experiments.rod_toppling.
-RodTopplingResult.claims`), and those about the value of an untried move
-(`INITIAL_Q_CLAIMS`, checked by `initial_q_claims` on runs at three initial values)."""
+story it states in words (`CLAIMS`, checked on a run by `claims`), the order of one
+run's moments in words (`describe_order`), and the claims about the value of an
+untried move (`INITIAL_Q_CLAIMS`, checked by `initial_q_claims` on runs at three
+initial values), all read from the runs (each a `RodTopplingResult`)."""
 
 from icm import _validate
+from icm.chapters.verdicts import differences
 from icm.experiments.rod_toppling import RodTopplingResult
 from icm.stats import FAMILY_RATE, comes_first, paired_p_value
+
+
+def _result(result):
+    return _validate.instance("result", result, RodTopplingResult,
+                              "a RodTopplingResult (from icm.experiments.run_rod_toppling)")
 
 
 CLAIMS = {
@@ -20,7 +27,48 @@ CLAIMS = {
     "red_in_the_way": "in the second half of training red is toppled more often than blue",
 }
 """The claims about Figure 7's story over the seeds that the book states in words
-(`RodTopplingResult.claims`)."""
+(`claims`)."""
+
+
+def claims(result):
+    """{claim name: whether it holds in `result`, a `RodTopplingResult`}, for each of
+    `CLAIMS` (checked on the book's run when it is built, and by the tests on their own
+    seeds)."""
+    s = _result(result).summary()
+    return {
+        "red_toppled_first": s["red_toppled_first"] > 0.5
+        and s["first_red_median"] < s["first_blue_median"],
+        "red_learned_first": s["red_first_toppled"] > 0.5
+        and s["red_well_median_toppled"] < s["blue_well_median_toppled"],
+        "red_learned_first_all": s["red_first"] > 0.5
+        and s["red_well_median"] < s["blue_well_median"],
+        "then_blue": s["blue_share_second_half"] > s["blue_share_first_10"],
+        "red_in_the_way": s["red_share_second_half"] > s["blue_share_second_half"],
+    }
+
+
+def describe_order(result, run, reading="all"):
+    """In words, when red was predicted well (in `reading`) and blue first toppled in
+    one run of `result` (a seed index), in the order they came: e.g. "blue is first
+    toppled at episode 29, before red is predicted well at episode 43"."""
+    result = _result(result)
+    run = _validate.integer_in_range("run", run, 0, result.n_seeds - 1)
+    red = int(result.well_predicted(reading)[run, 0])
+    blue = int(result.first_topple("blue")[run])
+    red_text = f"red is predicted well at episode {red}"
+    blue_text = f"blue is first toppled at episode {blue}"
+    if red < 1 and blue < 1:
+        return (f"neither is red predicted well nor blue toppled in "
+                f"{result.n_episodes} episodes")
+    if red < 1:
+        return f"{blue_text}, and red is never predicted well in {result.n_episodes} episodes"
+    if blue < 1:
+        return f"{red_text}, and blue is never toppled in {result.n_episodes} episodes"
+    if red < blue:
+        return f"{red_text}, before blue is first toppled, at episode {blue}"
+    if blue < red:
+        return f"{blue_text}, before {red_text}"
+    return f"red is predicted well and blue first toppled in the same episode, {red}"
 
 
 def initial_q_claims(default, untried_worth_nothing, untried_worth_a_surprise):
@@ -56,8 +104,8 @@ def initial_q_claims(default, untried_worth_nothing, untried_worth_a_surprise):
         well = run.well_predicted("toppled")[:shared]
         return comes_first(well[:, 0], well[:, 1]).astype(float)
 
-    fewer_red_first = paired_p_value(red_first(untried_worth_a_surprise) - red_first(default),
-                                     alternative="less")
+    fewer_red_first = paired_p_value(differences(red_first(untried_worth_a_surprise),
+                                                 red_first(default)), alternative="less")
     return {
         "low_stays_with_red": low["red_well_share"] < d["red_well_share"]
         and low["first_blue_median"] > d["first_blue_median"],

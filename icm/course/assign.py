@@ -43,14 +43,14 @@ import tempfile
 import nbformat
 import yaml
 
-from icm import _validate, files, records
+from icm import _validate, files, records, store
 from icm._book import toc_pages
 from icm.course.grade import MANIFEST  # the file, beside the autograder, `manifest` writes
 from icm.course.grade import MAX_JOBS  # the machine's cores
 from icm.exercises.registry import EXERCISES
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
-"""The project's folder (the book's notebooks are in ROOT/book)."""
+ROOT = store.PROJECT
+"""The book's sources (ROOT/book, _toc.yml, ...), found through the package's data."""
 EXERCISE = re.compile(r"\{exercise(?:-start)?\} (Implement|Predict, then check|Extend): "
                       r"(.+)\n:label: (ex-[a-z0-9-]+)")
 """An exercise's directive in a chapter: its kind, its title and its label."""

@@ -17,7 +17,7 @@ from dm_control.suite import base
 from dm_env import specs
 
 from icm import _exact, _system, _validate
-from icm.envs._assets import ASSETS, asset_path  # noqa: F401 (part of this module's API)
+from icm.store import ASSETS, asset_path  # noqa: F401 (part of this module's API)
 from icm.envs._common import check_time_limit
 
 ARM_JOINTS = ("r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw", "r_elbow",

@@ -3,6 +3,7 @@
 import numpy as np
 
 from icm import _validate
+from icm.envs.loading import load
 
 
 def compare_twins(name, n_steps=200, seed=0, action_seed=0, twin_seed=None, **kwargs):
@@ -26,15 +27,13 @@ def compare_twins(name, n_steps=200, seed=0, action_seed=0, twin_seed=None, **kw
       carried out: every step but those that began an episode, since dm_env's first
       step after an episode's end starts the next one and ignores its action).
     """
-    from icm import envs  # here: envs imports this module's package
-
     _validate.integer_at_least("n_steps", n_steps, 1)
     _validate.integer("seed", seed, 0, _validate.MAX_SEED)
     if twin_seed is not None:
         _validate.integer("twin_seed", twin_seed, 0, _validate.MAX_SEED)
     action_random = _validate.generator("action_seed", action_seed)
-    physics_env = envs.load(name, physics=True, seed=seed, **kwargs)
-    tabular_env = envs.load(name, physics=False,
+    physics_env = load(name, physics=True, seed=seed, **kwargs)
+    tabular_env = load(name, physics=False,
                             seed=seed if twin_seed is None else twin_seed, **kwargs)
     actions = action_random.integers(physics_env.action_spec().num_values, size=n_steps)
     physics_env.reset(), tabular_env.reset()

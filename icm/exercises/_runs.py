@@ -7,7 +7,7 @@ import numpy as np
 from icm import _validate
 from icm.envs import buttons
 from icm.experiments import goal_oriented as go_experiment
-from icm.experiments._seeding import run_seeds
+from icm.experiments.seeding import run_seeds
 from icm.learners.goal_oriented import DEFAULT_EPSILON, INTEREST_PER, GoalOrientedAgent
 from icm.learners.predictors import NearestNeighbourPredictor
 

@@ -14,7 +14,7 @@ from icm.exercises import _core, _own
 from icm.exercises._core import Case
 from icm.exercises._runs import EXERCISE_SEEDS, EXERCISE_TRIALS, run_goal_oriented_with
 from icm.exercises.interest import INTEREST_FORBIDDEN
-from icm.experiments.results import percent
+from icm.chapters.words import percent
 
 SIGNAL_PARAMETERS = ("history",)
 

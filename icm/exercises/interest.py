@@ -13,7 +13,7 @@ from icm.exercises import _core
 from icm.exercises._core import Case
 from icm.exercises._own import Forbidden
 from icm.exercises._runs import EXERCISE_SEEDS, EXERCISE_TRIALS, run_goal_oriented_with
-from icm.experiments.results import percent
+from icm.chapters.words import percent
 from icm.learners.interest import (DEFAULT_NEW_TASK_FACTOR, DEFAULT_WINDOW, slope_weights,
                                    least_squares_slope)
 

@@ -8,7 +8,7 @@ from icm.exercises._own import Forbidden
 from icm.stats import comes_first
 
 PARAMETERS = ("red_trial", "green_trial")
-FORBIDDEN = Forbidden(("icm.stats", "icm.experiments.robustness", "icm.experiments.results"))
+FORBIDDEN = Forbidden(("icm.stats", "icm.studies.robustness", "icm.experiments.results"))
 """What "red first" must not call: the library's count of it."""
 NEVER = ("-1 means never: a task never mastered comes after any trial, and a seed that "
          "masters neither has not mastered red first.")

@@ -27,13 +27,32 @@ from icm._validate import one_of
 from icm.envs.rods import rules as rod_rules
 from icm.learners import action_selection, interest
 
+FORMULAS = ("error", "slope", "novelty", "none")
+"""The rewards the compiled loop computes, one branch of `play` each, numbered by their
+place here (`ERROR`, `SLOPE`, `NOVELTY`, `NONE`): "error", the move's prediction error
+(the paper's reward); "slope", max(0, -slope) of the pair's last `window` errors
+(learning progress); "novelty", 1 / sqrt(1 + tries of the pair); "none", no reward and
+no values learned (the walk at random). A signal names the one that computes it
+(`icm.learners.interest.InterestSignal.KERNEL_FORMULA`); a formula not here is refused
+by name (`check_reward`), never paid as 0."""
+ERROR, SLOPE, NOVELTY, NONE = range(len(FORMULAS))
+
+
 def signal_codes():
-    """The reward signals the compiled loop computes, by name and as it numbers them:
-    the signals of `icm.learners.interest.SIGNAL_CLASSES` whose `KERNEL_CODE` is set.
-    One that is not here runs on the physics path (per-agent classes) only;
-    `check_reward` refuses it for the tabular loop."""
-    return {name: cls.KERNEL_CODE for name, cls in interest.SIGNAL_CLASSES.items()
-            if cls.KERNEL_CODE is not None}
+    """The reward signals the compiled loop computes, by name, each with the number of
+    its formula (`FORMULAS`): the signals of `icm.learners.interest.SIGNAL_CLASSES`
+    whose `KERNEL_FORMULA` is one of `FORMULAS`. One that is not here runs on the
+    physics path (per-agent classes) only; `check_reward` refuses it for the tabular
+    loop, by name."""
+    return {name: FORMULAS.index(cls.KERNEL_FORMULA)
+            for name, cls in interest.SIGNAL_CLASSES.items()
+            if cls.KERNEL_FORMULA in FORMULAS}
+
+
+def kept_errors(reward, window):
+    """How many of a pair's last errors the loop keeps for `reward`: `window` for a
+    slope, else 1."""
+    return int(window) if signal_codes()[check_reward(reward)] == SLOPE else 1
 
 
 NO_LIMIT = np.iinfo(np.int64).max
@@ -42,9 +61,15 @@ NO_LIMIT = np.iinfo(np.int64).max
 
 def check_reward(reward):
     """`reward` if the compiled loop computes it, else a ValueError that names it and
-    the ones it computes."""
+    the ones it computes (or the formula it asks for that the loop does not have)."""
     codes = signal_codes()
     if reward not in codes:
+        formula = getattr(interest.SIGNAL_CLASSES.get(reward), "KERNEL_FORMULA", None)
+        if formula is not None:
+            raise ValueError(f"reward {reward!r} asks the compiled rod loop for the formula "
+                             f"{formula!r}, which it does not have; it has "
+                             f"{', '.join(FORMULAS)} (add it to icm.experiments._rods_kernel"
+                             f".FORMULAS and to play, or run {reward!r} with physics=True)")
         raise ValueError(f"reward {reward!r} is an interest signal the compiled rod loop "
                          f"does not compute; it computes {', '.join(codes)} (add it "
                          f"to icm.experiments._rods_kernel, or run it with physics=True)")
@@ -137,13 +162,13 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
             last_error[r, c, a] = total
             # The reward: the error (the paper's), or another signal of the pair.
             reward = total
-            if signal != 0:
+            if signal != ERROR:
                 tries = count[r, c, a] + 1
                 count[r, c, a] = tries
                 for i in range(window - 1):  # the pair's last errors, newest last
                     history[r, c, a, i] = history[r, c, a, i + 1]
                 history[r, c, a, window - 1] = total
-                if signal == 1:  # learning progress: max(0, -slope), from 2 errors on
+                if signal == SLOPE:  # learning progress: max(0, -slope), from 2 errors on
                     reward = 0.0
                     m = min(tries, window)
                     if m >= 2:
@@ -152,16 +177,16 @@ def play(q, predictions, last_error, draws, cursor, cell, episode, moves, error_
                             slope += weights[m, i] * history[r, c, a, window - m + i]
                         if -slope > 0.0:
                             reward = -slope
-                elif signal == 2:  # novelty
+                elif signal == NOVELTY:
                     reward = 1.0 / np.sqrt(1.0 + tries)
-                else:
+                else:  # NONE: the walk at random is paid nothing
                     reward = 0.0
             off = following == c  # a move off the grid: the hand stayed
             ends = rod >= 0 or (off_grid_ends and off)
             # Equation 3; a topple (or with off_grid_ends a move off the grid) ends the
             # episode, so nothing follows it. The random walker learns no Q: every move
             # stays a tie.
-            if signal != 3:
+            if signal != NONE:
                 target = reward
                 if not ends:
                     best = q[r, following, 0]
@@ -338,10 +363,12 @@ def play_all(streams, q, predictions, last_error, epsilon, alpha, gamma, lr, nex
     epsilon, alpha, gamma, lr = per_row(epsilon), per_row(alpha), per_row(gamma), per_row(lr)
     signal = signal_codes()[check_reward(reward)]
     n_draws = int(action_selection.DRAWS_PER_CHOICE)
-    window = int(window) if signal == 1 else 1
+    window = kept_errors(reward, window)
     weights = slope_weights(window)
-    history = np.zeros((n, n_cells, n_actions, window) if signal else (0, 0, 0, window))
-    count = np.zeros((n, n_cells, n_actions) if signal else (0, 0, 0), dtype=np.int64)
+    history = np.zeros((n, n_cells, n_actions, window) if signal != ERROR
+                       else (0, 0, 0, window))
+    count = np.zeros((n, n_cells, n_actions) if signal != ERROR else (0, 0, 0),
+                     dtype=np.int64)
     wobbly = wobbles is not None
     if wobbly:
         env_cursor = env_streams.cursor

@@ -4,7 +4,6 @@ All seeds run at once (`icm.learners.actor_critic.ActorCriticBatch`): seed k of 
 is seed k run alone, and the per-agent `ActorCritic` gives the same numbers (a test
 runs both)."""
 
-import dataclasses
 import math
 
 import numpy as np
@@ -12,24 +11,19 @@ import numpy as np
 from icm import _streams, _validate
 from icm._settings import with_settings
 from icm.envs import buttons
-from icm.experiments import _grid
+from icm.experiments import _grid, loop
 from icm.experiments._memory import FIXED_BYTES, check_memory
-from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import run_seeds
-from icm.experiments.results import check_results, measures_table, percent
+from icm.experiments.loop import Transition
+from icm.experiments.actor_critic_results import TASKS, ActorCriticResult
+from icm.experiments.seeding import run_seeds
 from icm.learners import action_selection, actor_critic
-from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
-                       first_from_which)
+from icm.stats import first_from_which
 
-TASKS = ("red", "green")
-"""Order of the task axis in the result arrays."""
-LATE_TRIALS = 10
 CHAPTER_SEEDS = 200
 """Runs of the chapter "The actor-critic" (its Figure 6; `python -m icm figure6`)."""
 CHAPTER_TRIALS = 100
 """Trials per run in that chapter and `python -m icm figure6` (its panel runs
 `panel_data.PANEL_TRIALS`)."""
-"""`summary()` describes the end of a run by its last `LATE_TRIALS` trials."""
 
 
 def probe_queries(red_button=buttons.DEFAULT_RED_BUTTON):
@@ -61,138 +55,6 @@ def probe_queries(red_button=buttons.DEFAULT_RED_BUTTON):
         lights[green] = buttons.GREEN
         queries.append(("green", tuple(lights.tolist()) + (0, 0), green, (0, 1)))
     return queries
-
-
-@dataclasses.dataclass(frozen=True)
-class ActorCriticResult:
-    """What `run_actor_critic` measured. Trials are counted from 1 in `zero_trial`;
-    the arrays' trial axis holds trial 1 at index 0.
-
-    Attributes:
-      settings: the arguments of the run, as a dict.
-      prediction_error: [seed, trial, task], after each trial, section 4.1's test:
-        the Euclidean distance between the predicted and the true boxes when only the
-        red button is lit and pressed (task red), and the same averaged over the 4
-        places of the green button when only it is lit and pressed (task green).
-      zero_trial: [seed, task], the first trial from which that error is 0 to the end
-        of the run; -1 if it is not 0 at the end.
-      practice: [seed, trial, task], presses in the trial that opened each box.
-      press_probability: [seed, trial, task], after each trial, the actor's
-        probability of pressing the red (task red) and the green (task green) button
-        at the start of a trial (boxes shut), averaged over the 4 layouts.
-      reward: [seed, trial], the rewards the learner received in the trial, summed.
-      max_abs_value: [seed, trial], the largest absolute value of the critic after each trial.
-    """
-
-    settings: dict
-    prediction_error: np.ndarray
-    zero_trial: np.ndarray
-    practice: np.ndarray
-    press_probability: np.ndarray
-    reward: np.ndarray
-    max_abs_value: np.ndarray
-
-    @property
-    def n_seeds(self):
-        """Number of runs (seeds)."""
-        return self.prediction_error.shape[0]
-
-    @property
-    def n_trials(self):
-        """Trials per run."""
-        return self.prediction_error.shape[1]
-
-    def red_first_fraction(self):
-        """Share of seeds in which the red error reaches 0 (for good) strictly before
-        the green one (a seed where only red reaches 0 counts as red first)."""
-        red, green = self.zero_trial[:, 0], self.zero_trial[:, 1]
-        return float(comes_first(red, green).mean())
-
-    def seed_summaries(self):
-        """One dict per seed of the numbers a sweep compares: the trial from which each
-        task's error is 0 (-1 if never), the gap green - red (NaN unless both reach 0),
-        and whether red came first."""
-        rows = []
-        for red, green in self.zero_trial.tolist():
-            gap = float(green - red) if red >= 1 and green >= 1 else float("nan")
-            rows.append({"red_zero_trial": red, "green_zero_trial": green, "zero_gap": gap,
-                         "red_first": bool(comes_first(red, green))})
-        return rows
-
-    def green_below_red(self):
-        """[seed, trial] True where the green error is below the red one: the learner
-        is, for the moment, more familiar with the hard task than with the easy one."""
-        return self.prediction_error[:, :, 1] < self.prediction_error[:, :, 0]
-
-    def green_below_red_only_before_red_press(self):
-        """Whether, in every seed, the green error is below the red one only in trials
-        before the red button was first pressed (before a press opened the red box;
-        none at all if it never was)."""
-        below = self.green_below_red()
-        pressed = self.practice[:, :, 0] > 0  # a red press opens the red box
-        trials = np.arange(1, self.n_trials + 1)
-        first_press = np.where(pressed.any(axis=1), np.argmax(pressed, axis=1) + 1,
-                               self.n_trials + 1)
-        last_below = np.where(below, trials, 0).max(axis=1)
-        return bool(np.all(last_below <= first_press))
-
-    def claims(self):
-        """{claim name: whether it holds in this run}, for each of
-        `icm.chapters.actor_critic.CLAIMS` (checked on the book's run when it is built, and
-        by the tests on their own seeds)."""
-        s = self.summary()
-        return {"red_sooner": s["red_zero_mean"] < s["green_zero_mean"],
-                "red_first_mostly": s["red_first"] > 0.5,
-                "green_below_only_before_red_press":
-                    self.green_below_red_only_before_red_press()}
-
-    def green_below_red_fraction(self):
-        """Share of seeds in which the green error is below the red one at some trial
-        (the paper's "familiarity with the more complex task would temporarily
-        increase above the simple task")."""
-        return float(self.green_below_red().any(axis=1).mean())
-
-    def summary(self):
-        """The numbers the book quotes, as a dict.
-
-        For each task (keys starting ``red_`` or ``green_``): the share of seeds whose
-        error reaches 0 for good (``_zero_share``), the mean and median of that trial
-        over those seeds, the mean final error, the share of presses opening the box in
-        the last `LATE_TRIALS` trials (``_late_practice_share``) and the final
-        probability of pressing its button. Also `red_first`, `green_below_red` (with
-        how many trials and until when), the reward per press at the end, and the
-        largest absolute critic value at the end (max and median over seeds)."""
-        out = {"red_first": self.red_first_fraction(),
-               "green_below_red": self.green_below_red_fraction()}
-        below = self.green_below_red()
-        seeds_below = below.any(axis=1)
-        if seeds_below.any():
-            trials = np.arange(1, self.n_trials + 1)
-            last = np.where(below, trials, 0).max(axis=1)[seeds_below]
-            out["green_below_red_trials"] = float(below[seeds_below].sum(axis=1).mean())
-            out["green_below_red_last_mean"] = float(last.mean())
-            out["green_below_red_last_max"] = int(last.max())
-        else:
-            out["green_below_red_trials"] = 0.0
-            out["green_below_red_last_mean"] = math.nan
-            out["green_below_red_last_max"] = -1
-        late = slice(max(0, self.n_trials - LATE_TRIALS), None)
-        presses = self.settings["presses_per_trial"]
-        for i, task in enumerate(TASKS):
-            zero = self.zero_trial[:, i]
-            done = zero >= 1
-            out[f"{task}_zero_share"] = float(done.mean())
-            out[f"{task}_zero_mean"] = float(zero[done].mean()) if done.any() else math.nan
-            out[f"{task}_zero_median"] = float(np.median(zero[done])) if done.any() else math.nan
-            out[f"{task}_final_error"] = float(self.prediction_error[:, -1, i].mean())
-            out[f"{task}_late_practice_share"] = float(
-                self.practice[:, late, i].mean() / presses)
-            out[f"{task}_final_press_probability"] = float(
-                self.press_probability[:, -1, i].mean())
-        out["late_reward_per_press"] = float(self.reward[:, late].mean() / presses)
-        out["max_abs_value"] = float(self.max_abs_value[:, -1].max())
-        out["median_abs_value"] = float(np.median(self.max_abs_value[:, -1]))
-        return out
 
 
 def _check_run_arguments(n_seeds, n_trials, rewarded_box, presses_per_trial, red_button,
@@ -330,16 +192,39 @@ def run_actor_critic_grid(grid, **arguments):
                                    first["presses_per_trial"],
                                    len({s["action_weight"] for s in settings}) == 1)[0])
     seeds = run_seeds(first["seed"], n, 2) * len(settings)
-    red_button = first["red_button"]
-    states = state_table(red_button)[0]
-    env = buttons.ButtonConsoleBatch([s[0] for s in seeds], red_button)
-    agent = actor_critic.ActorCriticBatch(
-        [s[1] for s in seeds], states, buttons.EFFECTS, buttons.N_BUTTONS,
-        settings=actor_critic.ActorCriticSettings.stack(blocks, n))
+    env, agent = make(first, seeds, actor_critic.ActorCriticSettings.stack(blocks, n))
     rewarded_box = first["rewarded_box"] if first["reward"] == "extrinsic" else None
     result = play(env, agent, first["n_trials"], first["presses_per_trial"],
                   rewarded_box=rewarded_box, progress=progress, settings=first)
     return _grid.split(result, settings, n)
+
+
+def make(settings, seeds, learner=None):
+    """The console and the learner of a run of `run_actor_critic`, one row per seed, as
+    the run builds them.
+
+    Args:
+      settings: the run's settings, as a result keeps them (`red_button`, and the
+        learner's).
+      seeds: one [console seed, learner seed] per row (`icm.experiments.seeding.
+        run_seeds(seed, n_seeds, 2)`).
+      learner: the learner's settings, an `icm.learners.actor_critic.
+        ActorCriticSettings` whose per-row settings may hold one value per row (None:
+        those of `settings`).
+
+    Returns:
+      (env, agent): the tabular batched console and the batched actor-critic
+      (`icm.learners.actor_critic.ActorCriticBatch`), its states `state_table`'s.
+    """
+    if learner is None:
+        learner = actor_critic.ActorCriticSettings(
+            **{name: settings[name] for name in actor_critic.ActorCriticSettings.names()})
+    red_button = settings["red_button"]
+    env = buttons.ButtonConsoleBatch([s[0] for s in seeds], red_button)
+    agent = actor_critic.ActorCriticBatch([s[1] for s in seeds], state_table(red_button)[0],
+                                          buttons.EFFECTS, buttons.N_BUTTONS,
+                                          settings=learner)
+    return env, agent
 
 
 def state_table(red_button=buttons.DEFAULT_RED_BUTTON):
@@ -364,16 +249,137 @@ def state_table(red_button=buttons.DEFAULT_RED_BUTTON):
     return np.array(features), np.arange(4) * len(effects), probes
 
 
+class ConsoleStates:
+    """A batched button console as the actor-critic plays it, for the one loop
+    (`icm.experiments.loop.play`): an episode is a trial; a state is the layout and
+    what the last press left open (`state_table`'s numbering: layout * 3 + effect, the
+    boxes shut at the start); a press's outcome is its effect, its reward 1 where it
+    opened `rewarded_box` (the extrinsic reward), with a discount of 1; the trial ends
+    after `presses_per_trial` presses.
+
+    Args:
+      env: a batched console (as `icm.envs.buttons.ButtonConsoleBatch`).
+      presses_per_trial: presses per trial.
+      rewarded_box: None, "red" or "green".
+    """
+
+    def __init__(self, env, presses_per_trial, rewarded_box=None):
+        self.env, self.presses_per_trial = env, presses_per_trial
+        self.start_states = state_table(env.red_button)[1]
+        self.rewarded = -1 if rewarded_box is None else \
+            buttons.RED_BOX if rewarded_box == "red" else buttons.GREEN_BOX
+        self._presses, self._layout = 0, None
+        self._going, self._ending = np.zeros(len(env), dtype=bool), np.ones(len(env), dtype=bool)
+
+    def __len__(self):
+        return len(self.env)
+
+    def reset(self, rows):
+        """A new trial in every row: the start states of its layouts, [rows]."""
+        self._presses = 0
+        self._layout = self.env.new_trials()
+        return self.start_states[self._layout]
+
+    def step(self, rows, states, actions):
+        """Presses `actions` (one button per row)."""
+        observed = self.env.press(actions)
+        self._presses += 1
+        ended = self._ending if self._presses == self.presses_per_trial else self._going
+        return Transition(self._layout * len(buttons.EFFECTS) + observed, observed,
+                          (observed == self.rewarded).astype(float), 1.0, ended)
+
+
+class Learner:
+    """A batched actor-critic as the one loop drives it: `act` is its `select_actions`,
+    `learn` its `learn` of the press ((rewards, TD errors) are the step's `learned`).
+
+    Args:
+      agent: the learner (as `icm.learners.actor_critic.ActorCriticBatch`).
+    """
+
+    def __init__(self, agent):
+        self.agent = agent
+
+    def act(self, rows, states):
+        """Each row's press in its state."""
+        return self.agent.select_actions(states), None
+
+    def learn(self, step):
+        """The learner learns the press; returns (rewards, TD errors) [rows]."""
+        return self.agent.learn(step.before, step.action, step.after, step.outcome,
+                                step.reward, step.discount)
+
+
+class TrialSummary:
+    """The observer that reduces a run of the actor-critic to its `ActorCriticResult`:
+    after each press the reward and the boxes opened; after each trial section 4.1's
+    test of the predictor on the probes, the actor's policy at the start states and
+    the critic's largest value, so that a run keeps its result and nothing per press.
+
+    Args:
+      env: the batched console (its `red_button`).
+      agent: the batched actor-critic (read after each trial: `predictor`, `actor`,
+        `critic`, `policy_of`).
+      n_trials: the run's trials.
+    """
+
+    def __init__(self, env, agent, n_trials):
+        self.agent = agent
+        self.red_button = env.red_button
+        _, self.start_states, self.probes = state_table(self.red_button)
+        n_seeds = len(env)
+        self.practice = np.zeros((n_seeds, n_trials, len(TASKS)), dtype=np.int64)
+        self.reward = np.zeros((n_seeds, n_trials))
+        self.max_abs_value = np.zeros((n_seeds, n_trials))
+        self.error = np.zeros((n_seeds, n_trials, len(TASKS)))
+        self.press_probability = np.zeros((n_seeds, n_trials, len(TASKS)))
+        self.probe_keys = agent.predictor.keys(np.array([p[1] for p in self.probes]),
+                                               np.array([p[2] for p in self.probes]))
+        self.effects = np.asarray(buttons.EFFECTS)
+        # Section 4.1's test: the predictor's error on the probes, red alone, and green
+        # averaged over its four places (added in order, as one run at a time would).
+        self.errors = np.array([[math.dist(p, o) for o in buttons.EFFECTS]
+                                for p in buttons.EFFECTS])
+        self.n_green = sum(1 for task, *_ in self.probes if task == "green")
+
+    def __call__(self, step):
+        trial = step.episode[0]
+        self.reward[:, trial] += step.learned[0]
+        self.practice[:, trial] += self.effects[step.outcome]  # the boxes opened
+        if step.ended[0]:
+            self._end_of_trial(trial)
+
+    def _end_of_trial(self, trial):
+        agent = self.agent
+        answers = agent.predictor.effect[:, self.probe_keys]
+        for i, (task, _, _, truth) in enumerate(self.probes):
+            error = self.errors[answers[:, i], truth]
+            if task == "red":
+                self.error[:, trial, 0] = error
+            else:
+                self.error[:, trial, 1] += error / self.n_green
+        # The policy at the start of a trial, averaged over the layouts.
+        policy = agent.policy_of(agent.actor[:, self.start_states])  # [seed, layout, action]
+        n_layouts = len(self.start_states)
+        for layout, green in enumerate(buttons.green_candidates(self.red_button)):
+            self.press_probability[:, trial, 0] += policy[:, layout, self.red_button] / n_layouts
+            self.press_probability[:, trial, 1] += policy[:, layout, green] / n_layouts
+        self.max_abs_value[:, trial] = np.abs(agent.critic).max(axis=1)
+
+    def result(self, settings):
+        """The `ActorCriticResult` of the run, keeping `settings` (a dict)."""
+        zero = first_from_which(np.moveaxis(self.error, 1, 2) == 0)
+        zero = np.where(zero >= 0, zero + 1, -1)
+        return ActorCriticResult(settings, self.error, zero, self.practice,
+                                 self.press_probability, self.reward, self.max_abs_value)
+
+
 def play(env, agent, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
          rewarded_box=None, observe=None, progress=False, settings=None):
-    """Plays `n_trials` trials of a batched actor-critic on a batched console and
-    gathers an `ActorCriticResult`: the loop of `run_actor_critic`, open to any console
-    and learner of the same shape.
-
-    After each trial the loop reduces what happened to the result's numbers for that
-    trial: the boxes opened, section 4.1's test of the predictor on the probes, the
-    actor's policy at the start states and the critic's largest value; a run keeps its
-    result and nothing per press.
+    """Plays `n_trials` trials of a batched actor-critic on a batched console through
+    the one loop (`icm.experiments.loop.play`) and gathers an `ActorCriticResult`
+    (`TrialSummary`): what `run_actor_critic` does once it has built them (`make`),
+    open to any console and learner of the same shape.
 
     Args:
       env: a batched console (as `icm.envs.buttons.ButtonConsoleBatch`).
@@ -383,8 +389,10 @@ def play(env, agent, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRI
       presses_per_trial: presses per trial (see `icm.envs.buttons.PRESSES_PER_TRIAL`).
       rewarded_box: None (no extrinsic reward), "red" or "green": the box whose opening
         pays the extrinsic reward.
-      observe: None, or a function called after every press as
-        `observe(trial, layouts, actions, effects)` (index arrays, one entry per row).
+      observe: None, or a function called with every press, a
+        `icm.experiments.loop.Step` of every row (its `before` and `after` the states,
+        `outcome` the effects, `reward` the extrinsic reward, `learned` the learner's
+        rewards and TD errors).
       progress: show a progress bar over the trials when the run lasts over a second.
       settings: the dict the result keeps as its `settings` (None: an empty dict).
 
@@ -401,115 +409,14 @@ def play(env, agent, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRI
     observe = _validate.function("observe", observe)
     _validate.boolean("progress", progress)
     settings = {} if settings is None else _validate.instance("settings", settings, dict)
-    red_button = env.red_button
-    _, start_states, probes = state_table(red_button)
-    rewarded = -1 if rewarded_box is None else \
-        buttons.RED_BOX if rewarded_box == "red" else buttons.GREEN_BOX
-    n_seeds, n_effects = len(env), len(buttons.EFFECTS)
-    practice = np.zeros((n_seeds, n_trials, len(TASKS)), dtype=np.int64)
-    reward_out = np.zeros((n_seeds, n_trials))
-    max_abs_value = np.zeros((n_seeds, n_trials))
-    error_out = np.zeros((n_seeds, n_trials, len(TASKS)))
-    press_probability = np.zeros((n_seeds, n_trials, len(TASKS)))
-    probe_keys = agent.predictor.keys(np.array([p[1] for p in probes]),
-                                      np.array([p[2] for p in probes]))
-    effects = np.asarray(buttons.EFFECTS)
-    # Section 4.1's test: the predictor's error on the probes, red alone, and green
-    # averaged over its four places (added in order, as one run at a time would).
-    errors = np.array([[math.dist(p, o) for o in buttons.EFFECTS] for p in buttons.EFFECTS])
-    n_green = sum(1 for task, *_ in probes if task == "green")
-    trials = progress_bar(range(n_trials), n_trials, "actor-critic", progress, unit="trial")
-    for trial in trials:
-        layout = env.new_trials()
-        state = start_states[layout]
-        for press in range(presses_per_trial):
-            actions = agent.select_actions(state)
-            observed = env.press(actions)
-            next_state = layout * n_effects + observed
-            external = (observed == rewarded).astype(float)
-            r, _ = agent.learn(state, actions, next_state, observed, external, 1.0)
-            if observe is not None:
-                observe(trial, layout, actions, observed)
-            reward_out[:, trial] += r
-            practice[:, trial] += effects[observed]  # the boxes opened
-            state = next_state
-        answers = agent.predictor.effect[:, probe_keys]
-        for i, (task, _, _, truth) in enumerate(probes):
-            error = errors[answers[:, i], truth]
-            if task == "red":
-                error_out[:, trial, 0] = error
-            else:
-                error_out[:, trial, 1] += error / n_green
-        # The policy at the start of a trial, averaged over the layouts.
-        policy = agent.policy_of(agent.actor[:, start_states])  # [seed, layout, action]
-        for layout, green in enumerate(buttons.green_candidates(red_button)):
-            press_probability[:, trial, 0] += policy[:, layout, red_button] / len(start_states)
-            press_probability[:, trial, 1] += policy[:, layout, green] / len(start_states)
-        max_abs_value[:, trial] = np.abs(agent.critic).max(axis=1)
-
-    zero = first_from_which(np.moveaxis(error_out, 1, 2) == 0)
-    zero = np.where(zero >= 0, zero + 1, -1)
-    return ActorCriticResult(settings, error_out, zero, practice, press_probability,
-                             reward_out, max_abs_value)
+    summary = TrialSummary(env, agent, n_trials)
+    bar = loop.progress(n_trials, "actor-critic", progress, "trial", per=len(env))
+    try:
+        loop.play(ConsoleStates(env, presses_per_trial, rewarded_box), Learner(agent),
+                  n_trials, [summary, bar, observe])
+    finally:
+        if bar is not None:
+            bar.close()
+    return summary.result(settings)
 
 
-def comparison_table(results):
-    """A Markdown table of the numbers that tell actor-critic runs apart, one column per
-    run.
-
-    Args:
-      results: a dict {column label: ActorCriticResult}.
-
-    Returns:
-      A Markdown string (display it with `IPython.display.Markdown`); the trials
-      marked † are means over the seeds whose error does reach 0.
-    """
-    check_results("results", results, ActorCriticResult)
-    summaries = {id(r): r.summary() for r in results.values()}
-
-    def shown(value, fmt):  # fmt: a format spec, or a function such as `percent`
-        return fmt(value) if callable(fmt) else f"{value:{fmt}}"
-
-    def number(key, fmt):
-        return lambda r: shown(summaries[id(r)][key], fmt)
-
-    def pair(key, fmt):
-        return lambda r: (f"{shown(summaries[id(r)]['red_' + key], fmt)} / "
-                          f"{shown(summaries[id(r)]['green_' + key], fmt)}")
-
-    table = measures_table(results, [
-        ("seeds", lambda r: str(r.n_seeds)),
-        ("error 0 from trial (mean†): red / green", pair("zero_mean", ".1f")),
-        ("green learned", number("green_zero_share", percent)),
-        ("red first", number("red_first", percent)),
-        ("green below red at some trial", number("green_below_red", percent)),
-        (f"presses opening red / green, last {LATE_TRIALS} trials",
-         pair("late_practice_share", percent)),
-        ("largest abs(V)", number("max_abs_value", ".3g")),
-    ])
-    return table + "\n\n† mean over the seeds whose error reaches 0 for good within the run."
-
-
-def panel_curves(result, every=1):
-    """What the Figure 6 panel draws, as numbers: section 4.1's prediction error for
-    each task per trial, the mean over the seeds with a 95% percentile-bootstrap band
-    (which, unlike mean +/- t standard errors, never dips below an error of 0).
-
-    Args:
-      result: an `ActorCriticResult`.
-      every: keep every `every`-th trial (and the last); each kept point's numbers do
-        not depend on it.
-
-    Returns:
-      {"x": trials, "xlabel", "groups": [{"title", "ylabel", "series": {task: (mean,
-      low, high)}}]}.
-    """
-    _validate.instance("result", result, ActorCriticResult,
-                       "an ActorCriticResult (from icm.experiments.run_actor_critic)")
-    keep = every_nth(result.n_trials, every)
-    series = {task: bootstrap_band(result.prediction_error[:, keep, i],
-                                   resamples=PANEL_RESAMPLES)
-              for i, task in enumerate(TASKS)}
-    return {"x": keep + 1, "xlabel": "trial",
-            "groups": [{"title": f"Prediction error, {result.n_seeds} seeds",
-                        "ylabel": "prediction error (mean, 95% band)", "series": series}]}

@@ -8,7 +8,6 @@ import numpy as np
 from icm import _validate
 from icm.envs import buttons
 from icm.experiments.babbling_space import COLUMN_NAMES, REGION_GRID, region_columns
-from icm.experiments.results import check_results, percent
 from icm.stats import PANEL_RESAMPLES, bootstrap_band
 
 @dataclasses.dataclass(frozen=True)
@@ -184,20 +183,3 @@ def median_first_press(first, n_rollouts):
     return np.where(median >= never, np.nan, median)
 
 
-def comparison_table(results):
-    """A Markdown table of the three strategies' numbers, one row per run.
-
-    Args:
-      results: a dict {row label: GoalBabblingResult}.
-    """
-    check_results("results", results, GoalBabblingResult)
-    lines = ["| strategy | seeds | rollouts | test error at the end, cm (95% band) "
-             "| buttons pressed (of 5) | seeds pressing all 5 | rollouts that pressed a button |",
-             "|---|---|---|---|---|---|---|"]
-    for label, result in results.items():
-        s = result.summary()
-        lines.append(f"| {label} | {result.n_seeds} | {result.n_rollouts} "
-                     f"| {100 * s['test_error']:.1f} ({100 * s['test_error_low']:.1f} to "
-                     f"{100 * s['test_error_high']:.1f}) | {s['buttons_pressed']:.1f} "
-                     f"| {percent(s['all_pressed_share'])} | {percent(s['press_share'], 1)} |")
-    return "\n".join(lines)

@@ -7,7 +7,7 @@ import numpy as np
 
 from icm import _streams, _validate
 from icm.experiments._memory import FIXED_BYTES, check_memory
-from icm.experiments._progress import progress_bar
+from icm.experiments.progress import progress_bar
 from icm.experiments.curiosity import check_choices
 from icm.learners import interest, predictors, q_learning
 
@@ -86,7 +86,8 @@ def outcome_rewards(rewards=("prediction_error", "learning_progress", "novelty")
                 errors[k, t] = predictor.update(0, 0, [float(outcome)])
         for reward in rewards:
             signal = interest.InterestTable(
-                n_seeds, 1, reward, 1 if reward == "prediction_error" else window, 0.0)
+                n_seeds, 1, reward,
+                1 if interest.SIGNAL_CLASSES[reward].ONE_ERROR_REWARD else window, 0.0)
             paid = np.zeros((n_seeds, n_tries))
             for t in range(n_tries):
                 signal.record(None, pair, errors[:, t])

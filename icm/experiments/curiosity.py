@@ -19,31 +19,13 @@ import numpy as np
 
 from icm import _streams, _validate
 from icm.experiments import goal_oriented as _goal_oriented
+from icm.experiments.goal_oriented_results import TASKS, GoalOrientedResult
 from icm.experiments import rod_toppling as _rod_toppling
 from icm.experiments._memory import FIXED_BYTES, check_memory
-from icm.experiments._progress import progress_bar
-from icm.experiments.results import percent
+from icm.experiments.progress import progress_bar
 from icm.learners import goal_oriented, interest, predictors, q_learning
 from icm.stats import (bootstrap_band, comes_first, corrected_verdicts, paired_gaps,
                        share_interval)
-
-CHANCE_SHARE = 1.0 / 6.0
-"""The share of presses a learner pressing at random gives each of the six buttons."""
-TRAPPED_SHARE = 0.5
-"""A learner is *trapped* by a source of noise when it spends more than this share of
-its presses on the noisy button (of its late episodes at the wobbly rod), the whole
-band of that share above it; *not trapped* when the whole band is below it."""
-EQUAL_SHARE_TOLERANCE = 0.01
-"""How far from chance a button's share of presses may be for the chapter to say that a
-learner presses every button equally."""
-LEARNED_SHARE = 0.9
-"""The share of seeds in which a rod must be predicted well for the chapter to say that
-a learner learns it (`REWARD_CLAIMS`): the lower end of the share's 95% interval
-(`icm.stats.share_interval`) must be at least this."""
-RED_FIRST_SHARE = 0.9
-"""The share of seeds in which red must be mastered before green, under each learner,
-for the chapter to say that easy comes before hard whatever the signal: the lower end
-of the share's 95% interval (`icm.stats.share_interval`) must be at least this."""
 
 
 def _band(values):
@@ -100,10 +82,10 @@ def button_numbers(result):
       (mean, low, high), one per button;
     - "noisy_share": the share on the noisy button (NaN without it).
     """
-    _validate.instance("result", result, _goal_oriented.GoalOrientedResult,
+    _validate.instance("result", result, GoalOrientedResult,
                        "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
     out, per_seed = {}, {}
-    for i, task in enumerate(_goal_oriented.TASKS):
+    for i, task in enumerate(TASKS):
         trials = result.mastery_trial[:, i]
         out[f"{task}_mastery"] = _band(trials[trials >= 1])
         per_seed[f"{task}_mastered"] = (trials >= 1).astype(float)
@@ -120,10 +102,6 @@ def button_numbers(result):
     out["noisy_share"] = out["button_share"][5] if shares.shape[1] > 5 else \
         (float("nan"),) * 3
     return out
-
-
-TASKS_AND_NOTHING = ("red", "green", "nothing")
-"""What a press of the console can do: open the red box, the green box, or nothing."""
 
 
 def _comparison_key(results, names, key):
@@ -180,44 +158,6 @@ class SignalComparison:
             out[prefix + "red_first"] = numbers["red_first"]
         return out
 
-    def claims(self):
-        """{claim name: whether it holds in this comparison}, for each of
-        `SIGNAL_CLAIMS` (a comparison of every signal, both places of interest and
-        both worlds): what the chapter states in words, checked on the book's runs
-        when it is built, and by the tests on theirs."""
-        runs = set(self.results)
-        signals, designs = self.settings["signals"], self.settings["designs"]
-        needed = {(s, d, w) for s in interest.SIGNALS for d in goal_oriented.INTEREST_PER
-                  for w in (False, True)}
-        if not needed <= runs:
-            raise ValueError("the chapter's claims need every signal, both places of "
-                             "interest and both worlds: run_signal_comparison with its "
-                             "default signals, designs and noisy")
-        n = self.numbers
-        plain = [(s, d) for s in signals for d in designs]
-        progress, random = n("learning_progress", "task"), n("random", "task")
-        balanced = [n("novelty", "task")[f"{t}_presses"][0] for t in TASKS_AND_NOTHING]
-        per_region = {s: n(s, "region", True)["noisy_share"] for s in signals}
-        return {
-            "red_first_share": all(low >= RED_FIRST_SHARE
-                                   for _, _, low, _ in self.red_first_intervals().values()),
-            "random_not_slower": all(random[f"{t}_mastery"][0] <= progress[f"{t}_mastery"][2]
-                                     for t in ("red", "green")),
-            "novelty_region_fastest": self.fastest() == ("novelty", "region"),
-            "novelty_task_balanced": max(balanced) - min(balanced) <= 1,
-            "task_not_trapped": all(n(s, "task", True)["noisy_share"][2] < TRAPPED_SHARE
-                                    for s in signals),
-            "region_error_trapped": per_region["prediction_error"][1] > TRAPPED_SHARE,
-            "region_progress_drawn_not_trapped":
-                per_region["learning_progress"][2] < TRAPPED_SHARE
-                and per_region["learning_progress"][1] > CHANCE_SHARE,
-            "region_novelty_equal": all(abs(share[0] - CHANCE_SHARE) < EQUAL_SHARE_TOLERANCE
-                                        for share in n("novelty", "region", True)
-                                        ["button_share"]),
-            "noise_delays_green": all(n(*sd, True)["green_mastery"][0]
-                                      > n(*sd)["green_mastery"][0] for sd in plain),
-        }
-
     def red_first_intervals(self):
         """For each learner (signal, place of interest) of the world without the noisy
         button: (seeds in which red is mastered strictly before green, seeds, and the
@@ -230,58 +170,6 @@ class SignalComparison:
             red, green = result.mastery_trial[:, 0], result.mastery_trial[:, 1]
             count, n = int(comes_first(red, green).sum()), len(red)
             out[(signal, per)] = (count, n, *share_interval(count, n))
-        return out
-
-    PAIRED = {"novelty_region_vs_random_green": (("novelty", "region"), ("random", "task"),
-                                                 "green"),
-              "random_vs_progress_red": (("random", "task"), ("learning_progress", "task"),
-                                         "red"),
-              "random_vs_progress_green": (("random", "task"),
-                                           ("learning_progress", "task"), "green")}
-    """The chapter's paired comparisons of mastery trials in the world without the noisy
-    button: {name: (arm, baseline, task)}, arm and baseline (signal, interest_per)."""
-
-    def paired_verdicts(self):
-        """The chapter's family of paired comparisons (`PAIRED`), corrected together
-        (`icm.stats.corrected_verdicts`: Holm at a family-wise 5%, sign-flip p-values):
-        for each, over the seeds in which both arms master the task (the same seeds),
-        the mean difference of the mastery trials (arm minus baseline; negative:
-        the arm masters sooner) with its 95% bootstrap band, its p-values, whether it
-        is clear, the seeds compared and the family's size. {name: dict}."""
-        family, bands, counts = {}, {}, {}
-        for name, (arm, baseline, task) in self.PAIRED.items():
-            i = _goal_oriented.TASKS.index(task)
-            a = self.results[(*arm, False)].mastery_trial[:, i]
-            b = self.results[(*baseline, False)].mastery_trial[:, i]
-            family[name] = paired_gaps(a, b)
-            bands[name], counts[name] = _band(family[name]), len(family[name])
-        corrected = corrected_verdicts(family)
-        return {name: {"mean": bands[name][0], "low": bands[name][1],
-                       "high": bands[name][2], "p": v["p"], "p_holm": v["p_holm"],
-                       "clear": v["clear"], "n_seeds": counts[name],
-                       "n_family": v["n_family"]}
-                for name, v in corrected.items()}
-
-    def paired_words(self, replications=None):
-        """The chapter's words for each of `paired_verdicts`: {name: "-1.4 trials (-3.5
-        to +0.9): no clear difference"}, "clearly sooner" or "clearly later" for a
-        clear one (the arm against the baseline), followed by ", not replicated on a
-        fresh root" where the stored replication (`replications`, default that of
-        assets/replications.json for this chapter) did not hold it."""
-        from icm.experiments import replication
-
-        if replications is None:
-            replications = replication.load_replications().get("curiosity", {})
-        stored = replications.get("verdicts", {})
-        out = {}
-        for name, v in self.paired_verdicts().items():
-            words = "no clear difference"
-            if v["clear"]:
-                words = "clearly sooner" if v["mean"] < 0 else "clearly later"
-                if stored.get(name, {}).get("replicated") is False:
-                    words += ", not replicated on a fresh root"
-            out[name] = (f"{v['mean']:+.1f} trials ({v['low']:+.1f} to {v['high']:+.1f}): "
-                         f"{words}")
         return out
 
     def fastest(self):
@@ -303,86 +191,6 @@ class SignalComparison:
                 if noisy:
                     row[prefix + "noisy_share"] = float(shares[k, 5])
         return rows
-
-    def table(self, noisy_button=False):
-        """A Markdown table, one row per (signal, interest_per) of the world with or
-        without the noisy button: mastery trials of red and green (mean over the seeds
-        that master, 95% band, share that master), red first, presses per task, and
-        the noisy button's share of presses."""
-        noisy_button = _validate.boolean("noisy_button", noisy_button)
-        worlds = sorted({noisy for _, _, noisy in self.results})
-        if noisy_button not in worlds:
-            raise ValueError(f"noisy_button must be one of the worlds this comparison ran "
-                             f"({', '.join(map(str, worlds))}), got {noisy_button!r}")
-        lines = ["| signal | interest per | red mastered, trial | green mastered, trial "
-                 "| red first | presses opening red / green / nothing | noisy button, "
-                 "share of presses |", "|" + "---|" * 7]
-        for (signal, per, noisy), result in self.results.items():
-            if noisy != noisy_button:
-                continue
-            n = self.numbers(signal, per, noisy)
-            cells = [signal.replace("_", " "), per]
-            for task in _goal_oriented.TASKS:
-                mean, low, high = n[f"{task}_mastery"]
-                cells.append(f"{mean:.1f} [{low:.1f}, {high:.1f}] "
-                             f"({percent(n[f'{task}_mastered'][0])} of seeds)")
-            cells.append(percent(n['red_first']))
-            cells.append(" / ".join(f"{n[f'{t}_presses'][0]:.0f}"
-                                    for t in ("red", "green", "nothing")))
-            mean, low, high = n["noisy_share"]
-            cells.append("-" if np.isnan(mean) else f"{mean:.3f} [{low:.3f}, {high:.3f}]")
-            lines.append("| " + " | ".join(cells) + " |")
-        return "\n".join(lines)
-
-
-CHAPTER_RUN = {"n_seeds": 100, "n_trials": 100, "seed": 0}
-"""The arguments of the chapter's `run_signal_comparison`, whose clear paired verdicts
-`run_replications` replicates (the chapter checks that it ran these)."""
-REPLICATION_SEEDS = 200
-"""Seeds of a replication of a paired verdict (`replicate`). The chapter's one clear
-verdict, pressing at random against learning progress in green's mastery trial, is
--2.1 trials with a per-seed spread (standard deviation) of about 7.5 over 100 seeds;
-with 200 seeds the standard error is about 0.53, and a one-sided paired test at 5%
-detects it with a probability of about 0.99 (normal approximation: z = 2.1 / 0.53 = 4.0
-against 1.645). The six runs it needs take well under a CPU-minute."""
-
-
-def replicate(directions, root=None, n_seeds=REPLICATION_SEEDS):
-    """Reruns the paired comparisons of `SignalComparison.PAIRED` named in `directions`
-    ({name: "less" or "greater", the direction the chapter found}) on the first
-    `n_seeds` seeds of a fresh root (default the chapter's of
-    `replication.REPLICATION_ROOTS`), with the chapter's trials, and tests each in its
-    direction: {name: `replication.replicated` dict}."""
-    from icm.experiments import replication
-
-    root = replication.REPLICATION_ROOTS["curiosity"] if root is None else root
-    for name in directions:
-        _validate.one_of("directions' names", name, tuple(SignalComparison.PAIRED))
-    fresh = run_signal_comparison(n_seeds=n_seeds, n_trials=CHAPTER_RUN["n_trials"],
-                                  signals=("learning_progress", "novelty", "random"),
-                                  noisy=(False,), seed=root, progress=False)
-    out = {}
-    for name, direction in directions.items():
-        arm, baseline, task = SignalComparison.PAIRED[name]
-        i = _goal_oriented.TASKS.index(task)
-        a = fresh.results[(*arm, False)].mastery_trial[:, i]
-        b = fresh.results[(*baseline, False)].mastery_trial[:, i]
-        out[name] = replication.replicated(paired_gaps(a, b), direction)
-    return out
-
-
-def run_replications():
-    """The replications of every paired verdict the chapter's run (`CHAPTER_RUN`) calls
-    clear (`replicate`), as assets/replications.json keeps them: {"root", "n_seeds",
-    "of": `CHAPTER_RUN`, "verdicts": {name: ...}}."""
-    from icm.experiments import replication
-
-    chapter = run_signal_comparison(**CHAPTER_RUN, noisy=(False,), progress=False)
-    found = chapter.paired_verdicts()
-    directions = {name: "less" if v["mean"] < 0 else "greater"
-                  for name, v in found.items() if v["clear"]}
-    return {"root": replication.REPLICATION_ROOTS["curiosity"], "n_seeds": REPLICATION_SEEDS,
-            "of": CHAPTER_RUN, "verdicts": replicate(directions)}
 
 
 def run_signal_comparison(n_seeds=100, n_trials=100, signals=interest.SIGNALS,
@@ -493,31 +301,6 @@ class RewardComparison:
                 out[prefix + name + "_high"] = high
         return out
 
-    def claims(self):
-        """{claim name: whether it holds in this comparison}, for each of
-        `REWARD_CLAIMS` (a comparison of every reward in both worlds): what the
-        chapter states in words, checked on the book's runs when it is built, and by
-        the tests on theirs."""
-        needed = {(r, w) for r in ("prediction_error", "learning_progress", "novelty",
-                                   "random") for w in (False, True)}
-        if not needed <= set(self.results):
-            raise ValueError("the chapter's claims need the rewards prediction_error, "
-                             "learning_progress, novelty and random in both worlds")
-        n = self.numbers
-        error, progress = n("prediction_error", True), n("learning_progress", True)
-        slow = [n(r, True) for r in ("novelty", "random")]
-        return {
-            "error_trapped": error["wobbly_share_late"][1] > TRAPPED_SHARE
-            and error["red_well"][0] < n("prediction_error", False)["red_well"][0],
-            "progress_learns_anyway": all(  # each rod's interval's lower end
-                share_interval(int((well >= 1).sum()), len(well))[0] >= LEARNED_SHARE
-                for well in self.results[("learning_progress", True)].predicted_well.T),
-            "progress_not_immune": progress["wobbly_share_late"][1] > TRAPPED_SHARE,
-            "novelty_random_not_trapped_but_slow": all(
-                m["wobbly_share_late"][2] < TRAPPED_SHARE and m["red_well"][0] < 0.5
-                for m in slow),
-        }
-
     def seed_summaries(self):
         """One dict per seed: each run's share of episodes ending at the wobbly rod
         (runs with it) and the episodes from which red and blue are predicted well."""
@@ -531,27 +314,6 @@ class RewardComparison:
                 if wobbly:
                     row[prefix + "wobbly_share"] = float(shares[k])
         return rows
-
-    def table(self):
-        """A Markdown table, one row per (reward, world): the share of episodes ending
-        at each rod over the second half of the runs, and how many seeds predict red
-        and blue well (and from which episode: the mean over the seeds that get
-        there)."""
-        lines = ["| reward | wobbly rod | episodes ending at red / blue / wobbly / none, "
-                 "second half | red predicted well: seeds (episode) "
-                 "| blue predicted well: seeds (episode) |", "|" + "---|" * 5]
-        for reward, wobbly in self.results:
-            n = self.numbers(reward, wobbly)
-            shares = " / ".join(
-                f"{n[f'{rod}_share_late'][0]:.2f}" if f"{rod}_share_late" in n else "-"
-                for rod in ("red", "blue", "wobbly", "none"))
-            cells = [reward.replace("_", " "), "yes" if wobbly else "no", shares]
-            for rod in _rod_toppling.RODS:
-                episode = n[f"{rod}_well_episode"][0]
-                cells.append(f"{percent(n[f'{rod}_well'][0])} "
-                             f"({'-' if np.isnan(episode) else f'{episode:.0f}'})")
-            lines.append("| " + " | ".join(cells) + " |")
-        return "\n".join(lines)
 
 
 def run_reward_comparison(n_seeds=100, n_episodes=300, rewards=q_learning.REWARDS,

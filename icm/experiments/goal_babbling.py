@@ -23,41 +23,30 @@ down. All seeds run at once: rollout k of every seed is stepped in one call of
 `mujoco.rollout`, and seed k of a batch is seed k run alone.
 
 The goal space, its regions and the outcomes are in
-`icm.experiments.babbling_space`, the result class and its table in
-`icm.experiments.babbling_results`; their names are importable here too.
+`icm.experiments.babbling_space`, the result class in
+`icm.experiments.babbling_results`, the presses formed and the goal-oriented learner
+run on them in `icm.experiments.formed_actions`.
 """
-
-import dataclasses
 
 import numpy as np
 
 from icm import _validate
+from icm._settings import with_settings
 from icm.envs import buttons
 from icm.envs.buttons import movements as _movements
-from icm.envs.buttons.movements import (  # noqa: F401 (re-exported)
-    HOLD_TIME, REACH_TIME, RETRACT_TIME, MovementLab)
-from icm.experiments import goal_oriented as _goal_oriented
-from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import check_run_size, run_seeds
-from icm.learners import goal_oriented
-from icm.learners.goal_babbling import (  # noqa: F401 (N_BOOTSTRAP re-exported)
-    N_BOOTSTRAP, GoalBabblingAgent, GoalBabblingSettings)
+from icm.envs.buttons.movements import MovementLab
+from icm.experiments import loop
+from icm.experiments.babbling_results import GoalBabblingResult
+from icm.experiments.babbling_space import (DEFAULT_OUTCOME_SPACE, DEPTH_WEIGHT,
+                                            MAX_DEPTH_WEIGHT, OUTCOME_SPACES, REGION_GRID,
+                                            console_geometry, goal_outcomes,
+                                            outcome_vectors, region_grid)
+from icm.experiments.formed_actions import press_each_button
+from icm.experiments.loop import Transition
+from icm.experiments.seeding import check_run_size, run_seeds
 from icm.learners import goal_choice as _goal_choice
-from icm.learners.goal_choice import (  # noqa: F401 (re-exported)
-    DEFAULT_EPSILON, DEFAULT_WINDOW, MEASURES, RandomGoals, RegionGrid, RegionProgress,
-    SplittingRegionProgress, make_goal_choice)
-from icm.learners.maturation import (  # noqa: F401 (re-exported)
-    DEFAULT_MATURATION, MATURATIONS, JointRangeMaturation)
-from icm.learners.sensorimotor import (  # noqa: F401 (re-exported)
-    DEFAULT_EXPLORATION_NOISE, INVERSE_MODELS, NOISE_DISTANCE, make_inverse_model)
-from icm.stats import comes_first
-from icm.experiments.babbling_space import (  # noqa: F401 (re-exported)
-    COLUMN_NAMES, DEFAULT_OUTCOME_SPACE, DEPTH_WEIGHT, EDGE_SHARE, GOAL_HIGH, GOAL_LOW,
-    MAX_DEPTH_WEIGHT, OUTCOME_SPACES, REGION_GRID, console_geometry, goal_depths,
-    goal_outcomes, outcome_vectors, press_distances, region_bounds, region_columns,
-    region_grid, region_of, RANGE_SHARES, touch_shares)
-from icm.experiments.babbling_results import (  # noqa: F401 (re-exported)
-    GoalBabblingResult, comparison_table, median_first_press)
+from icm.learners.goal_babbling import (MATURATION_FIELDS, GoalBabblingAgent,
+                                        GoalBabblingSettings)
 
 STRATEGIES = tuple(_goal_choice.STRATEGIES)
 """How the next movement is chosen (see the module docstring): the names of the
@@ -77,8 +66,6 @@ DEFAULT_MEASURE = GoalBabblingSettings.spec("measure").default
 (`MEASURES`)."""
 DEFAULT_REGIONS = GoalBabblingSettings.spec("regions").default
 """Learning progress's regions unless told otherwise (`REGION_KINDS`)."""
-DEFAULT_TRIALS = 30
-"""Trials of the goal-oriented learner on the formed actions (`run_formed_actions`)."""
 
 
 def check_demonstrations(demonstrations):
@@ -109,40 +96,11 @@ def check_demonstrations(demonstrations):
 LEARNER_ARGUMENTS = GoalBabblingSettings.names()
 """The arguments of `run_goal_babbling` that are the learner's settings
 (`icm.learners.goal_babbling.GoalBabblingSettings`: their ranges, defaults and checks
-live there)."""
+live there; `with_settings` makes them its keywords, or `settings=`)."""
 
 
-def learner_settings(arguments, settings=None):
-    """The learner's settings of a run: `settings` (a `GoalBabblingSettings`, None for
-    the library's) with every argument of `arguments` (a dict over
-    `LEARNER_ARGUMENTS`) that differs from its default, each checked by its `Setting`.
-
-    Raises:
-      ValueError: for a value its `Setting` refuses (ArgumentTypeError for a wrong
-        type), or a name that is not a setting.
-    """
-    base = GoalBabblingSettings() if settings is None else _validate.instance(
-        "settings", settings, GoalBabblingSettings)
-    specs = GoalBabblingSettings.specs()
-    changes = {}
-    for name, value in arguments.items():
-        if name not in specs:
-            raise ValueError(f"{name!r} is not a setting of GoalBabblingSettings; its "
-                             f"settings are {', '.join(specs)}")
-        checked = specs[name].check(value, name)
-        if settings is None or checked != specs[name].default:
-            changes[name] = checked
-    return base.replace(**changes) if changes else base
-
-
-def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, exploration_noise,
-                         epsilon, window, outcome_space, inverse_model, measure, regions,
-                         depth_weight, retract, threads, maturation, demonstrations,
-                         settings=None):
-    learner = learner_settings(dict(
-        strategy=strategy, exploration_noise=exploration_noise, epsilon=epsilon,
-        window=window, inverse_model=inverse_model, measure=measure, regions=regions,
-        maturation=maturation), settings)
+def _check_run_arguments(learner, n_seeds, n_rollouts, seed, progress, outcome_space,
+                         depth_weight, retract, threads, demonstrations):
     checked = dict(
         strategy=learner.strategy,
         n_seeds=_validate.integer_at_least("n_seeds", n_seeds, 1),
@@ -159,6 +117,7 @@ def _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress, explorat
                                     low_open=True),
         retract=_validate.boolean("retract", retract),
         maturation=learner.maturation,
+        **{name: getattr(learner, name) for name in MATURATION_FIELDS},
         demonstrations=check_demonstrations(demonstrations))
     if checked["n_rollouts"] < len(checked["demonstrations"]):
         raise ValueError(f"n_rollouts must be at least the number of demonstrations "
@@ -183,14 +142,11 @@ def checkpoints_of(n_rollouts):
     return np.unique(np.maximum(spread, 1))
 
 
-def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAULT_N_ROLLOUTS,
-                      seed=0, progress=True, exploration_noise=DEFAULT_EXPLORATION_NOISE,
-                      epsilon=DEFAULT_EPSILON, window=DEFAULT_WINDOW,
-                      outcome_space=DEFAULT_OUTCOME_SPACE, inverse_model=DEFAULT_INVERSE_MODEL,
-                      measure=DEFAULT_MEASURE, regions=DEFAULT_REGIONS,
-                      depth_weight=DEPTH_WEIGHT, retract=False, threads=None,
-                      maturation=DEFAULT_MATURATION, demonstrations=(), settings=None,
-                      first_run=0):
+@with_settings(GoalBabblingSettings, positional=("strategy",))
+def run_goal_babbling(n_seeds=5, n_rollouts=DEFAULT_N_ROLLOUTS, seed=0, progress=True,
+                      outcome_space=DEFAULT_OUTCOME_SPACE, depth_weight=DEPTH_WEIGHT,
+                      retract=False, threads=None, demonstrations=(), first_run=0,
+                      settings=None):
     """Runs goal babbling on the simulated iCub, all seeds at once.
 
     Every rollout is a movement performed in physics from the start of a trial
@@ -204,7 +160,8 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
 
     With `maturation="joint_range"` the arm grows up: it reaches a range of joint
     angles around its resting posture that grows as its competence stops progressing
-    (`icm.learners.maturation.JointRangeMaturation`, with its defaults). With
+    (`icm.learners.maturation.JointRangeMaturation`, its clock set by the
+    `maturation_*` settings). With
     `demonstrations`, a teacher first moves the arm to the scripted press's lowest
     posture of each button listed, one rollout each, counted in `n_rollouts`: the
     movement and what it did enter the inverse model's memory, and the robot then
@@ -214,37 +171,23 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
     goal is run on the physics console, the button lit red.
 
     Args:
-      strategy: one of `STRATEGIES`.
+      strategy: one of `STRATEGIES` (a setting of the learner, which may also come
+        first, by position).
       n_seeds: independent runs (>= 1).
       n_rollouts: movements per run (>= 1).
       seed: the root seed: an integer >= 0, a `numpy.random.Generator` or None; run
         i's seeds depend only on it and i (kept in `settings["seed"]`).
       progress: show a progress bar over the rollouts when the run lasts over a
         second.
-      exploration_noise: the noise's standard deviation as a share of each joint's
-        range, far from the goal, in (0, 1].
-      epsilon: learning progress's share of uniformly drawn regions, in [0, 1].
-      window: distances per region in the progress (>= 2).
       outcome_space: one of `OUTCOME_SPACES`.
-      inverse_model: one of `icm.learners.sensorimotor.INVERSE_MODELS`.
-      measure: how learning progress measures a region's progress, one of
-        `icm.learners.goal_choice.MEASURES`.
-      regions: learning progress's regions, one of `REGION_KINDS`.
       depth_weight: how much a cap's depth counts in "point_and_depths", in (0,
         `MAX_DEPTH_WEIGHT`].
       retract: also simulate each movement's return home while babbling (the depths
         then cover it too); the outcome is read at the end of the hold either way.
       threads: threads stepping the rollouts, 1 to `movements.MAX_THREADS` (None:
         the cores this process may use). The results do not depend on it.
-      maturation: one of `MATURATIONS` ("none" or "joint_range").
       demonstrations: the buttons the teacher shows, in order, each at most once (a
         tuple of integers 0 to 4; empty or None: no teacher).
-      settings: the learner's settings, a
-        `icm.learners.goal_babbling.GoalBabblingSettings` (None: from the arguments
-        above); an argument among `LEARNER_ARGUMENTS` given a value other than its
-        default replaces that setting. The ranges and the sources of `strategy`,
-        `exploration_noise`, `epsilon`, `window`, `inverse_model`, `measure`,
-        `regions` and `maturation` are those of their `Setting` objects.
       first_run: the index of the first run (>= 0): the seeds are runs first_run to
         first_run + n_seeds - 1 of the root seed, so that a large study can be run in
         pieces (run 7 alone is run 7 of any larger batch; kept in
@@ -257,11 +200,9 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
       ValueError: for any argument outside its allowed range, or a run too large for
         this machine's memory.
     """
-    settings = _check_run_arguments(strategy, n_seeds, n_rollouts, seed, progress,
-                                    exploration_noise, epsilon, window, outcome_space,
-                                    inverse_model, measure, regions, depth_weight,
-                                    retract, threads, maturation, demonstrations,
-                                    settings)
+    settings = _check_run_arguments(settings, n_seeds, n_rollouts, seed, progress,
+                                    outcome_space, depth_weight, retract, threads,
+                                    demonstrations)
     settings["first_run"] = _validate.integer_at_least("first_run", first_run, 0)
     lab = MovementLab(threads)
     seeds = run_seeds(settings["seed"], n_seeds, 2, first=settings["first_run"])
@@ -280,7 +221,7 @@ def run_goal_babbling(strategy="learning_progress", n_seeds=5, n_rollouts=DEFAUL
     to_press = distance[:, :, :buttons.N_BUTTONS].argmin(axis=1)  # [seed, button]
     press_movements = np.take_along_axis(movements, to_press[:, :, None], axis=1)
     press_outcomes = np.take_along_axis(outcomes, to_press[:, :, None], axis=1)
-    buttons_pressed = _press_each_button(lab, press_movements, [s[1] for s in seeds])
+    buttons_pressed = press_each_button(lab, press_movements, [s[1] for s in seeds])
     return GoalBabblingResult(settings, checkpoints, test_goals.copy(), test_error,
                               buttons_pressed, press_movements, press_outcomes, movements,
                               outcomes, arrays["depths"], arrays["touched"],
@@ -330,12 +271,112 @@ def make_agent(lab, seeds, n_rollouts, settings=None, outcome_space=DEFAULT_OUTC
         lambda goals: goal_outcomes(goals, space, weight), demonstrations=shown)
 
 
+class Rollouts:
+    """A `MovementLab` as the goal-babbling learner plays it, for the one loop
+    (`icm.experiments.loop.play`): an episode is one rollout from the resting posture
+    (no state); its action the arm's joint targets; its outcome what
+    `MovementLab.perform` measured, its state after the outcome vector the learner
+    perceives (in `outcome_space`, `outcome_vectors`). Every row moves at every
+    rollout.
+
+    Args:
+      lab: the `MovementLab` the movements are rolled out on.
+      n_rows: the rows (seeds).
+      outcome_space, depth_weight: how a movement's outcome is read (as
+        `run_goal_babbling`'s).
+      retract: also simulate each movement's return home.
+    """
+
+    def __init__(self, lab, n_rows, outcome_space=DEFAULT_OUTCOME_SPACE,
+                 depth_weight=DEPTH_WEIGHT, retract=False):
+        self.lab, self.n_rows = lab, n_rows
+        self.outcome_space, self.depth_weight, self.retract = outcome_space, depth_weight, retract
+        self._ended = np.ones(n_rows, dtype=bool)
+
+    def __len__(self):
+        return self.n_rows
+
+    def reset(self, rows):
+        """A new rollout, from the resting posture: no state."""
+        return None
+
+    def step(self, rows, states, targets):
+        """Rolls out the movements `targets` [rows, joints]."""
+        done = self.lab.perform(targets, self.retract)
+        reached = outcome_vectors(done["point"], done["depths"], self.outcome_space,
+                                  self.depth_weight)
+        return Transition(reached, done, None, 1.0, self._ended)
+
+
+class Babbler:
+    """A `GoalBabblingAgent` as the one loop drives it: `act` is its `produce` (each
+    step's `info`, its goals and their regions, None while it babbles at random),
+    `learn` its `perceive` of what the movements reached (the distances to the goals
+    are the step's `learned`).
+
+    Args:
+      agent: the `GoalBabblingAgent`.
+    """
+
+    def __init__(self, agent):
+        self.agent = agent
+
+    def act(self, rows, states):
+        """Every row's next movement, and its (goals, regions)."""
+        targets, goal, region = self.agent.produce()
+        return targets, (goal, region)
+
+    def learn(self, step):
+        """Every row learns what its movement reached."""
+        return self.agent.perceive(step.action, step.after)
+
+
+class RolloutLog:
+    """The observer that keeps, per rollout, what a `GoalBabblingResult` holds of it:
+    the movement, where it brought the finger, the caps' depths, whether it touched and
+    pressed, its goal and region, the regions' interest and the maturational clock.
+
+    Args:
+      agent: the `GoalBabblingAgent` (its goal choice and clock, read after each
+        rollout).
+      n_rollouts: the run's rollouts.
+    """
+
+    def __init__(self, agent, n_rollouts):
+        self.agent = agent
+        n_seeds = agent.n_rows
+        self.arrays = {
+            "movements": np.zeros((n_seeds, n_rollouts, 7)),
+            "outcomes": np.zeros((n_seeds, n_rollouts, 3)),
+            "depths": np.zeros((n_seeds, n_rollouts, buttons.N_BUTTONS)),
+            "touched": np.zeros((n_seeds, n_rollouts), dtype=bool),
+            "pressed": np.zeros((n_seeds, n_rollouts), dtype=np.int64),
+            "goals": np.full((n_seeds, n_rollouts, 3), np.nan),
+            "regions": np.full((n_seeds, n_rollouts), -1, dtype=np.int64),
+            "interest": np.zeros((n_seeds, n_rollouts, region_grid().n_regions)),
+            "maturity": np.ones((n_seeds, n_rollouts))}
+
+    def __call__(self, step):
+        i, done, (goal, region) = step.episode[0], step.outcome, step.info
+        out = self.arrays
+        out["movements"][:, i], out["outcomes"][:, i] = step.action, done["point"]
+        out["depths"][:, i] = done["depths"]
+        out["touched"][:, i], out["pressed"][:, i] = done["touched"], done["pressed"]
+        if goal is not None:
+            out["goals"][:, i], out["regions"][:, i] = goal, region
+            # The regions' interest (0 everywhere for goals that do not follow it).
+            out["interest"][:, i] = self.agent.goal_choice.values()
+        if self.agent.maturation is not None:
+            out["maturity"][:, i] = self.agent.maturation.psi
+
+
 def babble(agent, lab, n_rollouts, outcome_space=DEFAULT_OUTCOME_SPACE,
            depth_weight=DEPTH_WEIGHT, retract=False, progress=False, observe=None,
            description="goal babbling"):
     """Plays `n_rollouts` rollouts of a goal-babbling learner on `lab`, all rows at
-    once: the loop of `run_goal_babbling` (which adds the final test of the presses),
-    open to any learner of the same shape.
+    once, through the one loop (`icm.experiments.loop.play`: `Rollouts`, `Babbler`,
+    `RolloutLog`): what `run_goal_babbling` does once it has built them (then it tests
+    the presses), open to any learner of the same shape.
 
     Args:
       agent: a `GoalBabblingAgent` (`make_agent` builds the run's), one row per seed.
@@ -346,9 +387,10 @@ def babble(agent, lab, n_rollouts, outcome_space=DEFAULT_OUTCOME_SPACE,
         `run_goal_babbling`'s).
       retract: also simulate each movement's return home.
       progress: show a progress bar over the rollouts when they last over a second.
-      observe: None, or a function called after every rollout as
-        `observe(rollout, movements, done)` (`done`: what `MovementLab.perform`
-        measured, one entry per row).
+      observe: None, or a function called with every rollout, a
+        `icm.experiments.loop.Step` of every row: its `episode` the rollout, `action`
+        the movements, `info` their (goals, regions), `outcome` what
+        `MovementLab.perform` measured, `after` the outcome vectors perceived.
       description: the progress bar's words.
 
     Returns:
@@ -366,226 +408,14 @@ def babble(agent, lab, n_rollouts, outcome_space=DEFAULT_OUTCOME_SPACE,
     weight = _validate.real("depth_weight", depth_weight, 0.0, MAX_DEPTH_WEIGHT, low_open=True)
     retract = _validate.boolean("retract", retract)
     observe = _validate.function("observe", observe)
-    n_seeds = agent.n_rows
-    choice, maturation = agent.goal_choice, agent.maturation
-    movements = np.zeros((n_seeds, n_rollouts, 7))
-    outcomes = np.zeros((n_seeds, n_rollouts, 3))
-    depths = np.zeros((n_seeds, n_rollouts, buttons.N_BUTTONS))
-    touched = np.zeros((n_seeds, n_rollouts), dtype=bool)
-    pressed = np.zeros((n_seeds, n_rollouts), dtype=np.int64)
-    goals = np.full((n_seeds, n_rollouts, 3), np.nan)
-    regions = np.full((n_seeds, n_rollouts), -1, dtype=np.int64)
-    interest_log = np.zeros((n_seeds, n_rollouts, region_grid().n_regions))
-    maturity = np.ones((n_seeds, n_rollouts))
-    for i in progress_bar(range(n_rollouts), n_rollouts, description, progress,
-                          unit="rollout"):
-        targets, goal, region = agent.produce()
-        done = lab.perform(targets, retract)
-        agent.perceive(targets, outcome_vectors(done["point"], done["depths"], space, weight))
-        movements[:, i], outcomes[:, i], depths[:, i] = targets, done["point"], done["depths"]
-        touched[:, i], pressed[:, i] = done["touched"], done["pressed"]
-        if goal is not None:
-            goals[:, i], regions[:, i] = goal, region
-            # The regions' interest (0 everywhere for goals that do not follow it).
-            interest_log[:, i] = choice.values()
-        if maturation is not None:
-            maturity[:, i] = maturation.psi
-        if observe is not None:
-            observe(i, targets, done)
-    return {"movements": movements, "outcomes": outcomes, "depths": depths,
-            "touched": touched, "pressed": pressed, "goals": goals, "regions": regions,
-            "interest": interest_log, "maturity": maturity}
+    log = RolloutLog(agent, n_rollouts)
+    bar = loop.progress(n_rollouts, description, progress, "rollout", per=agent.n_rows)
+    try:
+        loop.play(Rollouts(lab, agent.n_rows, space, weight, retract), Babbler(agent),
+                  n_rollouts, [log, bar, observe])
+    finally:
+        if bar is not None:
+            bar.close()
+    return log.arrays
 
-
-def presses_formed(result, rollouts):
-    """Whether each seed had formed a press for each button after `rollouts` rollouts:
-    the movement among its first n rollouts whose outcome lies nearest the button's
-    press goal, tested on the physics console as at the end of a run (so that at
-    n = `n_rollouts` it is `buttons_pressed`).
-
-    Args:
-      result: a `GoalBabblingResult`.
-      rollouts: increasing whole rollout counts in 1..n_rollouts.
-
-    Returns:
-      A bool array [len(rollouts), seed, button].
-    """
-    _validate.instance("result", result, GoalBabblingResult,
-                       "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
-    rollouts = _validate.integer_array("rollouts", rollouts, ndim=1)
-    if not len(rollouts) or np.any(np.diff(rollouts) <= 0) or rollouts[0] < 1 \
-            or rollouts[-1] > result.n_rollouts:
-        raise ValueError(f"rollouts must be increasing rollout counts in 1.."
-                         f"{result.n_rollouts}, got {_validate.show(rollouts)}")
-    settings = result.settings
-    space, weight = settings["outcome_space"], settings["depth_weight"]
-    reached = outcome_vectors(result.outcomes, result.depths, space, weight)
-    wanted = goal_outcomes(console_geometry()["press_goals"], space, weight)
-    distance = np.sqrt(((reached[:, :, None, :] - wanted[None, None]) ** 2).sum(axis=3))
-    seeds = [s[1] for s in run_seeds(settings["seed"], result.n_seeds, 2,
-                                     first=settings.get("first_run", 0))]
-    lab = MovementLab(1)
-    out = np.zeros((len(rollouts), result.n_seeds, buttons.N_BUTTONS), dtype=bool)
-    tested = np.full((result.n_seeds, buttons.N_BUTTONS), -1)  # rollout tested last
-    for i, n in enumerate(rollouts):
-        nearest = distance[:, :n].argmin(axis=1)  # [seed, button]
-        movements = np.take_along_axis(result.movements, nearest[:, :, None], axis=1)
-        # A press test depends on the movement, the seed and the button only: a
-        # movement still the nearest at this budget keeps the result it had.
-        changed = nearest != tested
-        out[i] = np.where(changed, _press_each_button(lab, movements, seeds, changed),
-                          out[i - 1] if i else False)
-        tested = nearest
-    return out
-
-
-PRESS_FAILURES = ("formed", "not pushed in far enough", "off the cap",
-                  "a neighbour pushed too", "a neighbour pushed instead", "other")
-"""What became of the movement formed for each button (`press_failures`), by code."""
-
-
-def press_failures(result):
-    """What became of the movement formed for each button: a code into
-    `PRESS_FAILURES` per [seed, button].
-
-    "formed" where `buttons_pressed` holds. Otherwise the movement is rolled out again
-    with its return home and read: "a neighbour pushed too" if the button and
-    another went past the press depth, "a neighbour pushed instead" if only another
-    did, "not pushed in far enough" if none did and the finger ended over the cap
-    (within its radius of its centre), "off the cap" if none did and it ended
-    elsewhere, and "other" if the button alone was pushed yet the red box alone did
-    not open.
-
-    Args:
-      result: a `GoalBabblingResult`.
-    """
-    _validate.instance("result", result, GoalBabblingResult,
-                       "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
-    geometry = console_geometry()
-    lab = MovementLab(1)
-    n_seeds = result.n_seeds
-    done = lab.perform(result.press_movements.reshape(-1, 7), retract=True)
-    over = done["depths"].reshape(n_seeds, buttons.N_BUTTONS, buttons.N_BUTTONS) \
-        > buttons.PRESS_DEPTH  # [seed, movement for button, button pushed]
-    across = np.linalg.norm(result.press_outcomes[..., :2] - geometry["caps"][:, :2], axis=2)
-    codes = np.full((n_seeds, buttons.N_BUTTONS), PRESS_FAILURES.index("other"))
-    for b in range(buttons.N_BUTTONS):
-        own, others = over[:, b, b], np.delete(over[:, b], b, axis=1).any(axis=1)
-        on_cap = across[:, b] <= geometry["cap_radius"]
-        codes[own & others, b] = PRESS_FAILURES.index("a neighbour pushed too")
-        codes[~own & others, b] = PRESS_FAILURES.index("a neighbour pushed instead")
-        codes[~own & ~others & on_cap, b] = PRESS_FAILURES.index("not pushed in far enough")
-        codes[~own & ~others & ~on_cap, b] = PRESS_FAILURES.index("off the cap")
-    codes[result.buttons_pressed] = PRESS_FAILURES.index("formed")
-    return codes
-
-
-def _press_each_button(lab, press_movements, seeds, which=None):
-    """[seed, button]: whether the movement for each button, run on a physics console
-    where that button is lit red (one console per button), presses that button and
-    no other, and opens the red box only; only where `which` ([seed, button] bools)
-    holds, if given (False elsewhere)."""
-    n_seeds = len(press_movements)
-    out = np.zeros((n_seeds, buttons.N_BUTTONS), dtype=bool)
-    which = np.ones_like(out) if which is None else which
-    check = buttons.physics.check_press_motions
-    for button in range(buttons.N_BUTTONS):
-        if not which[:, button].any():
-            continue
-        console = buttons.PhysicsButtonConsole(red_button=button)
-        for k in np.flatnonzero(which[:, button]):
-            console.press_motions = check([lab.phases(m) for m in press_movements[k]])
-            console.reseed(seeds[k])
-            console.reset()
-            boxes = console.press(button)
-            out[k, button] = (set(console.task.press_log) == {button}
-                              and boxes.tolist() == [1, 0])
-    return out
-
-
-@dataclasses.dataclass(frozen=True)
-class FormedActionsResult:
-    """What `run_formed_actions` measured.
-
-    Attributes:
-      settings: the arguments of the run, as a dict.
-      learner: the goal-oriented learner's `GoalOrientedResult` on the console whose
-        five actions are the formed movements.
-      as_scripted: the share of the learner's presses whose effect (which box
-        opened) is what the scripted press of the same button gives in that layout.
-      n_presses: the presses the learner made, over all seeds.
-      as_scripted_per_seed: [seed], that share in each seed's presses (every seed
-        makes the same number of presses).
-    """
-
-    settings: dict
-    learner: _goal_oriented.GoalOrientedResult
-    as_scripted: float
-    n_presses: int
-    as_scripted_per_seed: np.ndarray
-
-    def red_first_fraction(self):
-        """Share of seeds in which red is mastered strictly before green (see
-        `GoalOrientedResult.red_first_fraction`)."""
-        return self.learner.red_first_fraction()
-
-    def red_first(self):
-        """[seed], whether red is mastered strictly before green in each seed."""
-        mastery = self.learner.mastery_trial
-        return comes_first(mastery[:, 0], mastery[:, 1])
-
-
-def run_formed_actions(babbling, n_trials=DEFAULT_TRIALS, seed=0, progress=True,
-                       first_run=0):
-    """Runs the paper's goal-oriented learner on the physics console, with the movements
-    the robot formed by goal babbling as its five press actions.
-
-    Row k of the learner uses seed k's learned movements (`press_movements`) and the
-    seeds `run_goal_oriented(n_seeds, n_trials, seed=seed)` gives its run k, so the two
-    can be compared seed by seed. The learner keeps its defaults (the paper's).
-
-    Args:
-      babbling: a `GoalBabblingResult`.
-      n_trials: trials per run (>= 1).
-      seed: the root seed of the learner's runs (as in `run_goal_oriented`).
-      progress: show a progress bar over the trials.
-      first_run: the index of the learner's first run (>= 0): row k uses run
-        first_run + k of `seed` (pass the babbling's own `first_run` to keep the
-        seed-by-seed pairing of a run made in pieces).
-
-    Returns:
-      A `FormedActionsResult`.
-
-    Raises:
-      ValueError: for a bad argument.
-    """
-    _validate.instance("babbling", babbling, GoalBabblingResult,
-                       "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
-    n_trials = _validate.integer_at_least("n_trials", n_trials, 1)
-    _validate.boolean("progress", progress)
-    first_run = _validate.integer_at_least("first_run", first_run, 0)
-    lab = MovementLab()
-    motions = [[lab.phases(m) for m in movements] for movements in babbling.press_movements]
-    red, presses = buttons.DEFAULT_RED_BUTTON, buttons.DEFAULT_PRESSES_PER_TRIAL
-    log = []
-
-    def formed_console(env_seeds):
-        return buttons.PhysicsButtonConsoleBatch(env_seeds, red, presses,
-                                                 press_motions=motions)
-
-    def record(trial, layout, actions, effects):
-        log.append((layout.copy(), np.asarray(actions).copy(), effects.copy()))
-
-    learner, = _goal_oriented.run_goal_oriented_grid(
-        [{}], n_seeds=babbling.n_seeds, n_trials=n_trials, presses_per_trial=presses,
-        red_button=red, physics=True, seed=seed, progress=progress,
-        make_env=formed_console, observe=record, first_run=first_run)
-    settings = learner.settings
-    settings["formed_by"] = babbling.strategy
-    settings["first_run"] = first_run
-    table = buttons.outcome_table(red)
-    matches = np.array([table[layout, actions] == effects
-                        for layout, actions, effects in log])  # [press, seed]
-    return FormedActionsResult(settings, learner, float(np.mean(matches)), int(np.size(matches)),
-                               matches.mean(axis=0))
 

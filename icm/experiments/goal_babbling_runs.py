@@ -19,8 +19,8 @@ import platform
 import numpy as np
 
 from icm import _validate
-from icm.envs._assets import ASSETS, asset_path
-from icm.experiments import goal_babbling
+from icm.store import ASSETS, asset_path
+from icm.experiments import babbling_results, goal_babbling
 
 RUNS_FILE = "goal_babbling_runs.npz"
 """The file in assets/ that holds the chapter's runs."""
@@ -28,7 +28,7 @@ N_SEEDS = 10
 """The chapter's seeds per strategy."""
 SEED = 0
 """The chapter's root seed."""
-ARRAYS = tuple(field.name for field in dataclasses.fields(goal_babbling.GoalBabblingResult)
+ARRAYS = tuple(field.name for field in dataclasses.fields(babbling_results.GoalBabblingResult)
                if field.name != "settings")
 """The arrays of a `GoalBabblingResult`, each kept whole."""
 
@@ -92,7 +92,7 @@ def load_runs(path=None):
         out = {}
         for strategy, settings in about["settings"].items():
             settings = dict(settings, demonstrations=tuple(settings["demonstrations"]))
-            out[strategy] = goal_babbling.GoalBabblingResult(
+            out[strategy] = babbling_results.GoalBabblingResult(
                 settings, **{name: stored[f"{strategy}/{name}"] for name in ARRAYS})
     return out
 

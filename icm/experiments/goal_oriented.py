@@ -5,181 +5,28 @@ All seeds run at once (`icm.learners.goal_oriented.GoalOrientedBatch` on
 per-agent classes give the same numbers (a test runs both).
 """
 
-import dataclasses
-
 import numpy as np
 
 from icm import _streams, _validate
 from icm._settings import with_settings
 from icm.envs import buttons
-from icm.experiments import _grid
-from icm.experiments.results import check_results, measures_table, percent
+from icm.experiments import _grid, loop
 from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES, check_memory
-from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import run_seeds
+from icm.experiments.loop import Transition
+from icm.experiments.goal_oriented_results import TASKS, GoalOrientedResult
+from icm.experiments.seeding import run_seeds
 from icm.learners import action_selection, goal_oriented, interest
-from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth, first_below,
-                       first_from_which)
+from icm.stats import first_from_which
 
-TASKS = ("red", "green")
-"""Order of the task axis in the result arrays."""
 _REST = (0, 0)
 TASK_KEYS = {"red": (_REST, (1, 0)), "green": (_REST, (0, 1)), "nothing": (_REST, (0, 0))}
 """The agent's task keys (boxes at rest -> boxes after the press) by name."""
 _TASK_EFFECTS = (buttons.RED_BOX, buttons.GREEN_BOX)  # red, green, as TASKS
-FADE_FRACTION = 0.1
-"""The share of its peak below which a task's mean interest has faded (`fade_trial`)."""
 CHAPTER_SEEDS = 200
 """Runs of the chapter "Goal-oriented interest" (its Figure 5; `python -m icm figure5`)."""
 CHAPTER_TRIALS = 60
 """Trials per run in that chapter: its Figure 5 and panel, its exercises' runs, its
 robustness maps and `python -m icm figure5`."""
-
-
-@dataclasses.dataclass(frozen=True)
-class GoalOrientedResult:
-    """What `run_goal_oriented` measured. Trials are counted from 1 in `mastery_trial`;
-    the arrays' trial axis holds trial 1 at index 0.
-
-    Attributes:
-      settings: the arguments of the run, as a dict.
-      interest: [seed, trial, task], interest in each task (red, green) at the end of
-        each trial (0 before the task was first witnessed).
-      prediction_error: [seed, trial, task], after each trial, the share of the 20
-        (layout, button) pairs for which the predictor is wrong about that task's box
-        (predicts it opens when it stays shut, or the reverse). 0 means mastered.
-      mastery_trial: [seed, task], the first trial after which the predictor is right
-        for that task in every layout and for every button, and stays right to the end
-        of the run; -1 if that never happens.
-      practice: [seed, trial, task], presses in the trial that opened each box.
-      button_share: [seed, trial, button], the share of the trial's presses on each
-        button (5 buttons, or 6 with the noisy button).
-      action_interest: [seed, trial, button], at the end of each trial, how
-        interesting each button is to the learner (the interest of the task it is
-        predicted to achieve, or of its region with `interest_per="region"`), the mean
-        over the four layouts.
-
-    With `interest_per="region"`, `interest` holds the interest of the red button's
-    region (task red) and the mean over the four buttons that green takes (task green).
-    """
-
-    settings: dict
-    interest: np.ndarray
-    prediction_error: np.ndarray
-    mastery_trial: np.ndarray
-    practice: np.ndarray
-    button_share: np.ndarray
-    action_interest: np.ndarray
-
-    @property
-    def n_seeds(self):
-        return self.interest.shape[0]
-
-    @property
-    def n_trials(self):
-        return self.interest.shape[1]
-
-    def red_first_fraction(self):
-        """Share of seeds in which red is mastered strictly before green (a seed where
-        green is never mastered but red is counts as red first)."""
-        red, green = self.mastery_trial[:, 0], self.mastery_trial[:, 1]
-        return float(comes_first(red, green).mean())
-
-    def mean_interest(self):
-        """Mean interest over seeds, [trial, task]."""
-        return self.interest.mean(axis=0)
-
-    def peak_trial(self, task):
-        """The trial (from 1) at which the mean interest in `task` ("red" or "green")
-        is highest."""
-        task = _validate.one_of("task", task, TASKS)
-        return int(np.argmax(self.mean_interest()[:, TASKS.index(task)])) + 1
-
-    def claims(self):
-        """{claim name: whether it holds in this run}, for each of
-        `icm.chapters.goal_oriented_interest.CLAIMS`: what the chapter states in words,
-        checked on the book's run when it is built (and by the tests on their own
-        seeds)."""
-        s = self.summary()
-        return {
-            "red_first_mostly": s["red_first"] > 0.5,
-            "red_sooner": s["red_mastery_mean"] < s["green_mastery_mean"],
-            "red_fades_first": 0 < s["red_fade_trial"] < s["green_fade_trial"]
-            or (s["red_fade_trial"] > 0 > s["green_fade_trial"]),
-            "green_stays_longer": s["green_interest_centre"] > s["red_interest_centre"],
-        }
-
-    def describe_peaks(self):
-        """In words, whether the mean interest in green peaks after the mean interest
-        in red, as the paper's "interest rise slower" would have it: a clause that
-        the chapter quotes, phrased from the data."""
-        red, green = self.peak_trial("red"), self.peak_trial("green")
-        if green > red:
-            return (f"the mean curves agree, green's peaking at trial {green}, after red's "
-                    f"at trial {red}")
-        if green == red:
-            return f"the mean curves do not show it: both peak at trial {red}"
-        return (f"the mean curves show the opposite, green's peaking at trial {green}, "
-                f"before red's at trial {red}")
-
-    def fade_trial(self, task, fraction=None):
-        """The first trial after its peak at which the mean interest in `task` falls
-        below `fraction` (in (0, 1]) of that peak; -1 if it never does."""
-        task = _validate.one_of("task", task, TASKS)
-        fraction = FADE_FRACTION if fraction is None else _validate.real(
-            "fraction", fraction, 0.0, 1.0, low_open=True)
-        index = first_below(self.mean_interest()[:, TASKS.index(task)], fraction)
-        return index + 1 if index >= 0 else -1
-
-    def interest_centre(self, task):
-        """The interest-weighted mean trial of `task`: when, on average, the interest in
-        it is spent (a robust "when", unlike the peak of a flat curve)."""
-        task = _validate.one_of("task", task, TASKS)
-        curve = self.mean_interest()[:, TASKS.index(task)]
-        if curve.sum() == 0:
-            return float("nan")
-        return float((np.arange(1, len(curve) + 1) * curve).sum() / curve.sum())
-
-    def summary(self):
-        """The numbers the book quotes, as a dict."""
-        mastery = self.mean_mastery_trial()
-        out = {"red_first": self.red_first_fraction()}
-        for i, task in enumerate(TASKS):
-            mastered = self.mastery_trial[:, i]
-            out[f"{task}_mastery_mean"] = mastery[task][0]
-            out[f"{task}_mastery_median"] = (float(np.median(mastered[mastered >= 1]))
-                                            if (mastered >= 1).any() else float("nan"))
-            out[f"{task}_mastered_share"] = mastery[task][1]
-            out[f"{task}_peak_interest"] = float(self.mean_interest()[:, i].max())
-            out[f"{task}_peak_trial"] = self.peak_trial(task)
-            out[f"{task}_fade_trial"] = self.fade_trial(task)
-            out[f"{task}_interest_centre"] = self.interest_centre(task)
-            share = self.practice[:, :, i].mean(axis=0) / self.settings["presses_per_trial"]
-            out[f"{task}_practice_peak_share"] = float(share.max())
-            out[f"{task}_practice_peak_trial"] = int(np.argmax(share)) + 1
-        return out
-
-    def seed_summaries(self):
-        """One dict per seed of the numbers a sweep compares: each task's mastery trial
-        (-1 if never), the gap green - red (NaN unless both are mastered), and whether
-        red came first."""
-        rows = []
-        for red, green in self.mastery_trial.tolist():
-            gap = float(green - red) if red >= 1 and green >= 1 else float("nan")
-            rows.append({"red_mastery_trial": red, "green_mastery_trial": green,
-                         "mastery_gap": gap,
-                         "red_first": bool(comes_first(red, green))})
-        return rows
-
-    def mean_mastery_trial(self):
-        """Mean mastery trial of (red, green) over the seeds that master each task, and
-        the share of seeds that do."""
-        out = {}
-        for i, task in enumerate(TASKS):
-            done = self.mastery_trial[:, i] >= 1
-            mean = float(self.mastery_trial[done, i].mean()) if done.any() else float("nan")
-            out[task] = (mean, float(done.mean()))
-        return out
 
 
 def _check_run_arguments(n_seeds, n_trials, presses_per_trial, red_button, noisy_button,
@@ -321,7 +168,8 @@ def run_goal_oriented_grid(grid, make_env=None, observe=None, first_run=0, **arg
         console to play on (as `icm.envs.buttons.ButtonConsoleBatch`: `new_trials`,
         `press`, `n_actions`, `effects`, `red_button`), for example a physics console
         whose presses are movements the robot formed.
-      observe: None, or a function called after every press (see `play`).
+      observe: None, or a function called with every press of every row, a
+        `icm.experiments.loop.Step` (see `play`).
       first_run: the index of the first run (>= 0): a setting's rows are runs
         first_run to first_run + n_seeds - 1 of the root seed (run 7 alone is run 7 of
         any larger batch), so that a long study can run in pieces.
@@ -350,46 +198,204 @@ def run_goal_oriented_grid(grid, make_env=None, observe=None, first_run=0, **arg
                          "one_action_weight": len({s["action_weight"] for s in settings}) == 1
                      })[0])
     seeds = run_seeds(first["seed"], n, 2, first=first_run) * len(settings)
+    env, agent = make(first, seeds, goal_oriented.GoalOrientedSettings.stack(blocks, n),
+                      make_env)
+    result = play(env, agent, first["n_trials"], first["presses_per_trial"], observe=observe,
+                  progress=progress, settings=first)
+    return _grid.split(result, settings, n)
+
+
+def make(settings, seeds, learner=None, make_env=None):
+    """The console and the learner of a run of `run_goal_oriented`, one row per seed, as
+    the run builds them.
+
+    Args:
+      settings: the run's settings, as a result keeps them (`red_button`,
+        `noisy_button`, `physics`, `presses_per_trial`, and the learner's).
+      seeds: one [console seed, learner seed] per row (`icm.experiments.seeding.
+        run_seeds(seed, n_seeds, 2)`).
+      learner: the learner's settings, a `icm.learners.goal_oriented.
+        GoalOrientedSettings` whose per-row settings may hold one value per row (None:
+        those of `settings`).
+      make_env: as `run_goal_oriented_grid`'s (None: the console `physics` names).
+
+    Returns:
+      (env, agent): the batched console and the batched learner
+      (`icm.learners.goal_oriented.GoalOrientedBatch`).
+    """
+    if learner is None:
+        learner = goal_oriented.GoalOrientedSettings(
+            **{name: settings[name] for name in goal_oriented.GoalOrientedSettings.names()})
     env_seeds, agent_seeds = [s[0] for s in seeds], [s[1] for s in seeds]
-    red_button, presses = first["red_button"], first["presses_per_trial"]
+    red_button = settings["red_button"]
     if make_env is not None:
         env = make_env(env_seeds)
-    elif first["physics"]:
-        env = buttons.PhysicsButtonConsoleBatch(env_seeds, red_button, presses,
-                                                first["noisy_button"])
+    elif settings["physics"]:
+        env = buttons.PhysicsButtonConsoleBatch(env_seeds, red_button,
+                                                settings["presses_per_trial"],
+                                                settings["noisy_button"])
     else:
-        env = buttons.ButtonConsoleBatch(env_seeds, red_button, first["noisy_button"])
+        env = buttons.ButtonConsoleBatch(env_seeds, red_button, settings["noisy_button"])
     agent = goal_oriented.GoalOrientedBatch(
         agent_seeds, np.array(buttons.layouts(red_button)), env.effects, env.n_actions,
-        settings=goal_oriented.GoalOrientedSettings.stack(blocks, n))
-    result = play(env, agent, first["n_trials"], presses, observe=observe, progress=progress,
-                  settings=first)
-    return _grid.split(result, settings, n)
+        settings=learner)
+    return env, agent
+
+
+class ConsoleTrials:
+    """A batched button console as the goal-oriented learner plays it, for the one loop
+    (`icm.experiments.loop.play`): an episode is a trial; its state, the layout of the
+    lights (an index into `buttons.layouts`), which every press leaves as it was (the
+    boxes shut before every press); a press's outcome is the effect it had (an index
+    into the console's `effects`); the trial ends after `presses_per_trial` presses.
+    Every row moves at every press.
+
+    Args:
+      env: a batched console (as `icm.envs.buttons.ButtonConsoleBatch`: `new_trials()`
+        gives the rows' layout indices, `press(actions)` their effect indices).
+      presses_per_trial: presses per trial.
+    """
+
+    def __init__(self, env, presses_per_trial):
+        self.env, self.presses_per_trial = env, presses_per_trial
+        self._presses = 0
+        self._going, self._ending = np.zeros(len(env), dtype=bool), np.ones(len(env), dtype=bool)
+
+    def __len__(self):
+        return len(self.env)
+
+    def reset(self, rows):
+        """A new trial in every row: the layouts [rows]."""
+        self._presses = 0
+        return self.env.new_trials()
+
+    def step(self, rows, layouts, actions):
+        """Presses `actions` (one button per row)."""
+        effects = self.env.press(actions)
+        self._presses += 1
+        ended = self._ending if self._presses == self.presses_per_trial else self._going
+        return Transition(layouts, effects, None, 1.0, ended)
+
+
+class Chooser:
+    """A batched goal-oriented learner as the one loop drives it: `act` is its
+    `select_actions`, `learn` its `learn` of the press (the errors it returns are the
+    step's `learned`).
+
+    Args:
+      agent: the learner (as `icm.learners.goal_oriented.GoalOrientedBatch`).
+      explain: also give, as each step's `info`, what the learner knew when it chose:
+        {"interest": its interest in every task, "predicted": the effect it predicts
+        for each action, "values": each action's interest} (for `trace`).
+    """
+
+    def __init__(self, agent, explain=False):
+        self.agent, self.explain = agent, explain
+
+    def act(self, rows, layouts):
+        """Each row's press in its layout, and what the learner knew (None unless
+        `explain`)."""
+        if not self.explain:
+            return self.agent.select_actions(layouts), None
+        info = {"interest": self.agent.interest.values().copy(),
+                "predicted": self.agent.predicted_effects(layouts),
+                "values": self.agent.action_interests(layouts)}
+        return self.agent.select_actions(layouts), info
+
+    def learn(self, step):
+        """The learner learns the press; returns its prediction errors [rows]."""
+        return self.agent.learn(step.before, step.action, step.outcome)
+
+
+class TrialSummary:
+    """The observer that reduces a run of the goal-oriented learner to its
+    `GoalOrientedResult`: after each press the boxes opened and the button pressed,
+    after each trial the interest and what the predictor gets wrong, so that a run
+    keeps its result and nothing per press.
+
+    Args:
+      env: the batched console (its `red_button`, `n_actions`).
+      agent: the batched learner (read after each trial: `interest.values()`,
+        `interest_per`, `predictor.effect`, `effects`).
+      n_trials: the run's trials.
+      presses_per_trial: its presses per trial.
+    """
+
+    def __init__(self, env, agent, n_trials, presses_per_trial):
+        self.agent, self.presses_per_trial = agent, presses_per_trial
+        self.red_button = env.red_button
+        n_seeds, n_actions = len(env), env.n_actions
+        self.n_actions = n_actions
+        self.practice = np.zeros((n_seeds, n_trials, len(TASKS)), dtype=np.int64)
+        self.presses = np.zeros((n_seeds, n_trials, n_actions), dtype=np.int64)
+        self.interest = np.zeros((n_seeds, n_trials, len(TASKS)))
+        self.action_interest = np.zeros((n_seeds, n_trials, n_actions))
+        self.error = np.zeros((n_seeds, n_trials, len(TASKS)))
+        # The share of the 20 (layout, button) pairs on which the predictor is wrong
+        # about each box: wrong[predicted effect, true effect, box] is 1 where they differ.
+        effects = agent.effects  # buttons.EFFECTS, and on the physics both boxes too
+        self.n_effects = len(effects)
+        self.wrong = np.abs(effects[:, None, :] - effects[None, :, :]).astype(float)
+        self.truth = buttons.outcome_table(self.red_button)
+        self.greens = buttons.green_candidates(self.red_button)
+
+    def __call__(self, step):
+        trial, observed = step.episode[0], step.outcome
+        both = observed == buttons.BOTH_BOXES  # a press of both: practice of both
+        for i, box in enumerate(_TASK_EFFECTS):
+            self.practice[:, trial, i] += (observed == box) | both
+        self.presses[step.rows, trial, step.action] += 1
+        if step.ended[0]:
+            self._end_of_trial(trial)
+
+    def _end_of_trial(self, trial):
+        agent = self.agent
+        n_seeds = len(self.practice)
+        values = agent.interest.values()
+        per_layout = agent.predictor.effect.reshape(n_seeds, 4, self.n_actions)
+        if agent.interest_per == "task":
+            self.interest[:, trial] = values[:, list(_TASK_EFFECTS)]
+            per_layout_interest = np.take_along_axis(values[:, None, :], per_layout, axis=2)
+        else:
+            self.interest[:, trial] = np.stack([values[:, self.red_button],
+                                                values[:, self.greens].mean(axis=1)], axis=1)
+            per_layout_interest = np.broadcast_to(values[:, None, :], per_layout.shape)
+        self.action_interest[:, trial] = np.moveaxis(per_layout_interest, 1, 0).mean(axis=0)
+        pairs = (per_layout[..., :buttons.N_BUTTONS] * self.n_effects
+                 + self.truth).reshape(n_seeds, -1)
+        for box in range(len(TASKS)):
+            self.error[:, trial, box] = self.wrong[..., box].reshape(-1).take(pairs).mean(axis=1)
+
+    def result(self, settings):
+        """The `GoalOrientedResult` of the run, keeping `settings` (a dict)."""
+        mastery = first_from_which(np.moveaxis(self.error, 1, 2) == 0)
+        mastery = np.where(mastery >= 0, mastery + 1, -1)
+        share = self.presses / self.presses_per_trial
+        return GoalOrientedResult(settings, self.interest, self.error, mastery, self.practice,
+                                  share, self.action_interest)
 
 
 def play(env, agent, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRIAL,
          observe=None, progress=False, settings=None):
-    """Plays `n_trials` trials of a batched learner on a batched console, and gathers
-    a `GoalOrientedResult`: the loop of `run_goal_oriented`, open to any console and
-    learner of the same shape.
-
-    After each trial the loop reduces what happened (the presses, their outcomes, the
-    interest and the predictor) to the result's numbers for that trial, so that a run
-    keeps its result and nothing per press.
+    """Plays `n_trials` trials of a batched learner on a batched console through the one
+    loop (`icm.experiments.loop.play`), and gathers a `GoalOrientedResult`
+    (`TrialSummary`): what `run_goal_oriented` does once it has built them (`make`),
+    open to any console and learner of the same shape.
 
     Args:
-      env: a batched console, one row per run (as `icm.envs.buttons.ButtonConsoleBatch`:
-        `new_trials()` gives the rows' layout indices, `press(actions)` their effect
-        indices; `n_actions`, `red_button`).
+      env: a batched console, one row per run (see `ConsoleTrials`; its `n_actions`,
+        `red_button`).
       agent: a batched learner with a row per console row (as
         `icm.learners.goal_oriented.GoalOrientedBatch`: `select_actions(layouts)`,
         `learn(layouts, actions, effects)`, `interest.values()`, `interest_per`,
         `predictor.effect`, `effects`).
       n_trials: trials to play (>= 1).
       presses_per_trial: presses per trial (see `icm.envs.buttons.PRESSES_PER_TRIAL`).
-      observe: None, or a function called after every press as
-        `observe(trial, layouts, actions, effects)` (index arrays, one entry per row):
-        a recorder of the presses, for example.
+      observe: None, or a function called with every press, a
+        `icm.experiments.loop.Step` of every row: its `episode` the trial, its `before`
+        the layouts, `action` the buttons pressed, `outcome` the effects (indices into
+        the console's `effects`) and `learned` the prediction errors: a recorder of
+        the presses, for example.
       progress: show a progress bar over the trials when the run lasts over a second.
       settings: the dict the result keeps as its `settings` (None: an empty dict).
 
@@ -404,53 +410,15 @@ def play(env, agent, n_trials, presses_per_trial=buttons.DEFAULT_PRESSES_PER_TRI
     observe = _validate.function("observe", observe)
     _validate.boolean("progress", progress)
     settings = {} if settings is None else _validate.instance("settings", settings, dict)
-    red_button = env.red_button
-    n_seeds, n_actions = len(env), env.n_actions
-    practice = np.zeros((n_seeds, n_trials, len(TASKS)), dtype=np.int64)
-    presses = np.zeros((n_seeds, n_trials, n_actions), dtype=np.int64)
-    interest_out = np.zeros((n_seeds, n_trials, len(TASKS)))
-    action_interest = np.zeros((n_seeds, n_trials, n_actions))
-    error_out = np.zeros((n_seeds, n_trials, len(TASKS)))
-    # The share of the 20 (layout, button) pairs on which the predictor is wrong about
-    # each box: wrong[predicted effect, true effect, box] is 1 where they differ.
-    effects = agent.effects  # buttons.EFFECTS, and on the physics both boxes too
-    wrong = np.abs(effects[:, None, :] - effects[None, :, :]).astype(float)
-    truth = buttons.outcome_table(red_button)
-    greens = buttons.green_candidates(red_button)
-    rows = np.arange(n_seeds)
-    trials = progress_bar(range(n_trials), n_trials, "goal-oriented learner", progress,
-                          unit="trial")
-    for trial in trials:
-        layout = env.new_trials()
-        for press in range(presses_per_trial):
-            chosen = agent.select_actions(layout)
-            observed = env.press(chosen)
-            agent.learn(layout, chosen, observed)
-            if observe is not None:
-                observe(trial, layout, chosen, observed)
-            both = observed == buttons.BOTH_BOXES  # a press of both: practice of both
-            for i, box in enumerate(_TASK_EFFECTS):
-                practice[:, trial, i] += (observed == box) | both
-            presses[rows, trial, chosen] += 1
-        values = agent.interest.values()
-        per_layout = agent.predictor.effect.reshape(n_seeds, 4, n_actions)
-        if agent.interest_per == "task":
-            interest_out[:, trial] = values[:, list(_TASK_EFFECTS)]
-            per_layout_interest = np.take_along_axis(values[:, None, :], per_layout, axis=2)
-        else:
-            interest_out[:, trial] = np.stack([values[:, red_button],
-                                               values[:, greens].mean(axis=1)], axis=1)
-            per_layout_interest = np.broadcast_to(values[:, None, :], per_layout.shape)
-        action_interest[:, trial] = np.moveaxis(per_layout_interest, 1, 0).mean(axis=0)
-        pairs = (per_layout[..., :buttons.N_BUTTONS] * len(effects) + truth).reshape(n_seeds, -1)
-        for box in range(len(TASKS)):
-            error_out[:, trial, box] = wrong[..., box].reshape(-1).take(pairs).mean(axis=1)
-
-    mastery = first_from_which(np.moveaxis(error_out, 1, 2) == 0)
-    mastery = np.where(mastery >= 0, mastery + 1, -1)
-    share = presses / presses_per_trial
-    return GoalOrientedResult(settings, interest_out, error_out, mastery, practice, share,
-                              action_interest)
+    summary = TrialSummary(env, agent, n_trials, presses_per_trial)
+    bar = loop.progress(n_trials, "goal-oriented learner", progress, "trial", per=len(env))
+    try:
+        loop.play(ConsoleTrials(env, presses_per_trial), Chooser(agent), n_trials,
+                  [summary, bar, observe])
+    finally:
+        if bar is not None:
+            bar.close()
+    return summary.result(settings)
 
 
 class _RecordedDraws:
@@ -467,7 +435,8 @@ class _RecordedDraws:
 def trace(n_trials=2, n_seeds=1, seed=0):
     """The first `n_trials` trials of `run_goal_oriented(n_seeds=n_seeds, seed=seed)`
     (the library's settings), press by press: what the learner knew, chose and
-    learned. Row k is the same run as seed k of `run_goal_oriented` (a test checks it).
+    learned. Row k is the same run as seed k of `run_goal_oriented` (a test checks it):
+    the run's console and learner (`make`) played through the one loop, observed.
 
     Lights and predictions are written one letter a button: "R" red, "G" green, "-"
     off; under `predicts`, the box the predictor expects the press to open ("-" none),
@@ -487,95 +456,37 @@ def trace(n_trials=2, n_seeds=1, seed=0):
     """
     import pandas as pd  # here: pandas is slow to import
 
-    learner = goal_oriented.GoalOrientedSettings()
     settings = _check_run_arguments(n_seeds, n_trials, buttons.DEFAULT_PRESSES_PER_TRIAL,
                                     buttons.DEFAULT_RED_BUTTON, False, False, seed,
-                                    learner)
-    seeds = run_seeds(settings["seed"], settings["n_seeds"], 2)
-    env = buttons.ButtonConsoleBatch([s[0] for s in seeds])
-    agent = goal_oriented.GoalOrientedBatch(
-        [s[1] for s in seeds], np.array(buttons.layouts()), env.effects, env.n_actions,
-        settings=learner)
+                                    goal_oriented.GoalOrientedSettings())
+    env, agent = make(settings, run_seeds(settings["seed"], settings["n_seeds"], 2))
     agent.streams = _RecordedDraws(agent.streams)
     lights = np.array(["-", "R", "G"])[np.array(buttons.layouts())]  # by light value
     letters = np.array(["-", "G", "R"])  # by effect index
     effects = np.array(buttons.EFFECTS)
     truth = effects[buttons.outcome_table().reshape(-1)]  # [pair, box]
     names = ["nothing", "green", "red"]  # by effect index
-    rows, n = [], len(env)
-    for trial in range(1, n_trials + 1):
-        layout = env.new_trials()
-        for press in range(1, buttons.DEFAULT_PRESSES_PER_TRIAL + 1):
-            interest = agent.interest.values().copy()
-            predicted = agent.predicted_effects(layout)
-            values = agent.action_interests(layout)
-            chosen = agent.select_actions(layout)
-            ties = (values == values.max(axis=1, keepdims=True)).sum(axis=1) > 1
-            explore = agent.streams.last[:, 0] < agent.epsilon
-            why = np.where(explore, "random", np.where(ties, "tie", "most interesting"))
-            observed = env.press(chosen)
-            errors = agent.learn(layout, chosen, observed)
-            wrong = (effects[agent.predictor.effect] != truth).sum(axis=1)
-            for k in range(n):
-                rows.append({
-                    "seed": k, "trial": trial, "press": press,
-                    "lights": "".join(lights[layout[k]]),
-                    "predicts": "".join(letters[predicted[k]]),
-                    "nothing": interest[k, 0], "red": interest[k, 2],
-                    "green": interest[k, 1], "button": int(chosen[k]), "why": why[k],
-                    "opened": names[observed[k]], "error": float(errors[k]),
-                    "wrong_red": int(wrong[k, 0]), "wrong_green": int(wrong[k, 1])})
+    rows, presses = [], [0]
+
+    def record(step):
+        presses[0] = presses[0] % buttons.DEFAULT_PRESSES_PER_TRIAL + 1
+        values, interest = step.info["values"], step.info["interest"]
+        ties = (values == values.max(axis=1, keepdims=True)).sum(axis=1) > 1
+        explore = agent.streams.last[:, 0] < agent.epsilon
+        why = np.where(explore, "random", np.where(ties, "tie", "most interesting"))
+        wrong = (effects[agent.predictor.effect] != truth).sum(axis=1)
+        for k, layout in enumerate(step.before.tolist()):
+            rows.append({
+                "seed": k, "trial": int(step.episode[k]) + 1, "press": presses[0],
+                "lights": "".join(lights[layout]),
+                "predicts": "".join(letters[step.info["predicted"][k]]),
+                "nothing": interest[k, 0], "red": interest[k, 2], "green": interest[k, 1],
+                "button": int(step.action[k]), "why": why[k],
+                "opened": names[step.outcome[k]], "error": float(step.learned[k]),
+                "wrong_red": int(wrong[k, 0]), "wrong_green": int(wrong[k, 1])})
+
+    loop.play(ConsoleTrials(env, buttons.DEFAULT_PRESSES_PER_TRIAL), Chooser(agent, True),
+              settings["n_trials"], [record])
     return pd.DataFrame(rows).sort_values(["seed", "trial", "press"], ignore_index=True)
 
 
-def comparison_table(results):
-    """A Markdown table of the numbers that tell runs apart, one column per run.
-
-    Args:
-      results: a dict {column label: GoalOrientedResult}.
-
-    Returns:
-      A Markdown string (display it with `IPython.display.Markdown`).
-    """
-    check_results("results", results, GoalOrientedResult)
-    summaries = {id(r): r.summary() for r in results.values()}
-
-    def pair(key, fmt):
-        return lambda r: (f"{summaries[id(r)]['red_' + key]:{fmt}} / "
-                          f"{summaries[id(r)]['green_' + key]:{fmt}}")
-
-    return measures_table(results, [
-        ("seeds", lambda r: str(r.n_seeds)),
-        ("mastered, mean trial: red / green", pair("mastery_mean", ".1f")),
-        ("red mastered first", lambda r: percent(summaries[id(r)]['red_first'])),
-        ("peak interest: red / green", pair("peak_interest", ".3f")),
-        ("centre of interest, trial: red / green", pair("interest_centre", ".1f")),
-        ("interest below 10% of its peak from trial: red / green", pair("fade_trial", "")),
-        ("most practised at trial: red / green", pair("practice_peak_trial", "")),
-    ])
-
-
-def panel_curves(result, every=1):
-    """What the Figure 5 panel draws, as numbers: the mean interest in each task per
-    trial over the seeds, with a 95% percentile-bootstrap band.
-
-    The interactive panel and the book's precomputed static panel both draw this, so
-    the two show the same numbers for the same settings.
-
-    Args:
-      result: a `GoalOrientedResult`.
-      every: keep every `every`-th trial (and the last); each kept point's numbers do
-        not depend on it.
-
-    Returns:
-      {"x": trials [trial], "xlabel", "groups": [{"title", "ylabel", "series":
-      {task: (mean, low, high)}}]}.
-    """
-    _validate.instance("result", result, GoalOrientedResult,
-                       "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
-    keep = every_nth(result.n_trials, every)
-    series = {task: bootstrap_band(result.interest[:, keep, i], resamples=PANEL_RESAMPLES)
-              for i, task in enumerate(TASKS)}
-    return {"x": keep + 1, "xlabel": "trial",
-            "groups": [{"title": f"Interest in each task, {result.n_seeds} seeds",
-                        "ylabel": "interest (mean, 95% band)", "series": series}]}

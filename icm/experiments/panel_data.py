@@ -34,12 +34,13 @@ import platform
 import numpy as np
 
 from icm import _validate
-from icm.envs._assets import ASSETS
+from icm.store import ASSETS
 from icm.experiments import actor_critic as _actor_critic
+from icm.experiments import actor_critic_results, goal_oriented_results
 from icm.experiments import goal_oriented as _goal_oriented
 from icm.experiments import rod_toppling as _rod_toppling
-from icm.experiments._progress import progress_bar
-from icm.stats import bootstrap_band, every_nth
+from icm.experiments.progress import progress_bar
+from icm.stats import PANEL_RESAMPLES, bootstrap_band, every_nth
 
 
 @dataclasses.dataclass(frozen=True)
@@ -126,13 +127,13 @@ PANELS = {
     "figure5": PanelSpec(
         title="Figure 5: interest in each task",
         run=_goal_oriented.run_goal_oriented,
-        grid_run=_goal_oriented.run_goal_oriented_grid, curves=_goal_oriented.panel_curves,
+        grid_run=_goal_oriented.run_goal_oriented_grid, curves=goal_oriented_results.panel_curves,
         slider_names=("epsilon", "window", "new_task_factor"), choice_names=(),
         fixed={"n_seeds": PANEL_SEEDS, "n_trials": _goal_oriented.CHAPTER_TRIALS, "seed": 0}),
     "figure6": PanelSpec(
         title="Figure 6: the actor-critic's prediction error",
         run=_actor_critic.run_actor_critic,
-        grid_run=_actor_critic.run_actor_critic_grid, curves=_actor_critic.panel_curves,
+        grid_run=_actor_critic.run_actor_critic_grid, curves=actor_critic_results.panel_curves,
         slider_names=("lr_actor", "lr_critic", "temperature"), choice_names=("variant",),
         fixed={"n_seeds": PANEL_SEEDS, "n_trials": PANEL_TRIALS, "seed": 0}),
     "figure7": PanelSpec(
@@ -265,14 +266,14 @@ def sweep_cell(result):
       {"red_first": share, "gap": mean, "gap_low": low, "gap_high": high, "gap_seeds":
       how many seeds mastered both}; the gap numbers are NaN if no seed did.
     """
-    _validate.instance("result", result, _goal_oriented.GoalOrientedResult,
+    _validate.instance("result", result, goal_oriented_results.GoalOrientedResult,
                        "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
     red, green = result.mastery_trial[:, 0], result.mastery_trial[:, 1]
     both = (red >= 1) & (green >= 1)
     out = {"red_first": result.red_first_fraction(), "gap_seeds": int(both.sum())}
     if both.any():
         mean, low, high = bootstrap_band((green - red)[both].astype(float),
-                                         resamples=_goal_oriented.PANEL_RESAMPLES)
+                                         resamples=PANEL_RESAMPLES)
         out.update(gap=float(mean), gap_low=float(low), gap_high=float(high))
     else:
         out.update(gap=float("nan"), gap_low=float("nan"), gap_high=float("nan"))
@@ -417,12 +418,14 @@ def spec_record(name):
     """What panel `name`'s grid is computed from, as JSON values: the run and curves
     functions (their dotted names), the grid's settings in order, the fixed arguments,
     `every`, and the defaults of the run's other arguments (learner settings
-    included). A stored grid is read only if the record it was written with equals
-    this one."""
+    included; not its hooks, `observe` and `make_env`, which see or build a run without
+    changing its numbers). A stored grid is read only if the record it was written with
+    equals this one."""
     panel = spec(name)
     others = {key: parameter.default
               for key, parameter in inspect.signature(panel.run).parameters.items()
-              if key not in ("progress", "settings") and key not in panel.fixed}
+              if key not in ("progress", "settings", "observe", "make_env")
+              and key not in panel.fixed}
     return _as_json({"run": f"{panel.run.__module__}.{panel.run.__name__}",
                      "curves": f"{panel.curves.__module__}.{panel.curves.__name__}",
                      "settings": panel.settings(), "fixed": panel.fixed,

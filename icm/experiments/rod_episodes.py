@@ -11,7 +11,8 @@ import numpy as np
 from icm import _streams, _validate
 from icm.envs import rods
 from icm.experiments._memory import FIXED_BYTES, PHYSICS_SCENE_BYTES
-from icm.experiments._progress import progress_bar
+from icm.experiments import loop
+from icm.experiments.loop import Transition
 from icm.learners import action_selection, interest, predictors
 from icm.stats import first_from_which
 
@@ -66,12 +67,15 @@ def memory_needed(n_rows, n_episodes, reward="prediction_error", window=interest
     learner = n_rows * (8 * pairs * (2 + 2 * n_rods) + LOOP_ROW_BYTES)
     # The reward's slope table, and its last errors, count (and progress) per pair: the
     # compiled loop keeps its own (the batched learner's, never written, take no memory).
-    kmax = 1 if reward == "prediction_error" else window
+    signal = interest.SIGNAL_CLASSES[reward]
+    kmax = 1 if signal.ONE_ERROR_REWARD else window
     learner += 8 * (kmax + 1) ** 2 * kmax
     if physics:
         learner += n_rows * 8 * pairs * (kmax + 2)
-    elif reward != "prediction_error":
-        learner += n_rows * 8 * pairs * ((window if reward == "learning_progress" else 1) + 1)
+    elif signal.KERNEL_FORMULA != "error":  # the compiled loop's kept errors and count
+        # (`_rods_kernel.kept_errors`, not imported here: it loads Numba)
+        kept_errors = window if signal.KERNEL_FORMULA == "slope" else 1
+        learner += n_rows * 8 * pairs * (kept_errors + 1)
     moves = n_episodes * (math.inf if max_moves is None else max_moves)  # at most
     streams = _streams.memory_bound(n_rows, moves * action_selection.DRAWS_PER_CHOICE)
     if physics:  # a simulated table per row
@@ -93,18 +97,169 @@ def toppling_pairs():
     return np.array(cells), np.array(actions), np.array(which)
 
 
+class RodEpisodesWorld:
+    """A batched rod table as the Q-learner plays it, for the one loop
+    (`icm.experiments.loop.play`): an episode starts with the hand over the start cell;
+    a state is the hand's cell (its number); a move's outcome is the rod it toppled (0
+    red, 1 blue, 2 wobbly, -1 none). A topple ends the episode for good (discount 0),
+    and so, with `off_grid="end"`, does a move off the grid (the hand stayed in its
+    cell); an episode also ends after `max_moves` moves (a time limit, discount 1).
+    The rows move independently.
+
+    Args:
+      env: a batched rod table, one row per run (as `icm.envs.rods.RodTableBatch`:
+        `start`, `new_episodes(rows)`, `move(rows, cells, actions)`).
+      max_moves: moves after which an episode without a topple ends, or None.
+      off_grid: what a move off the grid does, "stay" or "end".
+    """
+
+    def __init__(self, env, max_moves, off_grid=rods.OFF_GRID.default):
+        from icm.experiments import _rods_kernel  # here: it loads Numba
+
+        self.env = env
+        self.limit = _rods_kernel.NO_LIMIT if rods.check_max_moves(max_moves) is None \
+            else max_moves
+        self.off_grid_ends = rods.check_off_grid(off_grid) == "end"
+        self.moves = np.zeros(env.n_rows, dtype=np.int64)
+
+    def __len__(self):
+        return len(self.moves)
+
+    def reset(self, rows):
+        """New episodes in `rows`: their start cells."""
+        self.env.new_episodes(rows)
+        self.moves[rows] = 0
+        return np.full(len(rows), self.env.start)
+
+    def step(self, rows, cells, actions):
+        """Moves the hand of `rows` from `cells` by `actions`."""
+        next_cells, toppled = self.env.move(rows, cells, actions)
+        terminal = (toppled >= 0) | ((next_cells == cells) & self.off_grid_ends)
+        self.moves[rows] += 1
+        ended = terminal | (self.moves[rows] >= self.limit)
+        return Transition(next_cells, toppled, None, np.where(terminal, 0.0, 1.0), ended)
+
+
+class QLearners:
+    """Per-agent Q-learners (`icm.learners.q_learning.QLearner`, one per row) as the one
+    loop drives them: each row's agent chooses and learns through its own methods, in
+    row order, so that its numbers are its own. A step's `learned` is each row's
+    predictor errors on each rod, [rows, rod].
+
+    Args:
+      agents: one `QLearner` per row.
+    """
+
+    def __init__(self, agents):
+        self.agents = list(agents)
+        self.n_rods = self.agents[0].predictor.n_outputs
+
+    def act(self, rows, cells):
+        """Each row's move from its cell (epsilon-greedy on its Q-table)."""
+        return np.array([self.agents[r].select_action(int(c)) for r, c in
+                         zip(rows.tolist(), cells.tolist())], dtype=np.int64), None
+
+    def learn(self, step):
+        """Each row's agent learns its move (what toppled, the discount)."""
+        errors = np.zeros((len(step.rows), self.n_rods))
+        for k, (r, c, a, after, rod, discount) in enumerate(zip(
+                step.rows.tolist(), step.before.tolist(), step.action.tolist(),
+                step.after.tolist(), step.outcome.tolist(), np.broadcast_to(
+                    step.discount, step.rows.shape).tolist())):
+            observed = [1.0 if rod == i else 0.0 for i in range(self.n_rods)]
+            self.agents[r].learn(c, a, observed, after, discount)
+            errors[k] = self.agents[r].last_errors
+        return errors
+
+
+class EpisodeRecord:
+    """The observer that reduces per-agent Q-learners' episodes to what a
+    `RodTopplingResult` keeps (`summarize`): after each move the predictor's errors and
+    the moves off the grid, and after each episode what it ended with, its length, and
+    the compiled `icm.experiments._rods_kernel.record_episode` on the learner, as the
+    compiled loop of the tabular runs records it (which gives the same numbers).
+
+    Args:
+      agents: the `QLearner` of each row (read when its episode ends).
+      n_episodes: episodes per row.
+      snapshot_episodes: episodes after which to keep a snapshot (see `summarize`).
+    """
+
+    def __init__(self, agents, n_episodes, snapshot_episodes=()):
+        from icm.experiments import _rods_kernel  # here: it loads Numba
+
+        self.kernel = _rods_kernel
+        self.agents, self.snapshot_episodes = list(agents), snapshot_episodes
+        n = len(self.agents)
+        n_states, n_actions = self.agents[0].n_states, self.agents[0].n_actions
+        n_rods = self.agents[0].predictor.n_outputs
+        self.raw = {"toppled": np.full((n, n_episodes), -1, dtype=np.int64),
+                    "length": np.zeros((n, n_episodes), dtype=np.int64),
+                    "edges": np.zeros((n, n_episodes), dtype=np.int64),
+                    "errors": np.zeros((n, n_episodes, n_rods))}
+        self.found = np.full((n, n_states, n_actions, n_rods), n_episodes, dtype=np.int64)
+        self.record = _rods_kernel.recorder(n, n_episodes, n_states, n_actions, n_rods,
+                                            toppling_pairs(), snapshot_episodes,
+                                            WELL_PREDICTED_ERROR)
+        # The learners as tables, filled in for a row when its episode ends (what
+        # record_episode reads).
+        self.q = np.zeros((n, n_states, n_actions))
+        self.predictions = np.zeros((n, n_states, n_actions, n_rods))
+        self.last_error = np.full((n, n_states, n_actions), np.nan)
+        self.states = list(range(n_states))
+        self.moves = np.zeros(n, dtype=np.int64)
+        self.edges = np.zeros(n, dtype=np.int64)
+        self.error_sum = np.zeros((n, n_rods))
+
+    def __call__(self, step):
+        rows = step.rows
+        for i in range(self.error_sum.shape[1]):  # in order, as the loop adds
+            self.error_sum[rows, i] += step.learned[:, i]
+        self.moves[rows] += 1
+        self.edges[rows] += step.after == step.before  # a move off the grid: the hand stayed
+        if not step.ended.any():
+            return
+        ended = step.ended
+        done, top, ep = rows[ended], step.outcome[ended], step.episode[ended]
+        raw = self.raw
+        raw["toppled"][done, ep] = top
+        raw["length"][done, ep] = self.moves[done]
+        raw["edges"][done, ep] = self.edges[done]
+        raw["errors"][done, ep] = self.error_sum[done]
+        hit = top >= 0
+        pairs = (done[hit], step.before[ended][hit], step.action[ended][hit], top[hit])
+        self.found[pairs] = np.minimum(self.found[pairs], ep[hit])
+        n_actions = self.q.shape[2]
+        for row, row_episode, rod in zip(done.tolist(), ep.tolist(), top.tolist()):
+            learner = self.agents[row]
+            self.q[row] = learner.q
+            self.predictions[row] = learner.predictor.table(self.states)
+            self.last_error[row] = [[np.nan if e is None else e
+                                     for e in (learner.predictor.last_error(s, a)
+                                               for a in range(n_actions))]
+                                    for s in self.states]
+            self.kernel.record_episode(row, row_episode, rod, self.q, self.predictions,
+                                       self.last_error, self.found, self.record)
+        self.moves[done], self.edges[done], self.error_sum[done] = 0, 0, 0.0
+
+    def summary(self):
+        """The summary of the played episodes (`summarize`)."""
+        raw = dict(self.raw)
+        raw.update(zip(self.kernel.RECORD_FIELDS, self.record[5:]))
+        return summarize(raw, self.snapshot_episodes)
+
+
 def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), progress=False,
                   off_grid=rods.OFF_GRID.default, observe=None):
-    """Plays `n_episodes` episodes of each per-agent learner of `agents` (`QLearner` objects,
-    one per row of `env`, a batched rod table such as the physics one), and summarises
-    them (`summarize`).
+    """Plays `n_episodes` episodes of each per-agent learner of `agents` (`QLearner`
+    objects, one per row of `env`, a batched rod table such as the physics one) through
+    the one loop (`icm.experiments.loop.play`: `RodEpisodesWorld`, `QLearners`), and
+    summarises them (`EpisodeRecord`, `summarize`).
 
     The rows move independently: each acts at every iteration until it has played its
     episodes, starting a new episode (hand over the start cell) as soon as its last one
     ended with a topple, after `max_moves` moves (None: no limit), or with
-    `off_grid="end"` at a move off the grid (the hand stayed in its cell). After each episode the compiled
-    `icm.experiments._rods_kernel.record_episode` keeps what the result needs, as the
-    compiled loop of the tabular runs does (which gives the same numbers).
+    `off_grid="end"` at a move off the grid (the hand stayed in its cell).
 
     Args:
       env: a batched rod table, one row per agent (as `icm.envs.rods.RodTableBatch`:
@@ -115,9 +270,10 @@ def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), prog
       snapshot_episodes: episodes after which to keep a snapshot (see `summarize`).
       progress: show a progress bar over the episodes.
       off_grid: what a move off the grid does, "stay" or "end".
-      observe: None, or a function called after every move as
-        `observe(rows, cells, actions, next_cells, toppled)` (arrays over the rows that
-        moved; `toppled` is the rod toppled, -1 for none): a recorder, for example.
+      observe: None, or a function called with every move, a
+        `icm.experiments.loop.Step` of the rows that moved (its `before` and `after`
+        the cells, `action` the moves, `outcome` the rod toppled, -1 for none, and
+        `learned` the predictor's errors on each rod): a recorder, for example.
 
     Returns:
       The summary of the episodes (`summarize`).
@@ -125,86 +281,18 @@ def play_episodes(env, agents, n_episodes, max_moves, snapshot_episodes=(), prog
     Raises:
       ValueError: for a bad `n_episodes`, `max_moves` or `off_grid`.
     """
-    from icm.experiments import _rods_kernel  # here: it loads Numba
-
     n_episodes = _validate.integer_at_least("n_episodes", n_episodes, 1)
     observe = _validate.function("observe", observe)
-
-    n = len(agents)
-    n_states, n_actions = agents[0].n_states, agents[0].n_actions
-    n_rods = agents[0].predictor.n_outputs
-    raw = {"toppled": np.full((n, n_episodes), -1, dtype=np.int64),
-           "length": np.zeros((n, n_episodes), dtype=np.int64),
-           "edges": np.zeros((n, n_episodes), dtype=np.int64),
-           "errors": np.zeros((n, n_episodes, n_rods))}
-    limit = _rods_kernel.NO_LIMIT if rods.check_max_moves(max_moves) is None else max_moves
-    off_grid_ends = rods.check_off_grid(off_grid) == "end"
-    found = np.full((n, n_states, n_actions, n_rods), n_episodes, dtype=np.int64)
-    record = _rods_kernel.recorder(n, n_episodes, n_states, n_actions, n_rods,
-                                   toppling_pairs(), snapshot_episodes, WELL_PREDICTED_ERROR)
-    # The learners as tables, filled in for a row when its episode ends (what
-    # record_episode reads).
-    q = np.zeros((n, n_states, n_actions))
-    predictions = np.zeros((n, n_states, n_actions, n_rods))
-    last_error = np.full((n, n_states, n_actions), np.nan)
-    states = list(range(n_states))
-    state = np.full(n, env.start)
-    episode = np.zeros(n, dtype=np.int64)
-    moves = np.zeros(n, dtype=np.int64)
-    edges = np.zeros(n, dtype=np.int64)
-    error_sum = np.zeros((n, n_rods))
-    active = np.arange(n)
-    env.new_episodes(active)
-    bar = progress_bar(None, n * n_episodes, "Q-learner on the rods", progress, unit="episode")
-    while active.size:
-        cells = state[active]
-        actions = np.array([agents[r].select_action(int(c)) for r, c in zip(active, cells)],
-                           dtype=np.int64)
-        next_cells, toppled = env.move(active, cells, actions)
-        if observe is not None:
-            observe(active, cells, actions, next_cells, toppled)
-        off = next_cells == cells  # a move off the grid: the hand stayed
-        terminal = (toppled >= 0) | (off & off_grid_ends)
-        for r, c, a, after, rod, last in zip(active.tolist(), cells.tolist(),
-                                             actions.tolist(), next_cells.tolist(),
-                                             toppled.tolist(), terminal.tolist()):
-            observed = [1.0 if rod == i else 0.0 for i in range(n_rods)]
-            agents[r].learn(c, a, observed, after, 0.0 if last else 1.0)
-            for i, error in enumerate(agents[r].last_errors):  # in order, as the loop adds
-                error_sum[r, i] += error
-        moves[active] += 1
-        edges[active] += off
-        state[active] = next_cells
-        ended = terminal | (moves[active] >= limit)
-        if not ended.any():
-            continue
-        done, top, ep = active[ended], toppled[ended], episode[active[ended]]
-        raw["toppled"][done, ep] = top
-        raw["length"][done, ep] = moves[done]
-        raw["edges"][done, ep] = edges[done]
-        raw["errors"][done, ep] = error_sum[done]
-        hit = top >= 0
-        pairs = (done[hit], cells[ended][hit], actions[ended][hit], top[hit])
-        found[pairs] = np.minimum(found[pairs], ep[hit])
-        for row, row_episode, rod in zip(done.tolist(), ep.tolist(), top.tolist()):
-            learner = agents[row]
-            q[row] = learner.q
-            predictions[row] = learner.predictor.table(states)
-            last_error[row] = [[np.nan if e is None else e
-                                for e in (learner.predictor.last_error(s, a)
-                                          for a in range(n_actions))] for s in states]
-            _rods_kernel.record_episode(row, row_episode, rod, q, predictions, last_error,
-                                        found, record)
-        state[done], moves[done], edges[done], error_sum[done] = env.start, 0, 0, 0.0
-        episode[done] += 1
-        env.new_episodes(done)
-        active = active[episode[active] < n_episodes]
+    record = EpisodeRecord(agents, n_episodes, snapshot_episodes)
+    bar = loop.progress(len(agents) * n_episodes, "Q-learner on the rods", progress,
+                        "episode")
+    try:
+        loop.play(RodEpisodesWorld(env, max_moves, off_grid), QLearners(agents), n_episodes,
+                  [record, bar, observe])
+    finally:
         if bar is not None:
-            bar.update(len(done))
-    if bar is not None:
-        bar.close()
-    raw.update(zip(_rods_kernel.RECORD_FIELDS, record[5:]))
-    return summarize(raw, snapshot_episodes)
+            bar.close()
+    return record.summary()
 
 
 def summarize(raw, snapshot_episodes=()):

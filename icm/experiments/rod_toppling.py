@@ -1,8 +1,8 @@
 """Q-learning paid by a linear predictor's errors on the rods, over many seeds (paper
 sections 2.2, 3.3 and 4.2, Figure 7); with other intrinsic rewards (`reward=`) and the
-wobbly rod (`wobbly_rod=True`) for the chapter "Which curiosity?". The episodes' loop
-and summary are in `icm.experiments.rod_episodes` (its names are importable here
-too)."""
+wobbly rod (`wobbly_rod=True`) for the chapter "Which curiosity?". The episodes'
+world, learners and record for the one loop, and their summary, are in
+`icm.experiments.rod_episodes`."""
 
 import dataclasses
 
@@ -12,11 +12,11 @@ from icm import _streams, _validate
 from icm._settings import with_settings
 from icm.envs import rods
 from icm.experiments._memory import check_memory
-from icm.experiments._progress import progress_bar
-from icm.experiments._seeding import run_seeds
-from icm.experiments.rod_episodes import (  # noqa: F401 (re-exported: the loop's names)
-    LOOP_ROW_BYTES, MOMENTS, N_ACTIONS, N_STATES, RODS, WELL_PREDICTED_ERROR, memory_needed,
-    play_episodes, summarize, toppling_pairs)
+from icm.experiments import loop
+from icm.experiments.seeding import run_seeds
+from icm.experiments.rod_episodes import (MOMENTS, N_ACTIONS, N_STATES, RODS,
+                                          WELL_PREDICTED_ERROR, memory_needed, play_episodes,
+                                          summarize, toppling_pairs)
 from icm.learners import interest, q_learning
 from icm.stats import (PANEL_RESAMPLES, bootstrap_band, comes_first, every_nth,
                        first_from_which)
@@ -231,28 +231,6 @@ class RodTopplingResult:
         story = self.tells_the_papers_story(reading)
         return int(np.argmax(story)) if story.any() else -1
 
-    def describe_order(self, run, reading="all"):
-        """In words, when red was predicted well (in `reading`) and blue first toppled
-        in one run (a seed index), in the order they came: e.g. "blue is first
-        toppled at episode 29, before red is predicted well at episode 43"."""
-        run = _validate.integer_in_range("run", run, 0, self.n_seeds - 1)
-        red = int(self.well_predicted(reading)[run, 0])
-        blue = int(self.first_topple("blue")[run])
-        red_text = f"red is predicted well at episode {red}"
-        blue_text = f"blue is first toppled at episode {blue}"
-        if red < 1 and blue < 1:
-            return (f"neither is red predicted well nor blue toppled in "
-                    f"{self.n_episodes} episodes")
-        if red < 1:
-            return f"{blue_text}, and red is never predicted well in {self.n_episodes} episodes"
-        if blue < 1:
-            return f"{red_text}, and blue is never toppled in {self.n_episodes} episodes"
-        if red < blue:
-            return f"{red_text}, before blue is first toppled, at episode {blue}"
-        if blue < red:
-            return f"{blue_text}, before {red_text}"
-        return f"red is predicted well and blue first toppled in the same episode, {red}"
-
     def seed_summaries(self):
         """One dict per seed of the numbers a sweep compares: the episode from which
         each rod is predicted well (the issue's reading "all"; -1 if never), the gap
@@ -290,22 +268,6 @@ class RodTopplingResult:
         out["mean_episode_length"] = float(self.episode_length.mean())
         return out
 
-    def claims(self):
-        """{claim name: whether it holds in this run}, for each of
-        `icm.chapters.rod_toppling.CLAIMS` (checked on the book's run when it is built, and
-        by the tests on their own seeds)."""
-        s = self.summary()
-        return {
-            "red_toppled_first": s["red_toppled_first"] > 0.5
-            and s["first_red_median"] < s["first_blue_median"],
-            "red_learned_first": s["red_first_toppled"] > 0.5
-            and s["red_well_median_toppled"] < s["blue_well_median_toppled"],
-            "red_learned_first_all": s["red_first"] > 0.5
-            and s["red_well_median"] < s["blue_well_median"],
-            "then_blue": s["blue_share_second_half"] > s["blue_share_first_10"],
-            "red_in_the_way": s["red_share_second_half"] > s["blue_share_second_half"],
-        }
-
 
 def _median_of_found(episodes):
     found = episodes[episodes >= 1]
@@ -339,8 +301,8 @@ def _check_run_arguments(n_seeds, n_episodes, wobbly_rod, physics, start_cell, m
         first_run=_validate.integer("first_run", first_run, 0, _validate.MAX_SEED))
     _validate.boolean("progress", progress)
     checked = {**checked, **settings.as_dict()}
-    if checked["max_moves"] is None and checked["reward"] != "random" and \
-            np.any(np.asarray(checked["epsilon"]) == 0):
+    learns = interest.SIGNAL_CLASSES[checked["reward"]].LEARNS_VALUES
+    if checked["max_moves"] is None and learns and np.any(np.asarray(checked["epsilon"]) == 0):
         raise ValueError("max_moves=None (no time limit) needs epsilon > 0: a learner that "
                          "never moves at random can walk in circles for ever, and its "
                          "episode would never end; got epsilon "
@@ -363,6 +325,7 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
                      first_run=0,
                      progress=True,
                      off_grid=rods.OFF_GRID.default,
+                     observe=None,
                      settings=None):
     """Runs the curious Q-learner on the rods, once per seed.
 
@@ -397,6 +360,11 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
       progress: show a progress bar when the run lasts over a second.
       off_grid: what a move off the grid does, "stay" (the hand stays where it is, the
         default) or "end" (the episode ends); see `icm.envs.rods.rules.OFF_GRID`.
+      observe: None, or a function called with every move, a
+        `icm.experiments.loop.Step` of the rows that moved (see
+        `rod_episodes.play_episodes`). On the tabular twin, a run with an observer plays
+        the per-agent learners through the one loop instead of the compiled loop: the
+        same numbers, move for move (a test checks it), more slowly.
       settings: the learner's settings, a `icm.learners.q_learning.QLearnerSettings`
         (or give them one by one as keyword arguments, listed below).
 
@@ -419,34 +387,34 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
     names = MOMENTS + tuple(f"episode {e}" for e in extra)
     truth = true_outcomes()
 
+    observe = _validate.function("observe", observe)
     seeds = run_seeds(seed, n_seeds, 2, first=first_run)
-    env_seeds, agent_seeds = [s[0] for s in seeds], [s[1] for s in seeds]
-    n_rods = len(rods.rod_names(wobbly_rod))
-    if physics:  # the physics is the cost: the per-agent learners play it
-        env = rods.PhysicsRodTableBatch(n_seeds, start_cell, wobbly_rod, env_seeds)
-        agents = [q_learning.QLearner.from_settings(N_STATES, N_ACTIONS, n_rods, learner, s)
-                  for s in agent_seeds]
-        played = play_episodes(env, agents, n_episodes, max_moves, extra, progress, off_grid)
-    else:
+    if physics or observe is not None:  # the per-agent learners through the one loop
+        env, agents = make(settings, seeds, learner)
+        played = play_episodes(env, agents, n_episodes, max_moves, extra, progress, off_grid,
+                               observe)
+    else:  # the compiled loop
         from icm.experiments import _rods_kernel  # here: it loads Numba
 
         _rods_kernel.check_reward(learner.reward)
-        env = rods.RodTableBatch(n_seeds, start_cell, wobbly_rod, env_seeds)
-        bar = progress_bar(None, n_seeds * n_episodes, "Q-learner on the rods", progress,
-                           unit="episode")
+        env = rods.RodTableBatch(n_seeds, start_cell, wobbly_rod, [s[0] for s in seeds])
+        n_rods = len(rods.rod_names(wobbly_rod))
+        counter = loop.progress(n_seeds * n_episodes, "Q-learner on the rods", progress,
+                                "episode")
         q = np.full((n_seeds, N_STATES, N_ACTIONS), float(learner.initial_q))
         predictions = np.zeros((n_seeds, N_STATES, N_ACTIONS, n_rods))
         last_error = np.full((n_seeds, N_STATES, N_ACTIONS), np.nan)  # nan: untried
         raw = _rods_kernel.play_all(
-            _streams.Streams(agent_seeds), q, predictions, last_error,
+            _streams.Streams([s[1] for s in seeds]), q, predictions, last_error,
             learner.epsilon, learner.alpha, learner.gamma, learner.predictor_lr,
             env.next_cell, env.topples, rods.cell_number(start_cell), max_moves, n_episodes,
-            toppling_pairs(), extra, WELL_PREDICTED_ERROR, bar=bar, reward=learner.reward,
+            toppling_pairs(), extra, WELL_PREDICTED_ERROR,
+            bar=None if counter is None else counter.bar, reward=learner.reward,
             window=learner.window,
             wobbles=env.wobbles if wobbly_rod else None, env_streams=env.streams,
             off_grid=off_grid)
-        if bar is not None:
-            bar.close()
+        if counter is not None:
+            counter.close()
         played = summarize(raw, extra)
     rod_error = played["rod_error"]
     predicted_well = first_from_which(np.moveaxis(rod_error < WELL_PREDICTED_ERROR, 1, 2))
@@ -463,6 +431,36 @@ def run_rod_toppling(n_seeds=100, n_episodes=300,
                              rod_error, played["rod_error_toppled"], predicted_well,
                              played["predicted_well_toppled"], names,
                              played["snapshot_episode"], q_out, p_out, c_out)
+
+
+def make(settings, seeds, learner=None):
+    """The rod tables and the learners of a run of `run_rod_toppling`, one row per seed,
+    as its physics runs (and its runs with an observer) build them: the per-agent
+    learners (the tabular runs' compiled loop keeps the same learners as arrays).
+
+    Args:
+      settings: the run's settings, as a result keeps them (`physics`, `start_cell`,
+        `wobbly_rod`, and the learner's).
+      seeds: one [table seed, learner seed] per row (`icm.experiments.seeding.
+        run_seeds(seed, n_seeds, 2)`).
+      learner: the learner's settings, a `icm.learners.q_learning.QLearnerSettings`
+        (None: those of `settings`).
+
+    Returns:
+      (env, agents): the batched rod table (`icm.envs.rods.RodTableBatch`, or
+      `PhysicsRodTableBatch` with physics) and one `icm.learners.q_learning.QLearner`
+      per row.
+    """
+    if learner is None:
+        learner = q_learning.QLearnerSettings(
+            **{name: settings[name] for name in q_learning.QLearnerSettings.names()})
+    n_rows = len(seeds)
+    table = rods.PhysicsRodTableBatch if settings["physics"] else rods.RodTableBatch
+    env = table(n_rows, settings["start_cell"], settings["wobbly_rod"], [s[0] for s in seeds])
+    n_rods = len(rods.rod_names(settings["wobbly_rod"]))
+    agents = [q_learning.QLearner.from_settings(N_STATES, N_ACTIONS, n_rods, learner, s[1])
+              for s in seeds]
+    return env, agents
 
 
 def _to_grid(history):

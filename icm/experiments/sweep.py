@@ -1,7 +1,7 @@
 """Hyperparameter sweeps and studies: a grid of settings times seeds (`sweep`), or any
 list of units of work (`run_units`), on this machine (joblib) or on a Dask cluster.
 
-`run_units` is what the long studies run on (`icm.experiments.studies`): each unit is
+`run_units` is what the long studies run on (`icm.studies`): each unit is
 computed by a function of the unit alone (its seeds come from its identity, never from
 the order in which workers finish), every finished unit is appended to a journal, so a
 study killed half-way resumes from the units it saved, and the results come back in
@@ -16,7 +16,7 @@ import os
 import time
 
 from icm import _validate
-from icm.experiments._progress import progress_bar
+from icm.experiments.progress import progress_bar
 
 BACKENDS = ("joblib", "dask")
 
@@ -142,7 +142,7 @@ def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=N
       per_seed: None (the run's own `seed_summaries()`), or a function that takes a
         run's result and returns one dict per seed of the numbers to keep (a
         module-level function, so that joblib and Dask workers can unpickle it), e.g.
-        `icm.experiments.robustness.goal_oriented_claims`.
+        `icm.studies.robustness.goal_oriented_claims`.
       **fixed: arguments of `run_fn` held fixed, e.g. ``n_trials=60``.
 
     Returns:

@@ -5,7 +5,8 @@ shows as a PNG), so the library never touches the global backend, a notebook sho
 each figure exactly once, and a figure redrawn by a widget is not kept alive by pyplot.
 """
 
-from icm.figures._common import TASK_COLOURS, Figure, new_figure, plot_mean_band
+from icm.figures._common import (DISPLAY_WIDTH_PX, TASK_COLOURS, Figure, new_figure,
+                                 plot_mean_band)
 from icm.figures.actor_critic import (figure3, figure4, figure6, figure6_grid,
                                       practice_figure)
 from icm.figures.buttons import draw_console, figure2, outcome_table_figure, trial_figure

@@ -8,8 +8,8 @@ import matplotlib.patches
 import numpy as np
 
 from icm import _validate
-from icm.experiments import actor_critic as _actor_critic
-from icm.experiments.actor_critic import ActorCriticResult
+from icm.experiments import actor_critic_results as _actor_critic
+from icm.experiments.actor_critic_results import ActorCriticResult
 from icm.experiments.results import check_results
 from icm.figures._common import (TASK_COLOURS, check_result, check_title, figure_and_axes,
                                  new_figure, plot_mean_band, series_style)

@@ -11,7 +11,8 @@ from icm import _validate
 from icm.envs import buttons, icub, rods
 from icm.experiments import curiosity as _curiosity
 from icm.experiments.curiosity import RewardComparison, SignalComparison
-from icm.experiments.results import percent
+from icm.chapters import curiosity as chapters_curiosity
+from icm.chapters.words import percent
 from icm.experiments.rod_toppling import WELL_PREDICTED_ERROR
 from icm.figures._common import (LINESTYLES, MARKERS, TASK_COLOURS, check_result, new_figure,
                                  legend_below, plot_mean_band, series_style)
@@ -125,7 +126,7 @@ def _noisy_share(result):
 
 
 def _chance_line(ax):
-    ax.axhline(_curiosity.CHANCE_SHARE, color="black", linestyle=":", linewidth=1.2,
+    ax.axhline(chapters_curiosity.CHANCE_SHARE, color="black", linestyle=":", linewidth=1.2,
                label="chance, 1 in 6", zorder=3)
 
 
@@ -182,7 +183,7 @@ def noisy_share_curves(runs, title=None):
         raise _validate.ArgumentTypeError(
             f"runs must be a non-empty dict {{label: GoalOrientedResult}}, got "
             f"{_validate.show(runs)}")
-    from icm.experiments.goal_oriented import GoalOrientedResult
+    from icm.experiments.goal_oriented_results import GoalOrientedResult
 
     fig, ax = new_figure(width=6.0, height=3.4)
     for label, result in runs.items():

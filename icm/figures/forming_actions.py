@@ -9,10 +9,14 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import buttons
-from icm.experiments import goal_babbling as _babbling
-from icm.experiments.goal_babbling import GoalBabblingResult
-from icm.experiments.results import check_results, percent
+from icm.experiments import babbling_results, babbling_space
+from icm.experiments.babbling_results import GoalBabblingResult
+from icm.chapters.words import percent
+from icm.experiments.results import check_results
 from icm.learners import goal_choice
+from icm.learners.goal_babbling import N_BOOTSTRAP
+from icm.studies.forming_actions import arms
+from icm.studies.forming_actions import remedies as remedies_study
 from icm.figures._common import (LINESTYLES, MARKERS, check_result, figure_and_axes, legend_below,
                                  new_figure, plot_mean_band)
 
@@ -67,8 +71,8 @@ def _draw_console(ax, geometry):
                                                linewidth=0.8, zorder=0))
         ax.text(cap[1], cap[0] - half[0] - 0.012, str(b), ha="center", va="top",
                 fontsize=7, color="#555555")
-    ax.set_xlim(_babbling.GOAL_HIGH[1], _babbling.GOAL_LOW[1])  # robot's left on the left
-    ax.set_ylim(_babbling.GOAL_LOW[0], _babbling.GOAL_HIGH[0])
+    ax.set_xlim(babbling_space.GOAL_HIGH[1], babbling_space.GOAL_LOW[1])  # robot's left on the left
+    ax.set_ylim(babbling_space.GOAL_LOW[0], babbling_space.GOAL_HIGH[0])
     ax.set_aspect("equal")
     ax.set_xticks([])
     ax.set_yticks([])
@@ -86,7 +90,7 @@ def coverage_figure(results, early=0.2):
     """
     check_results("results", results, GoalBabblingResult)
     early = _validate.real("early", early, 0.0, 1.0, low_open=True, high_open=True)
-    geometry = _babbling.console_geometry()
+    geometry = babbling_space.console_geometry()
     fig, axes = new_figure(width=7.6, height=2.35 * len(results) + 0.4, ncols=2,
                            nrows=len(results), squeeze=False)
     for row, (label, result) in zip(axes, results.items()):
@@ -132,12 +136,12 @@ def goal_choice_figure(result, n_stretches=8):
                          f"interest ({', '.join(n for n, s in goal_choice.STRATEGIES.items() if s.by_interest)}), "
                          f"got {result.strategy!r}")
     n_stretches = _validate.integer_at_least("n_stretches", n_stretches, 1)
-    start = min(_babbling.N_BOOTSTRAP, result.n_rollouts - 1)
+    start = min(N_BOOTSTRAP, result.n_rollouts - 1)
     if result.n_rollouts - start < n_stretches:
         raise ValueError(f"n_stretches must be at most the {result.n_rollouts - start} "
                          f"rollouts with goals, got {n_stretches}")
-    order = list(reversed(range(len(_babbling.COLUMN_NAMES))))  # the robot's left on top
-    names = [_babbling.COLUMN_NAMES[c] for c in order]
+    order = list(reversed(range(len(babbling_space.COLUMN_NAMES))))  # the robot's left on top
+    names = [babbling_space.COLUMN_NAMES[c] for c in order]
     # One above the other at the page's width: side by side, the labels would be shrunk
     # to unreadable text in the book.
     fig, (left, right) = new_figure(width=7.4, height=6.4, nrows=2)
@@ -243,7 +247,7 @@ STUDY_COLOURS = {"learning progress": "#e66101", "where the finger stopped only"
                  "depth weight 1": "#fdb863", "depth weight 3": "#b35806",
                  "LWLR inverse model": "#1b9e77", "competence progress": "#a6761d",
                  "splitting regions": "#7570b3", "return home simulated": "#e7298a"}
-"""One colour per variant of the study (`icm.experiments.goal_babbling_study`)."""
+"""One colour per variant of the study (`icm.studies.forming_actions.strategies`)."""
 
 
 def presses_formed_figure(study, labels, roots="tuning", ax=None):
@@ -251,17 +255,15 @@ def presses_formed_figure(study, labels, roots="tuning", ax=None):
     over the study's seeds with its 95% band, one curve per variant.
 
     Args:
-      study: the study (`icm.experiments.goal_babbling_study.load_study()`).
+      study: the study (`icm.studies.forming_actions.strategies.load_study()`).
       labels: the variants to draw, a non-empty list of the study's labels.
       roots: "tuning" (the study's `TUNING_ROOTS`) or "held_out" (`HELD_OUT_ROOTS`,
         run by `HELD_OUT_VARIANTS` only).
       ax: a matplotlib Axes to draw on, or None for a new figure.
     """
-    from icm.experiments import goal_babbling_study
-
     if not isinstance(study, dict) or "runs" not in study or "budgets" not in study:
-        raise _validate.ArgumentTypeError(f"study must be a study dict (from icm.experiments."
-                                          f"goal_babbling_study.load_study), got "
+        raise _validate.ArgumentTypeError(f"study must be a study dict (from icm.studies."
+                                          f"forming_actions.strategies.load_study), got "
                                           f"{_validate.show(study)}")
     if isinstance(labels, str) or not isinstance(labels, (list, tuple)) or not labels:
         raise _validate.ArgumentTypeError(f"labels must be a non-empty list of the study's "
@@ -269,8 +271,7 @@ def presses_formed_figure(study, labels, roots="tuning", ax=None):
     for label in labels:
         _validate.one_of("labels[i]", label, tuple(study["runs"]))
     roots = _validate.one_of("roots", roots, ("tuning", "held_out"))
-    root_seeds = goal_babbling_study.TUNING_ROOTS if roots == "tuning" else \
-        goal_babbling_study.HELD_OUT_ROOTS
+    root_seeds = arms.TUNING_ROOTS if roots == "tuning" else arms.HELD_OUT_ROOTS
     for label in labels:
         missing = [r for r in root_seeds if str(r) not in study["runs"][label]]
         if missing:
@@ -300,7 +301,7 @@ REMEDY_COLOURS = {"random motor babbling": "#7f7f7f", "random goal babbling": "#
                   "learning progress": "#e66101", "growing up": "#1b9e77",
                   "shown button 2": "#c2a5cf", "shown buttons 0 and 4": "#9970ab",
                   "shown all five": "#40004b"}
-"""One colour per condition of `icm.experiments.remedies_study` (the teacher's in
+"""One colour per condition of `icm.studies.forming_actions.remedies` (the teacher's in
 purples, darker for more buttons shown)."""
 REMEDY_STYLES = {"random motor babbling": (":", "x"), "random goal babbling": ("-.", "^"),
                  "learning progress": ("-", "o"), "growing up": ("--", "s"),
@@ -315,15 +316,12 @@ logarithmic scale from 10 to the budget."""
 
 
 def _check_remedy_labels(study, labels):
-    from icm.experiments import remedies_study
-
     remedies_study.check_study(study)
     if isinstance(labels, str) or not isinstance(labels, (list, tuple)) or not labels:
         raise _validate.ArgumentTypeError(f"labels must be a non-empty list of the study's "
                                           f"conditions, got {_validate.show(labels)}")
     for label in labels:
         _validate.one_of("labels[i]", label, tuple(study["runs"]))
-    return remedies_study
 
 
 def _median_word(median):
@@ -339,12 +337,12 @@ def first_press_figure(study, labels):
     in that condition.
 
     Args:
-      study: the study (`icm.experiments.remedies_study.load_study()`).
+      study: the study (`icm.studies.forming_actions.remedies.load_study()`).
       labels: the conditions to draw, a non-empty list of the study's labels.
     """
     import matplotlib.lines
 
-    remedies_study = _check_remedy_labels(study, labels)
+    _check_remedy_labels(study, labels)
     n_rollouts = study["n_rollouts"]
     x = np.unique(np.round(np.geomspace(10, n_rollouts, FIRST_PRESS_POINTS)))
     fig, axes = new_figure(width=7.6, height=5.6, ncols=3, nrows=2, sharey=True)
@@ -389,7 +387,7 @@ def first_press_figure(study, labels):
                     title=f"{' or '.join(map(str, sorted(n_seeds)))} seeds each")
     medians = "; ".join(
         f"{label}: " + ", ".join(_median_word(m) for m in
-                                 _babbling.median_first_press(firsts[label], n_rollouts))
+                                 babbling_results.median_first_press(firsts[label], n_rollouts))
         for label in labels)
     return fig.describe(
         "When the robot first pressed each button itself, one panel per button: the "
@@ -400,26 +398,26 @@ def first_press_figure(study, labels):
 def coverage_maps_figure(study, labels):
     """Where the robot's own rollouts (demonstrations left out) ended with the finger on
     the console or a cap, seen from above (robot at the bottom, its left on the
-    left): one row per condition, the first `remedies_study.EARLY` rollouts on the
+    left): one row per condition, the first `arms.EARLY` rollouts on the
     left and all of them on the right; the count per square centimetre over all the
     study's seeds, on a logarithmic colour scale shared by every map. Outlines: the
     console and its caps, numbered under the maps; crosses: the press goals.
 
     Args:
-      study: the study (`icm.experiments.remedies_study.load_study()`).
+      study: the study (`icm.studies.forming_actions.remedies.load_study()`).
       labels: the conditions to draw, a non-empty list of the study's labels.
     """
     import matplotlib.colors
 
-    remedies_study = _check_remedy_labels(study, labels)
-    x_edges, y_edges = remedies_study.coverage_edges()
+    _check_remedy_labels(study, labels)
+    x_edges, y_edges = arms.coverage_edges()
     pooled = {label: remedies_study.pooled(study, label) for label in labels}
     counts = [pooled[label]["coverage"] for label in labels]
     top = max(1, max(int(c[stretch].max()) for c in counts for stretch in c))
     norm = matplotlib.colors.LogNorm(vmin=1, vmax=top)
     fig, axes = new_figure(width=7.6, height=1.9 * len(labels) + 1.0, ncols=2,
                            nrows=len(labels), squeeze=False)
-    geometry = _babbling.console_geometry()
+    geometry = babbling_space.console_geometry()
     centre, half = geometry["console_centre"], geometry["console_half"]
     caps = geometry["caps"]
     mesh = None
@@ -444,7 +442,7 @@ def coverage_maps_figure(study, labels):
             ax.set_xticks(caps[:, 1], [str(b) for b in range(len(caps))])
             ax.tick_params(axis="x", length=0)
             ax.set_yticks([])
-            when = f"first {remedies_study.EARLY}" if stretch == "early" else \
+            when = f"first {arms.EARLY}" if stretch == "early" else \
                 f"all {n_rollouts}"
             ax.set_title(f"{label}: {when}")
     bar = fig.colorbar(mesh, ax=axes, location="bottom", shrink=0.7, aspect=30,
@@ -459,7 +457,7 @@ def coverage_maps_figure(study, labels):
         shown = len(remedies_study.shown_buttons(label))
         parts.append(
             f"{label}: {int(entry['coverage']['early'].sum())} of the first "
-            f"{n_seeds * (remedies_study.EARLY - shown)} own rollouts of its {n_seeds} seeds "
+            f"{n_seeds * (arms.EARLY - shown)} own rollouts of its {n_seeds} seeds "
             f"ended on the console, {int(entry['coverage']['all'].sum())} of all "
             f"{n_seeds * (n_rollouts - shown)}")
     return fig.describe(

@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from icm.experiments import goal_oriented as _goal_oriented
-from icm.experiments.goal_oriented import GoalOrientedResult
+from icm.experiments import goal_oriented_results as _goal_oriented
+from icm.experiments.goal_oriented_results import GoalOrientedResult
 from icm.experiments.results import check_results
 from icm.figures._common import (TASK_COLOURS, check_result, check_title, figure_and_axes,
                                  new_figure, plot_mean_band,

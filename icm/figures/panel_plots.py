@@ -9,7 +9,7 @@ import matplotlib.ticker
 import numpy as np
 
 from icm import _validate
-from icm.experiments import actor_critic, goal_oriented, rod_toppling
+from icm.experiments import actor_critic_results, goal_oriented_results, rod_toppling
 from icm.figures._common import TASK_COLOURS, Figure
 
 SERIES_COLOURS = {"red": TASK_COLOURS["red"], "green": TASK_COLOURS["green"],
@@ -112,12 +112,12 @@ def panel_figure(name, curves):
 
 def figure5_panel_figure(result):
     """The Figure 5 panel: mean interest in each task with its 95% band."""
-    return panel_figure("figure5", goal_oriented.panel_curves(result))
+    return panel_figure("figure5", goal_oriented_results.panel_curves(result))
 
 
 def figure6_panel_figure(result):
     """The Figure 6 panel: mean prediction error on each task with its 95% band."""
-    return panel_figure("figure6", actor_critic.panel_curves(result))
+    return panel_figure("figure6", actor_critic_results.panel_curves(result))
 
 
 def figure7_panel_figure(result):

@@ -7,11 +7,11 @@ import matplotlib.colors
 import matplotlib.patches
 import numpy as np
 
-from icm.experiments.results import percent
-from icm.experiments.robustness import RobustnessResult
+from icm.chapters.words import percent
+from icm.studies.maps import RobustnessResult
 from icm.figures._common import Figure, check_result, check_title
 
-_MADE_BY = "icm.experiments.robustness.run_robustness"
+_MADE_BY = "icm.studies.robustness.run_robustness"
 COLOURMAP = "PuOr"
 """Colour map of the shares: orange below a claim's threshold, purple above it, white
 at it."""
@@ -59,7 +59,7 @@ def robustness_map(result, title=None):
     of claims leaves a column free, the map draws its key there (`KEY`).
 
     Args:
-      result: a `RobustnessResult` (from `icm.experiments.robustness.run_robustness`).
+      result: a `RobustnessResult` (from `icm.studies.robustness.run_robustness`).
       title: the figure's title (default: the study's title and seeds).
 
     Returns:

@@ -23,11 +23,14 @@ needs outcomes to start from). Our choice; the paper has no goal babbling."""
 class GoalBabblingSettings(Settings):
     """The goal-babbling learner's settings: its goal-choice strategy and, for learning
     progress, its measure, regions, epsilon and window; its inverse model and
-    exploration noise; whether it grows up. Each is a `icm._settings.Setting`, declared
-    where it is used (`icm.learners.goal_choice`, `sensorimotor`, `maturation`): see
+    exploration noise; whether it grows up, and its maturational clock's settings
+    (`maturation_start`, `maturation_window`, `maturation_plateau`, `maturation_step`:
+    `icm.learners.maturation.MaturationSettings`' own, under the names
+    `MATURATION_FIELDS` gives them). Each is a `icm._settings.Setting`, declared where it
+    is used (`icm.learners.goal_choice`, `sensorimotor`, `maturation`): see
     `GoalBabblingSettings.specs()` for its range and where it comes from (the paper has
-    no goal babbling). `icm.experiments.run_goal_babbling` and the command line read
-    it."""
+    no goal babbling). `icm.experiments.run_goal_babbling`, the studies (an arm's
+    arguments) and the command line read it."""
 
     strategy: str = setting_from(_goal_choice.STRATEGY, per_row=False)
     exploration_noise: float = setting_from(_sensorimotor.EXPLORATION_NOISE, per_row=False)
@@ -37,6 +40,22 @@ class GoalBabblingSettings(Settings):
     measure: str = setting_from(_goal_choice.MEASURE, per_row=False)
     regions: str = setting_from(_goal_choice.REGIONS, per_row=False)
     maturation: str = setting_from(_maturation.MATURATION, per_row=False)
+    maturation_start: float = setting_from(_maturation.MaturationSettings.spec("start"))
+    maturation_window: int = setting_from(_maturation.MaturationSettings.spec("window"))
+    maturation_plateau: float = setting_from(_maturation.MaturationSettings.spec("plateau"))
+    maturation_step: float = setting_from(_maturation.MaturationSettings.spec("step"))
+
+    def maturation_settings(self):
+        """The maturational clock's settings, a `MaturationSettings` (read when
+        `maturation` is "joint_range")."""
+        return _maturation.MaturationSettings(**{
+            name: getattr(self, field) for field, name in MATURATION_FIELDS.items()})
+
+
+MATURATION_FIELDS = {f"maturation_{name}": name
+                     for name in _maturation.MaturationSettings.names()}
+"""{`GoalBabblingSettings` field: `MaturationSettings` field}: the clock's settings as
+the learner's settings name them."""
 
 
 class GoalBabblingAgent:
@@ -115,7 +134,7 @@ class GoalBabblingAgent:
 
     @classmethod
     def from_settings(cls, settings, generators, lower, upper, capacity, n_outcome, grid,
-                      home, goal_outcome=None, demonstrations=None, maturation=None):
+                      home, goal_outcome=None, demonstrations=None):
         """The agent of `settings`: its inverse model, goal choice and (if it grows up)
         maturational clock built from them, one row per generator.
 
@@ -128,8 +147,6 @@ class GoalBabblingAgent:
           grid: the goals' `icm.learners.goal_choice.RegionGrid`.
           home: the resting posture, where a growing arm starts.
           goal_outcome, demonstrations: as the constructor's.
-          maturation: the clock's `icm.learners.maturation.MaturationSettings` (None:
-            the library's), used when `settings.maturation` is "joint_range".
 
         Returns:
           A `GoalBabblingAgent`.
@@ -145,7 +162,8 @@ class GoalBabblingAgent:
                                                settings.measure, settings.epsilon,
                                                settings.window, settings.regions)
         clock = None if settings.maturation == "none" else \
-            JointRangeMaturation.from_settings(n_rows, home, lower, upper, maturation)
+            JointRangeMaturation.from_settings(n_rows, home, lower, upper,
+                                               settings.maturation_settings())
         return cls(model, choice, generators, goal_outcome, maturation=clock,
                    demonstrations=demonstrations)
 

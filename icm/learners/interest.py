@@ -131,8 +131,9 @@ class InterestSignal:
     reading, new_task_mean, short_history), implements `record(task, error)` and
     `interest(task)` for one agent, and `table_values(table, rows)` (and, if it keeps
     state as errors come, `table_record`) for many; then `@interest_signal` registers
-    it. `COLOUR`, `LINESTYLE`, `MARKER` and `KERNEL_CODE` say how the figures draw
-    it and whether the rods' compiled loop computes it. CONTRIBUTING shows an example.
+    it. `COLOUR`, `LINESTYLE`, `MARKER` say how the figures draw it;
+    `KERNEL_FORMULA`, `ONE_ERROR_REWARD` and `LEARNS_VALUES` how it rewards the
+    Q-learner. CONTRIBUTING shows an example.
     """
 
     NAME = None
@@ -141,10 +142,18 @@ class InterestSignal:
     """Its colour in the figures (`icm.figures.curiosity.SIGNAL_COLOURS`)."""
     LINESTYLE, MARKER = "-", "x"
     """Its line style and marker in the figures, so that no two differ by colour alone."""
-    KERNEL_CODE = None
-    """The number by which the rods' compiled loop (`icm.experiments._rods_kernel`)
-    computes it, or None: the loop does not, and runs it refuse it by name there (it
-    still runs on the per-agent classes)."""
+    KERNEL_FORMULA = None
+    """The formula by which the rods' compiled loop computes it as a reward, one of
+    `icm.experiments._rods_kernel.FORMULAS` ("error", "slope", "novelty", "none"), or
+    None: the loop does not, and runs refuse it there by name (it still runs on the
+    per-agent classes). A formula the loop does not have is refused by name too."""
+    ONE_ERROR_REWARD = False
+    """Whether, as a reward (`icm.learners.q_learning`), it reads the move's error alone
+    (a window of 1: the paper's reward is the error itself), not the pair's last
+    `window` errors."""
+    LEARNS_VALUES = True
+    """Whether a Q-learner rewarded by it learns values (the walk at random does not:
+    every move stays a tie)."""
     WINDOW_SETTING = _MEAN_WINDOW
     """The setting that checks `window` in `InterestTable` (a mean needs one error, a
     slope two)."""
@@ -222,7 +231,8 @@ class LearningProgressInterest(InterestSignal):
     """
 
     NAME = "learning_progress"
-    COLOUR, LINESTYLE, MARKER, KERNEL_CODE = "#1b9e77", "-", "o", 1
+    COLOUR, LINESTYLE, MARKER = "#1b9e77", "-", "o"
+    KERNEL_FORMULA = "slope"
     SETTINGS = ("window", "new_task_factor", "reading", "new_task_mean", "short_history")
     WINDOW_SETTING = WINDOW
 
@@ -318,7 +328,9 @@ class PredictionErrorInterest(InterestSignal):
     """
 
     NAME = "prediction_error"
-    COLOUR, LINESTYLE, MARKER, KERNEL_CODE = "#d95f02", "--", "s", 0
+    COLOUR, LINESTYLE, MARKER = "#d95f02", "--", "s"
+    KERNEL_FORMULA = "error"
+    ONE_ERROR_REWARD = True
     SETTINGS = ("window",)
 
     def __init__(self, window=WINDOW.default):
@@ -356,7 +368,8 @@ class NoveltyInterest(InterestSignal):
         self._append(task, error)
 
     NAME = "novelty"
-    COLOUR, LINESTYLE, MARKER, KERNEL_CODE = "#7570b3", "-.", "^", 2
+    COLOUR, LINESTYLE, MARKER = "#7570b3", "-.", "^"
+    KERNEL_FORMULA = "novelty"
 
     def interest(self, task):
         """1 / sqrt(1 + times `task` was witnessed)."""
@@ -379,7 +392,9 @@ class RandomInterest(InterestSignal):
         self._append(task, error)
 
     NAME = "random"
-    COLOUR, LINESTYLE, MARKER, KERNEL_CODE = "#7a7a7a", ":", "D", 3
+    COLOUR, LINESTYLE, MARKER = "#7a7a7a", ":", "D"
+    KERNEL_FORMULA = "none"
+    LEARNS_VALUES = False
 
     def interest(self, task):
         """0.0, whatever the task."""

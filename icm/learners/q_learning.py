@@ -14,7 +14,7 @@ from icm.learners import interest as _interest
 from icm.learners import predictors as _predictors
 from icm.learners import action_selection
 from icm.learners.action_selection import epsilon_greedy
-from icm.learners.interest import DEFAULT_WINDOW, SIGNALS, make_interest
+from icm.learners.interest import DEFAULT_WINDOW, SIGNAL_CLASSES, SIGNALS, make_interest
 from icm.learners.predictors import LinearPredictor
 
 REWARDS = Names(lambda: ("prediction_error",) + tuple(s for s in SIGNALS
@@ -139,8 +139,9 @@ class QLearner:
         self.window = spec("window").check(window)
         # The reward signal, kept per (state, action) pair: the paper's error is the
         # mean of the last one error.
+        self._signal = SIGNAL_CLASSES[self.reward]
         self.reward_signal = make_interest(
-            self.reward, 1 if self.reward == "prediction_error" else self.window,
+            self.reward, 1 if self._signal.ONE_ERROR_REWARD else self.window,
             new_task_factor=0.0)
         self.predictor = LinearPredictor(n_actions, 1) if predictor is None else predictor
         if not callable(getattr(self.predictor, "update", None)):
@@ -233,6 +234,6 @@ class QLearner:
             self.last_errors = [error]
         self.reward_signal.record((state, action), error)
         reward = self.reward_signal.interest((state, action))
-        if self.reward != "random":
+        if self._signal.LEARNS_VALUES:
             self.update(state, action, reward, next_state, discount)
         return reward

@@ -18,7 +18,7 @@ scenario's live view registers), `replays` (the runs replayed) and `live` (the v
 and the page). Every public name is importable from here, e.g. `icm.viewer.live_scene`.
 """
 
-from icm.envs._assets import asset_path  # noqa: F401 (the scenes' files)
+from icm.store import asset_path  # noqa: F401 (the scenes' files)
 from icm.viewer.scenes import (BROWSER_MUJOCO, LIVE_SCENES, SCENES, VIEWS, register_scene,
                                scene_export, scene_xml)
 from icm.viewer.replays import (DEFAULT_REPLAY_EPISODES, DEFAULT_REPLAY_TRIALS, formed_presses,

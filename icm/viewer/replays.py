@@ -34,11 +34,12 @@ def learner_replay(n_trials=DEFAULT_REPLAY_TRIALS, seed=0):
 
     trials = []
 
-    def record(trial, layout, actions, effects):
+    def record(step):  # a press of run 0: its trial, layout, button and effect
+        trial = int(step.episode[0])
         if trial == len(trials):
-            trials.append({"layout": int(layout[0]), "actions": [], "effects": []})
-        trials[trial]["actions"].append(int(actions[0]))
-        trials[trial]["effects"].append(int(effects[0]))
+            trials.append({"layout": int(step.before[0]), "actions": [], "effects": []})
+        trials[trial]["actions"].append(int(step.action[0]))
+        trials[trial]["effects"].append(int(step.outcome[0]))
 
     result, = experiment.run_goal_oriented_grid(
         [{}], n_seeds=1, n_trials=n_trials, seed=seed, progress=False, observe=record)
@@ -70,44 +71,33 @@ def rod_replay(n_episodes=DEFAULT_REPLAY_EPISODES, seed=0):
       predictor's absolute errors on each rod summed over the episode: the intrinsic
       reward the robot was paid).
     """
-    from icm import _validate
     from icm.envs import rods
     from icm.experiments import rod_toppling as experiment
-    from icm.experiments._seeding import run_seeds
-    from icm.learners import q_learning
 
-    # run_rod_toppling's defaults, its seeds and the library's (the paper's) settings.
-    n_episodes = _validate.integer_at_least("n_episodes", n_episodes, 1)
-    seed = _validate.root_seed("seed", seed)
-    start_cell, max_moves = rods.DEFAULT_START_CELL, rods.DEFAULT_MAX_MOVES
-    learner = q_learning.QLearnerSettings()
-    (env_seed, agent_seed), = run_seeds(seed, 1, 2)
     recorded = []
 
-    def record(rows, cells, actions, next_cells, toppled):
-        recorded.append((int(cells[0]), int(actions[0]), int(next_cells[0]),
-                         int(toppled[0])))
+    def record(step):  # a move of run 0: its cell, the move, the next cell, the rod toppled
+        recorded.append((int(step.before[0]), int(step.action[0]), int(step.after[0]),
+                         int(step.outcome[0])))
 
-    env = rods.RodTableBatch(1, start_cell, False, [env_seed])
-    agent = q_learning.QLearner.from_settings(experiment.N_STATES, experiment.N_ACTIONS,
-                                              len(rods.ROD_NAMES), learner, agent_seed)
-    played = experiment.play_episodes(env, [agent], n_episodes, max_moves, observe=record)
+    result = experiment.run_rod_toppling(n_seeds=1, n_episodes=n_episodes, seed=seed,
+                                         progress=False, observe=record)
+    seed, start_cell = result.settings["seed"], result.settings["start_cell"]
     episodes, moves = [], iter(recorded)
-    for e in range(n_episodes):
-        length = int(played["length"][0, e])
-        taken = [next(moves) for _ in range(length)]
-        toppled = int(played["toppled"][0, e])
+    for e in range(result.n_episodes):
+        taken = [next(moves) for _ in range(int(result.episode_length[0, e]))]
+        toppled = int(result.toppled[0, e])
         episodes.append({"cells": [list(rods.number_cell(m[0])) for m in taken],
                          "actions": [m[1] for m in taken],
                          "toppled": rods.ROD_NAMES[toppled] if toppled >= 0 else None,
-                         "errors": played["errors"][0, e].tolist()})
+                         "errors": result.prediction_error[0, e].tolist()})
     return {"seed": seed, "start_cell": list(start_cell), "episodes": episodes}
 
 
 def formed_presses(babbling, run=0):
     """The presses that goal babbling formed in run `run` of `babbling`, as the
     browser performs them: for each button, the movement `run_goal_babbling` learned
-    for it (reach its joint targets, hold, return home: `goal_babbling.REACH_TIME`,
+    for it (reach its joint targets, hold, return home: `movements.REACH_TIME`,
     `HOLD_TIME`, `RETRACT_TIME`), in a trial where that button is lit red, as
     `GoalBabblingResult.buttons_pressed` tests it.
 
@@ -126,15 +116,16 @@ def formed_presses(babbling, run=0):
         runs.
     """
     from icm.envs import buttons
-    from icm.experiments import goal_babbling
+    from icm.envs.buttons import movements
+    from icm.experiments import babbling_results
 
-    _validate.instance("babbling", babbling, goal_babbling.GoalBabblingResult,
+    _validate.instance("babbling", babbling, babbling_results.GoalBabblingResult,
                        "a GoalBabblingResult (from icm.experiments.run_goal_babbling)")
     run = _validate.integer("run", run, 0, babbling.n_seeds - 1)
     _, arm, motions = buttons_physics()
-    presses = [[segment(arm, q, goal_babbling.REACH_TIME),
-                segment(arm, q, goal_babbling.HOLD_TIME),
-                segment(arm, motions.home, goal_babbling.RETRACT_TIME)]
+    presses = [[segment(arm, q, movements.REACH_TIME),
+                segment(arm, q, movements.HOLD_TIME),
+                segment(arm, motions.home, movements.RETRACT_TIME)]
                for q in babbling.press_movements[run]]
     lights = [buttons.lights_for(b, buttons.green_candidates(b)[0]).tolist()
               for b in range(buttons.N_BUTTONS)]

@@ -9,7 +9,7 @@ import numpy as np
 
 from icm import _validate
 from icm._settings import Names
-from icm.envs._assets import asset_path
+from icm.store import asset_path
 
 BROWSER_MUJOCO = "3.14.0"
 """The version of MuJoCo's WebAssembly build that the live views run in the reader's

@@ -3,7 +3,7 @@
 import ipywidgets
 
 from icm import _book, _validate
-from icm.figures._common import DISPLAY_WIDTH_PX, Figure
+from icm.figures import DISPLAY_WIDTH_PX, Figure
 
 STATIC_ENV = _book.STATIC_ENV
 """When this environment variable is "1" (the book build sets it, see
@@ -14,7 +14,7 @@ versions, which move in the HTML book without a kernel."""
 PANEL_WIDTH_PX = DISPLAY_WIDTH_PX
 """The width, in CSS pixels, at which a live panel shows its figure (less in a
 narrower output area: the image never overflows it): the width the book's figures are
-shown at most (`icm.figures._common.DISPLAY_WIDTH_PX`). Without a width of its own the
+shown at most (`icm.figures.DISPLAY_WIDTH_PX`). Without a width of its own the
 image was stretched to the output area (about 1,360 px in JupyterLab on a 1920 px
 screen, its PNG drawn 441 px wide: blurry, and taller than the screen)."""
 

@@ -27,7 +27,7 @@ from dm_env import specs
 
 from icm import _validate
 from icm._settings import Setting
-from icm.envs._assets import ASSETS, asset_path
+from icm.store import ASSETS, asset_path
 from icm.envs._common import check_discrete_action
 
 N_COLUMNS, N_ROWS = 5, 3

@@ -1,20 +1,24 @@
 """The chapter "Forming actions" (book/forming_actions.ipynb), its second half "Growing
-up, and being shown": the summaries, Markdown tables, paired comparisons, verdicts and
-sentences its text quotes, computed from the runs of `icm.experiments.remedies_study`
-(kept in assets/remedies_study.json and assets/remedies_test_error.json).
+up, and being shown": the summaries, Markdown tables, verdicts and sentences its text
+quotes about the two remedies, read from the runs of `icm.studies.forming_actions.remedies`
+(kept in assets/remedies_study.json and assets/remedies_test_error.json); its paired
+comparisons are decided with the chapter's whole family
+(`icm.chapters.forming_actions.family`).
 """
 
 import numpy as np
 
 from icm import _validate
+from icm.chapters import replication
+from icm.chapters import verdicts as paired
+from icm.chapters.forming_actions.family import (REMEDY_KEYS, VERDICT_ROOTS,
+                                                 chapter_verdicts, remedy_comparisons)
+from icm.chapters.words import percent
 from icm.envs import buttons
-from icm.experiments import goal_babbling, remedies_study, replication
-from icm.experiments.remedies_study import (REMEDY_KEYS, TEACHING, VERDICT_ROOTS,
-                                            chapter_verdicts,
-                                            check_study, comparisons, load_study,
+from icm.experiments import babbling_results
+from icm.studies.forming_actions.remedies import (TEACHING, check_study, load_study,
                                             load_test_error_split, pooled, seed_values,
                                             shown_buttons)
-from icm.experiments.results import percent
 from icm.stats import PANEL_RESAMPLES, at_bound, bootstrap_band, share_interval
 
 
@@ -34,7 +38,7 @@ def summary(study=None, roots=None):
         pressed = entry["pressed"][:, -1]  # [seed, button] at the default budget
         others = [b for b in range(buttons.N_BUTTONS) if b not in shown_buttons(label)]
         first = entry["first_press"]
-        median = goal_babbling.median_first_press(first, study["n_rollouts"])
+        median = babbling_results.median_first_press(first, study["n_rollouts"])
         out[label] = {
             "n_seeds": len(pressed),
             "all_pressed_share": float(pressed.all(axis=1).mean()),
@@ -105,18 +109,9 @@ def paired_difference(study, label, baseline, measure, roots=None):
       measure: one of `PAIRED_MEASURES`.
       roots: the root seeds pooled (default all).
     """
-    a = seed_values(study, label, measure, label, roots)
-    b = seed_values(study, baseline, measure, label, roots)
-    mean, low, high = bootstrap_band((a - b)[:, None], resamples=PANEL_RESAMPLES)
-    return float(mean[0]), float(low[0]), float(high[0])
-
-
-VERDICTS = {"better": "clearly better", "worse": "clearly worse",
-            "no different": "no clear difference"}
-"""The words of a verdict of `verdicts`: "clearly" when the comparison is clear in the
-chapter's family (`chapter_verdicts`: Holm-corrected, on `VERDICT_ROOTS`), in the
-direction of its mean (for the test error, lower is better), "no clear difference"
-otherwise."""
+    return paired.band(paired.differences(seed_values(study, label, measure, label, roots),
+                                          seed_values(study, baseline, measure, label, roots)),
+                       PANEL_RESAMPLES)
 
 
 def _bounds(label, measure):
@@ -129,61 +124,28 @@ def _bounds(label, measure):
     return None
 
 
-def replication_words(replication):
-    """The words of a replication beside its verdict: "replicated on 40 fresh seeds
-    (power 97%)", or "not replicated on 40 fresh seeds, which detect an effect of this
-    size 93% of the time", from a stored replication (`replication.replicated` with
-    "n_seeds" and "power", as `remedies_study.run_replications` keeps it). A
-    replication kept without its power says only its seeds."""
-    n, power = replication["n_seeds"], replication.get("power")
-    # A simulated power of 1 is an estimate, not a certainty.
-    shown = None if power is None else ("over 99%" if power > 0.99 else percent(power))
-    if replication["replicated"]:
-        return (f"replicated on {n} fresh seeds"
-                + ("" if power is None else f" (power {shown})"))
-    return (f"not replicated on {n} fresh seeds"
-            + ("" if power is None else f", which detect an effect of this size "
-                                        f"{shown} of the time"))
-
-
-def verdict_words(mean, clear, lower_is_better=False, bound=None, replication=None):
-    """The words of one verdict: `VERDICTS`' words for a clear or unclear difference of
-    mean `mean`; then, when an arm sits at a bound (`bound`, e.g. "learning progress
-    at the ceiling"), that in brackets; and, for a clear verdict with a stored
-    replication (`replication`: {"replicated", "n_seeds", "power"}), whether it
-    replicated, on how many seeds and with what power (`replication_words`)."""
-    if clear and mean != 0:
-        verdict = "better" if (mean < 0) == lower_is_better else "worse"
-    else:
-        verdict = "no different"
-    words = VERDICTS[verdict] + (f" ({bound})" if bound else "")
-    if verdict != "no different" and replication is not None:
-        words += ", " + replication_words(replication)
-    return words
-
-
 def verdicts(study=None, babbling=None, replications=None):
     """The numbers and words the chapter's comparisons of the remedies are phrased from,
     over the held-out seeds (`VERDICT_ROOTS`): for each remedy (`REMEDY_KEYS`) against
     learning progress alone, seed by seed, the difference in each of `PAIRED_MEASURES`
     with its 95% bootstrap band ("{key}_{measure}", "..._low", "..._high"), its raw
-    and Holm-corrected p-values ("..._p", "..._p_holm", `chapter_verdicts`) and the
-    words of `verdict_words` ("..._verdict"): clear only when Holm says so, the arm at
-    the ceiling or floor named, and whether the stored replication (`replications`,
+    and Holm-corrected p-values ("..._p", "..._p_holm", `chapter_verdicts`) and its
+    words ("..._verdict", `icm.chapters.verdicts.phrase`: "clearly better", "clearly
+    worse" or "no clear difference", clear only when Holm says so, the arm at the
+    ceiling or floor named, and whether the stored replication (`replications`,
     default `replication.load_replications()`) held a clear verdict, with its seeds
-    and power. Also "n_family" (the comparisons corrected together) and "n_verdict_seeds".
-    A dict {name: value}."""
+    and power). Also "n_family" (the comparisons corrected together) and
+    "n_verdict_seeds". A dict {name: value}."""
     study = load_study() if study is None else check_study(study)
     corrected = chapter_verdicts(study, babbling)
     if replications is None:
         replications = replication.load_replications().get("forming_actions", {})
     stored = replications.get("verdicts", {})
     out = {"n_family": len(corrected)}
-    for name, c in comparisons(study).items():
-        differences = c["arm"] - c["baseline"]
-        mean, low, high = bootstrap_band(differences[:, None], resamples=PANEL_RESAMPLES)
-        out[name], out[f"{name}_low"], out[f"{name}_high"] = (float(mean[0]), float(low[0]),
-                                                              float(high[0]))
+    for name, c in remedy_comparisons(study).items():
+        differences = paired.differences(c["arm"], c["baseline"])
+        mean, low, high = paired.band(differences, PANEL_RESAMPLES)
+        out[name], out[f"{name}_low"], out[f"{name}_high"] = mean, low, high
         out[f"{name}_p"], out[f"{name}_p_holm"] = (corrected[name]["p"],
                                                    corrected[name]["p_holm"])
         bounds = _bounds(c["label"], c["measure"])
@@ -193,9 +155,12 @@ def verdicts(study=None, babbling=None, replications=None):
                   (("learning progress", c["baseline"]), (c["label"], c["arm"]))}
             bound = "; ".join(f"{who} at the {where}" for who, where in at.items() if where)
         kept = stored.get(name)
-        out[f"{name}_verdict"] = verdict_words(
-            float(mean[0]), corrected[name]["clear"], c["measure"] == "test_error", bound,
-            None if kept is None else {"n_seeds": replications["n_seeds"], **kept})
+        lower, higher = (("better", "worse") if c["measure"] == "test_error"
+                         else ("worse", "better"))
+        out[f"{name}_verdict"] = paired.phrase(
+            mean, corrected[name]["clear"], lower, higher, bound=bound,
+            replication=None if kept is None else paired.replication_words(
+                {"n_seeds": replications["n_seeds"], **kept}))
         out["n_verdict_seeds"] = len(differences)
     return out
 
@@ -310,68 +275,3 @@ def red_first_share(study=None, label="learning progress"):
     k, n = int(red_first.sum()), len(red_first)
     low, high = share_interval(k, n)
     return {"k": k, "n": n, "share": k / n, "low": low, "high": high}
-
-
-MEASURE_WORDS = {"all_pressed": "all five presses formed",
-                 "others_formed": "presses formed of the buttons not shown",
-                 "others_pressed_early": "buttons pressed early",
-                 "test_error": "test error"}
-"""The measures of `remedies_study.PAIRED_MEASURES` in the words of a sentence."""
-
-
-def replication_power_sentence(study=None, replications=None, simulations=500):
-    """A sentence on the power of the stored replications (`replications`, default the
-    chapter's entry of `replication.load_replications()`, each with its "power"): the
-    lowest when every one reaches 0.9; otherwise which fall short, by how much, that
-    their "not replicated" is weak evidence, and what a rerun at
-    `remedies_study.POWERED_SEEDS` seeds would give (`replication_power` with
-    `simulations`) and cost (`remedies_study.unit_cpu_seconds` a run)."""
-    study = load_study() if study is None else check_study(study)
-    if replications is None:
-        replications = replication.load_replications()["forming_actions"]
-    n, stored = replications["n_seeds"], replications["verdicts"]
-    powers = {name: r["power"] for name, r in stored.items()}
-    weak = sorted((name for name, p in powers.items() if p < 0.9), key=powers.get)
-    if not weak:
-        return (f"with {n} seeds, the lowest power of these replications is "
-                f"{percent(min(powers.values()))}")
-    found = comparisons(study)
-    named = [f"{found[w]['label']} ({MEASURE_WORDS[found[w]['measure']]})" for w in weak]
-    named = ", ".join(named[:-1]) + " and " + named[-1] if len(named) > 1 else named[0]
-    strong = [p for name, p in powers.items() if name not in weak]
-    target = remedies_study.POWERED_SEEDS
-    forecast = [remedies_study.replication_power(w, study, target, simulations)
-                for w in weak]
-    runs = target * len(remedies_study.CLAIMED)
-    cpu = runs * remedies_study.unit_cpu_seconds()
-    return ((f"with {n} seeds, the other verdicts have a power of at least "
-             f"{percent(min(strong))}, but " if strong else f"with {n} seeds, ")
-            + f"{named} only {percent(powers[weak[0]])} to {percent(powers[weak[-1]])}: "
-            f"their \"not replicated\" is weak evidence against them, not evidence that "
-            f"they are absent. {target} seeds of each condition would give them a power of "
-            f"{percent(min(forecast))} or more, for about {cpu:,.0f} CPU-seconds ({runs} "
-            f"runs of one seed; `python -m icm study remedies-replication --seeds "
-            f"{target}`); that rerun is not in this edition of the book")
-
-
-STRONG_WORDS = {
-    "we call a difference clear only when it survives Holm's correction":
-        ("clear_is_holm", "corrected"),
-    "Each clear verdict was rerun on a root seed no study uses":
-        ("clear_is_holm", "corrected"),
-    "the lower error is not only because the demonstrations": (
-        "shown1_lower_without_demonstrations", "causal"),
-    "A difference is called clear only when chance is an unlikely explanation": (
-        "clear_is_holm", "corrected"),
-    "{glue:text}`rem_shown_sooner`":
-        ("shown_sooner_held_out", "all", "cases: each shown button in each condition "
-                                          "with a teacher, medians of the held-out seeds"),
-    # Last, so that a sentence's own entry comes first: every sentence that quotes a
-    # glued verdict ("clearly lower", "no clear difference") quotes Holm's.
-    "_verdict`": ("clear_is_holm", "corrected"),
-}
-"""The chapter's sentences with a word of strength beside a result, and the checks that
-carry them (book/_ext/claim_words.py): {a fragment of the sentence: (claim name the
-chapter checks when built, kind[, the set an "all" claim is over])}. The shown buttons'
-"in all 8 cases" (a glued phrase) is over the 8 cases, each a comparison of medians of
-the held-out seeds, which the sentence says."""

@@ -2,13 +2,10 @@
 one at a time (`run_readings`): for each, every other reading its `Setting` declares
 (`icm._settings.Setting.other_readings`: an unpublished choice's other choices, or the
 other values it lists), run on the same seeds as the book's reading, with the same
-claims as the maps (`icm.experiments.robustness.STUDIES`), kept in a `ReadingsResult`;
+claims as the maps (`icm.studies.robustness.STUDIES`), kept in a `ReadingsResult`; and
 what the rods' first episode is made of, which the chapter reads from the learner and
-the topple map (`fewest_moves_to_topple`, `value_after_a_quiet_move`,
-`first_episode`); the two readings of "predicted well" on
-a run whose untried moves are worth nothing (`strict_reading`); and, over several
-results, which readings change a verdict, in words (`readings_summary`,
-`changed_readings`).
+the topple map (`fewest_moves_to_topple`, `value_after_a_quiet_move`). What the chapter
+says of them (its tables, clauses and checks) is `icm.chapters.robustness.readings`'.
 """
 
 import collections
@@ -18,12 +15,11 @@ import numpy as np
 
 from icm import _validate
 from icm.envs import rods
-from icm.experiments._progress import progress_bar
-from icm.experiments.robustness import (CLAIM_SHARE, NOT_MEASURED, STUDIES, STUDY_WORLDS,
-                                        WORLD_SETTINGS, Study, check_study, show_value)
-from icm.experiments.rod_toppling import RodTopplingResult
+from icm.experiments.progress import progress_bar
+from icm.studies.robustness import (NOT_MEASURED, STUDY_WORLDS, WORLD_SETTINGS, Study,
+                                    check_study)
 from icm.learners.q_learning import QLearner, QLearnerSettings
-from icm.stats import comes_first, share_interval, verdict
+from icm.stats import share_interval, verdict
 
 
 @dataclasses.dataclass(frozen=True)
@@ -141,95 +137,6 @@ class ReadingsResult:
         """The readings that change the verdict of at least one claim."""
         return [r for r in self.readings if self.changed(r)]
 
-    def table(self):
-        """A Markdown table: the book's reading, then one row per other reading, with
-        the share of seeds in which each claim held and its verdict (✓ holds, ✗
-        fails, ? unclear; in bold where it differs from the book's)."""
-        marks = {"holds": "✓", "fails": "✗", "unclear": "?"}
-        claims = self.study.claims
-        lines = ["| choice | reading | " + " | ".join(
-                     f"{c.text} (≥ {c.threshold:.0%})" for c in claims) + " |",
-                 "|---|---|" + "---|" * len(claims)]
-
-        def cells(reading):
-            out = []
-            for c in claims:
-                share, verdict_ = self.share(c.name, reading)[0], self.verdict(c.name, reading)
-                cell = f"{share:.1%} {marks[verdict_]}"
-                if reading is not None and verdict_ != self.verdict(c.name):
-                    cell = f"**{cell}**"
-                out.append(cell)
-            return out
-
-        lines.append("| the book's | all as in the book | " + " | ".join(cells(None)) + " |")
-        for r in self.readings:
-            lines.append(f"| {r.label} (book: {show_value(r.default)}) | {show_value(r.value)} | "
-                         + " | ".join(cells(r)) + " |")
-        return "\n".join(lines)
-
-    def describe(self):
-        """In words, which of the other readings change a claim's verdict, and how: a
-        clause for the chapter, computed from the data."""
-        changed = self.changes()
-        n = len(self.readings)
-        if not changed:
-            return (f"None of the {n} other readings changes the verdict of a claim: "
-                    f"each claim holds, fails or stays unclear as with the book's")
-        parts = []
-        for r in changed:
-            what = ", ".join(f"\"{self.study.claim(c).text}\" {self.verdict(c, r)} "
-                             f"({self.share(c, r)[0]:.1%} of the seeds; with the book's "
-                             f"{show_value(r.default)}, it {self.verdict(c)}, "
-                             f"{self.share(c)[0]:.1%})" for c in self.changed(r))
-            parts.append(f"with {r.label} read as {show_value(r.value)}, {what}")
-        rest = n - len(changed)
-        changes = "changes" if len(changed) == 1 else "change"
-        return (f"Of the {n} other readings, {len(changed)} {changes} a claim's verdict: "
-                + "; ".join(parts) + f". The other {rest} change none")
-
-
-def readings_summary(results):
-    """In words, over several `ReadingsResult` objects, which other readings change a
-    claim's verdict and how many change none: a clause for the chapter (Markdown).
-
-    Args:
-      results: a list of `ReadingsResult` objects.
-    """
-    named = changed_readings(results)  # checks the arguments
-    changed = [(result, r) for result in results for r in result.changes()]
-    total = sum(len(result.readings) for result in results)
-    if not changed:
-        return f"none of the {total} other readings changes a claim's verdict"
-    verb = "changes" if len(changed) == 1 else "change"
-    return (f"{len(changed)} of the {total} other readings {verb} a claim's verdict: "
-            f"{named}; the other {total - len(changed)} change none")
-
-
-def changed_readings(results, shares=True):
-    """In words, each other reading (of several `ReadingsResult` objects) that changes a
-    claim's verdict: with `shares`, with the learner, each claim it changes, its verdict
-    and its share seen, e.g. "reading of the TD error and reward formulas:
-    printed_reward (actor-critic: green predicted well too fails, 2.0%)"; without, with
-    the learner alone ("...: printed_reward (actor-critic)"). "none" if none does
-    (Markdown).
-
-    Args:
-      results: a list of `ReadingsResult` objects.
-      shares: whether to name the claims changed, with their verdicts and shares.
-    """
-    if not isinstance(results, (list, tuple)) or not results:
-        raise _validate.ArgumentTypeError(f"results must be a non-empty list of "
-                                          f"ReadingsResult, got {_validate.show(results)}")
-    for i, result in enumerate(results):
-        _validate.instance(f"results[{i}]", result, ReadingsResult)
-    _validate.boolean("shares", shares)
-    named = [f"{r.label}: {show_value(r.value)} ({result.study.short}"
-             + ("".join(f"{': ' if k == 0 else ', '}{result.study.claim(c).text} "
-                        f"{result.verdict(c, r)}, {result.share(c, r)[0]:.1%}"
-                        for k, c in enumerate(result.changed(r))) if shares else "")
-             + ")" for result in results for r in result.changes()]
-    return "; ".join(named) or "none"
-
 
 def run_readings(study, n_seeds=200, seed=0, progress=True):
     """Runs a study's learner with the book's readings and with each other reading
@@ -309,58 +216,3 @@ def value_after_a_quiet_move(initial_q):
     learner.learn(state, right, [0.0] * len(rods.ROD_NAMES), after)
     return float(learner.q[state, right])
 
-
-def first_episode(initial_q_values):
-    """What the chapter says of the rods' first episode, for the initial values of Q its
-    map sweeps: ({claim name of `icm.chapters.robustness.FIRST_EPISODE_CLAIMS`: whether
-    it holds}, numbers: the
-    value of a quiet move after one try at the book's initial Q, "quiet_move_before" and
-    "quiet_move_after", and the fewest moves that topple each rod, "red_moves" and
-    "blue_moves").
-
-    Args:
-      initial_q_values: the initial values of Q the map sweeps (a list of numbers >= 0).
-    """
-    if not isinstance(initial_q_values, (list, tuple)) or not initial_q_values:
-        raise _validate.ArgumentTypeError(f"initial_q_values must be a non-empty list of "
-                                          f"numbers, got {_validate.show(initial_q_values)}")
-    after = {q: value_after_a_quiet_move(q) for q in initial_q_values}
-    book = STUDIES["rod_toppling"].setting("initial_q").default
-    red, blue = fewest_moves_to_topple("red"), fewest_moves_to_topple("blue")
-    claims = {"quiet_move_loses": all((a < q) if q > 0 else (a == 0) for q, a in after.items()),
-              "red_nearer": red < blue}
-    numbers = {"quiet_move_before": book, "quiet_move_after": value_after_a_quiet_move(book),
-               "red_moves": red, "blue_moves": blue}
-    return claims, numbers
-
-
-
-def strict_reading(zero_run):
-    """Why the rods' map reads "red predicted well" strictly ("all", every move that
-    topples red, found or not), checked on a run whose untried moves are worth nothing:
-    in chapter 5's reading "toppled" (the moves the robot has toppled red from), that run
-    passes; in the strict one it fails.
-
-    Args:
-      zero_run: a `RodTopplingResult` with `initial_q` 0.
-
-    Returns:
-      ({claim name of `icm.chapters.robustness.STRICT_READING_CLAIMS`: whether it
-      holds}, numbers:
-      "zero_red_first_toppled" and "zero_red_first_strict", the shares seen, and
-      "zero_seeds", the run's seeds).
-    """
-    _validate.instance("zero_run", zero_run, RodTopplingResult)
-    if zero_run.settings["initial_q"] != 0:
-        raise ValueError(f"zero_run must be a run with initial_q 0, got initial_q "
-                         f"{zero_run.settings['initial_q']!r}")
-    claims, numbers = {}, {"zero_seeds": zero_run.n_seeds}
-    for reading, name in (("toppled", "toppled"), ("all", "strict")):
-        well = zero_run.well_predicted(reading)
-        held = comes_first(well[:, 0], well[:, 1])
-        low, high = share_interval(int(held.sum()), len(held))
-        numbers[f"zero_red_first_{name}"] = float(held.mean())
-        numbers[f"zero_{name}_verdict"] = verdict(low, high, CLAIM_SHARE)
-    claims["zero_passes_toppled"] = numbers["zero_toppled_verdict"] == "holds"
-    claims["zero_fails_strict"] = numbers["zero_strict_verdict"] == "fails"
-    return claims, numbers

@@ -23,3 +23,9 @@ def check_run_size(function, n_seeds, steps, bytes_per_seed_step, bytes_per_seed
     `icm._validate.fits_in_memory`)."""
     needed = n_seeds * (steps * bytes_per_seed_step + bytes_per_seed)
     _validate.fits_in_memory(f"{function} with {n_seeds} seeds of {steps} steps", needed)
+
+
+REPLICATION_ROOTS = {"forming_actions": 9001, "curiosity": 9002, "robustness": 9003}
+"""The root seed of each chapter's replications, which rerun its clear verdicts on seeds
+no run of it used (`icm.chapters.replication`): none of the studies' roots (100 to
+400), the chapters' (0) or the other tests' (below 100) is 9001 or above."""

@@ -1,18 +1,16 @@
-"""The chapter "What the result depends on" (book/robustness.ipynb): its claims in
-words (`CHAPTER_CLAIMS`, `BOLD_CLAIMS`) and their check on the book's maps
-(`chapter_claims`), its Markdown tables (`studies_table`, `dependency_table`,
-`interaction_table`) and the numbers and clauses its text quotes (`chapter_numbers`,
-`readings_numbers`), from the results of `icm.experiments.robustness` and
-`icm.experiments.robustness_readings`.
+"""The chapter "What the result depends on" (book/robustness.ipynb), its maps: the
+claims about them in words (`CHAPTER_CLAIMS`) and their check on the book's maps
+(`chapter_claims`), the Markdown tables (`studies_table`, `dependency_table`,
+`interaction_table`), the numbers and clauses the text quotes (`chapter_numbers`,
+`shares_along`), and the maps' replication on a fresh root (`run_replication`,
+`replication_sentences`), from the results of `icm.studies.robustness`.
 """
 
 from icm import _validate
-from icm.experiments.results import in_seeds
-from icm.experiments.robustness import (CLAIM_SHARE, NOT_MEASURED, STUDIES, RobustnessResult,
-                                        check_study, show_value)
+from icm.chapters.words import in_seeds
 from icm.experiments.rod_episodes import WELL_PREDICTED_ERROR
-from icm.experiments.robustness_readings import (ReadingsResult, changed_readings,
-                                                 readings_summary)
+from icm.studies.maps import RobustnessResult
+from icm.studies.robustness import CLAIM_SHARE, STUDIES, check_study, show_value
 from icm.stats import share_interval
 
 
@@ -32,10 +30,6 @@ whose share lies near its threshold stays unsure on any number of seeds (the
 goal-oriented learner's "interest moves to green later" at the lowest weights, about
 55% against 50%): the chapter quotes its share and verdict and claims only what holds
 with room to spare."""
-READINGS_SEEDS = 200
-"""Seeds of each run of the other readings (`icm.experiments.robustness_readings`): the
-200 seeds of root 0 that the chapters' own runs use, so that a reading's book run is the
-chapter's run (Figure 7's story in the rods' run is chapter 5's)."""
 
 
 def seeds_needed(n_seeds, threshold=CLAIM_SHARE):
@@ -73,27 +67,6 @@ def chance_to_hold(share, n_seeds, threshold=CLAIM_SHARE):
     if needed is None:
         return 0.0
     return float(binom.sf(needed - 1, n_seeds, share))
-
-
-FIRST_EPISODE_CLAIMS = {
-    "quiet_move_loses": "in the first episode, a tried move that toppled nothing is worth "
-                        "less than its starting value when that value is above zero, and "
-                        "still zero when it is zero",
-    "red_nearer": "the nearest red pair is fewer moves from the start than the nearest "
-                  "blue pair",
-}
-"""What the chapter says of the rods' first episode
-(`icm.experiments.robustness_readings.first_episode` checks it)."""
-
-
-STRICT_READING_CLAIMS = {
-    "zero_passes_toppled": "with untried moves worth nothing, red is predicted well first "
-                           "in chapter 5's reading \"toppled\"",
-    "zero_fails_strict": "with untried moves worth nothing, red predicted well first fails "
-                         "in the strict reading \"all\" of the rods' map",
-}
-"""What the chapter says of the reading of "predicted well" behind the rods' map
-(`icm.experiments.robustness_readings.strict_reading` checks it)."""
 
 
 def studies_table(studies=None):
@@ -220,36 +193,6 @@ CHAPTER_CLAIMS = {
 (`chapter_claims`)."""
 
 
-BOLD_CLAIMS = {
-    "red comes first at every point of this map, whatever the presses and the "
-    "reading": ("weight_above_settles_red", "all"),
-    "Red is predicted well first at every point of this map": ("critic_red_everywhere",
-                                                               "all"),
-    "Red toppled first holds at every point of the map": ("rods_toppled_first_everywhere",
-                                                          "all"),
-}
-"""The bold claims of the chapter "What the result depends on" that use a word of
-strength (book/_ext/claim_words.py), each with the claim of `CHAPTER_CLAIMS` that
-checks it and the kind of that check: "all", every point's verdict "holds" (a claim
-that must hold at every point of a map is the conjunction of the points' own tests,
-which needs no correction for their number: it fails if any one fails)."""
-
-STRONG_WORDS = {
-    **{text: (name, kind, "points") for text, (name, kind) in BOLD_CLAIMS.items()},
-    "it holds at every point with an initial Q": ("rods_blue_needs_drive", "all", "points"),
-    # Exercise 6.1's rule ("never" is -1), which the exercise's check holds answers to.
-    'the trials counted from 1 and -1 meaning "never"': (
-        "tests/test_exercises.py::test_a_typical_wrong_answer_fails_naming_the_case", "rule"),
-    '"Never" is `-1`, the smallest number': (
-        "tests/test_exercises.py::test_a_typical_wrong_answer_fails_naming_the_case", "rule"),
-}
-"""The chapter's sentences that say a word of strength about its maps, in the form the
-reading of all prose takes (book/_ext/claim_words.py: {a fragment of the sentence: (claim
-name, kind, the set an "all" claim is over)}): each claim about all the points of a map
-is over the map's points (a finite set, each point decided by its own interval), never
-over seeds. `BOLD_CLAIMS` holds the bold ones in the older form."""
-
-
 def _every(result, claim, verdict_, **where):
     """Whether `claim` has the verdict `verdict_` at every measured point of `result`
     whose settings satisfy `where` ({setting: function of its value -> bool})."""
@@ -372,8 +315,8 @@ def chapter_numbers(goal, critic, rods_result):
         presses_low=min(presses), presses_high=max(presses),
         goal_green_one_press=goal.share("green_mastered", presses_per_trial=min(presses))[0],
         goal_presses_in_run=min(presses) * goal.study.fixed["n_trials"])
-    clauses["goal_red_first_by_weight"] = goal.shares_along("red_first", "action_weight")
-    clauses["goal_later_by_weight"] = goal.shares_along("interest_later", "action_weight")
+    clauses["goal_red_first_by_weight"] = shares_along(goal, "red_first", "action_weight")
+    clauses["goal_later_by_weight"] = shares_along(goal, "interest_later", "action_weight")
     # The actor-critic.
     weakest = critic.study.setting("action_weight").values[0]
     fewest = critic.study.setting("presses_per_trial").values[0]
@@ -409,9 +352,9 @@ def chapter_numbers(goal, critic, rods_result):
         rods_blue_positive_q_min=float(rods_result.points().query("initial_q > 0")
                                        .blue_found.min()))
     clauses.update(
-        rods_red_first_by_q=rods_result.shares_along("red_first", "initial_q"),
-        rods_red_first_by_epsilon=rods_result.shares_along("red_first", "epsilon"),
-        rods_blue_q_none_by_epsilon=rods_result.shares_along("blue_found", "epsilon",
+        rods_red_first_by_q=shares_along(rods_result, "red_first", "initial_q"),
+        rods_red_first_by_epsilon=shares_along(rods_result, "red_first", "epsilon"),
+        rods_blue_q_none_by_epsilon=shares_along(rods_result, "blue_found", "epsilon",
                                                              initial_q=qs[0]))
     clauses["rods_toppled_first_points"] = verdict_counts(rods_result, "red_toppled_first")
     lowest = rods_result.points().sort_values("red_toppled_first", kind="stable").iloc[0]
@@ -434,6 +377,16 @@ def chapter_numbers(goal, critic, rods_result):
     return numbers, clauses
 
 
+def shares_along(result, claim, setting, **point):
+    """In words, the share of seeds in which `claim` held in `result` (a
+    `RobustnessResult`) at each value of `setting` (the other settings at `point`, or at
+    their defaults), e.g. "51% at 1, 49% at 1.5, 97% at 3": a clause for the chapter
+    (Markdown)."""
+    setting = result.study.setting(setting)
+    return ", ".join(f"{result.share(claim, **{**point, setting.name: v})[0]:.1%} at "
+                     f"{show_value(v)}" for v in setting.values)
+
+
 def weakest_point(result, claim):
     """In words, the point of a map where `claim` held in the fewest seeds, e.g.
     "action_weight = 10, presses_per_trial = 1, variant = printed_td"."""
@@ -451,59 +404,10 @@ def verdict_counts(result, claim):
             f"{counts['unclear'] or 'none'} and fails at {counts['fails'] or 'none'}")
 
 
-def readings_numbers(found):
-    """The numbers and clauses the chapter "What the result depends on" quotes from
-    its other readings, by the names its text uses.
-
-    Args:
-      found: {study name: `ReadingsResult`}, for the three studies.
-
-    Returns:
-      (numbers, clauses), as `chapter_numbers`: per study its `describe()`; over
-      all of them `readings_summary` and `changed_readings`; k, the errors of the
-      interest's slope ("k"), and the Q-learner's step size and discount ("alpha",
-      "gamma"), as the book's runs used them; for the rods, the book's run, the run
-      without a limit on moves and the run whose moves off the grid end the episode:
-      the share of episodes that end on the time limit, of moves that run into the
-      edge, of episodes that end there, the mean and the longest episode, the share of
-      first episodes that end with red toppled, and Figure 7's story and order
-      (`RodTopplingResult.tells_the_papers_story`, `in_paper_order`) in the strict
-      reading "all" (`<run>_story`, `<run>_order`) and in chapter 5's reading
-      "toppled", Figure 7's moment (b) (`<run>_story_toppled`, `<run>_order_toppled`).
-    """
-    if not isinstance(found, dict) or set(found) != set(STUDIES):
-        raise _validate.ArgumentTypeError(f"found must be a dict of ReadingsResult by "
-                                          f"study name ({', '.join(STUDIES)}), got "
-                                          f"{_validate.show(found)}")
-    for name, result in found.items():
-        _validate.instance(f"found[{name!r}]", result, ReadingsResult)
-    clauses = {f"readings_{name}": result.describe() for name, result in found.items()}
-    clauses["readings_summary"] = readings_summary(list(found.values()))
-    clauses["readings_changed_list"] = changed_readings(list(found.values()), shares=False)
-    clauses["not_measured_epsilon"] = NOT_MEASURED[("actor_critic", "epsilon")]
-    rod_runs = found["rod_toppling"]
-    book = rod_runs.run()
-    numbers = {"max_moves": book.settings["max_moves"],
-               "time_limit_share": book.time_limit_share(), "edge_share": book.edge_share(),
-               "edge_ended_share": rod_runs.run(("off_grid", "end")).edge_ended_share(),
-               "k": found["goal_oriented"].run().settings["window"],
-               "alpha": book.settings["alpha"], "gamma": book.settings["gamma"]}
-    for name, run in (("book", book), ("no_limit", rod_runs.run(("max_moves", None))),
-                      ("off_grid_ends", rod_runs.run(("off_grid", "end")))):
-        numbers[f"{name}_length"] = float(run.episode_length.mean())
-        numbers[f"{name}_longest"] = int(run.episode_length.max())
-        numbers[f"{name}_first_red"] = float(run.topple_share("red", slice(0, 1)))
-        for reading, suffix in (("all", ""), ("toppled", "_toppled")):
-            numbers[f"{name}_order{suffix}"] = run.red_before_blue_begins(reading)
-            numbers[f"{name}_story{suffix}"] = float(
-                run.tells_the_papers_story(reading).mean())
-    return numbers, clauses
-
-
 def run_replication(progress=False):
     """The chapter's claims (`chapter_claims`) rechecked on its three maps run again on a
     root seed that no study, chapter or other test uses
-    (`icm.experiments.replication.REPLICATION_ROOTS["robustness"]`), with as many seeds
+    (`icm.experiments.seeding.REPLICATION_ROOTS["robustness"]`), with as many seeds
     at every point as the chapter's maps (`MAP_SEEDS`).
 
     Returns:
@@ -514,9 +418,10 @@ def run_replication(progress=False):
       {verdict: points} of "red toppled first" on the rods' map (the chapter says it
       holds at every point)}.
     """
-    from icm.experiments import replication, robustness
+    from icm.studies import robustness
+    from icm.experiments.seeding import REPLICATION_ROOTS
 
-    root = replication.REPLICATION_ROOTS["robustness"]
+    root = REPLICATION_ROOTS["robustness"]
     maps = {name: robustness.run_robustness(name, n_seeds=MAP_SEEDS[name], seed=root,
                                             progress=progress)
             for name in ("goal_oriented", "actor_critic", "rod_toppling")}
@@ -578,22 +483,3 @@ def replication_sentences(stored):
                 f"is unclear at {counts['unclear'] or 'none'} and fails at "
                 f"{counts['fails'] or 'none'}.")
     return {"summary": summary, "critic_everywhere": critic, "rods_toppled": rods}
-
-
-def main():
-    """`python -m icm.chapters.robustness`: runs `run_replication` and writes it into
-    assets/replications.json under "robustness" (the other chapters' entries kept)."""
-    import json
-
-    from icm.envs._assets import ASSETS
-    from icm.experiments import replication
-
-    out = replication.load_replications()
-    out["robustness"] = run_replication(progress=True)
-    path = ASSETS / replication.REPLICATION_FILE
-    path.write_text(json.dumps(out, indent=1) + "\n")
-    print(f"wrote {path}")
-
-
-if __name__ == "__main__":
-    main()
