@@ -766,6 +766,14 @@ def test_interest_stays_under_the_largest_prediction_error():
     assert not chapter.claims(check, check, topple_map, runs[0], over)[
         "interest_under_ceiling"]
     refused(lambda: chapter.interest_band_top("run"), "result", "run", "type")
+    # The mean curves' top: one seed at 1.5 on red's second trial lifts red's mean there
+    # by (1.5 - its value before) / seeds.
+    means = runs[1].interest.mean(axis=0)
+    assert chapter.interest_mean_top(runs[1]) == pytest.approx(float(means.max()))
+    assert chapter.interest_mean_top(over) == pytest.approx(
+        max(float(means.max()), means[1, 0] + (1.5 - runs[1].interest[0, 1, 0])
+            / runs[1].n_seeds))
+    refused(lambda: chapter.interest_mean_top("run"), "result", "run", "type")
 
 
 def test_gravity_compensation_holds_the_arm_where_inverse_kinematics_aims_it():

@@ -2,8 +2,8 @@
 tabular twins give the physics' outcomes, its claims in words (`CLAIMS`) checked on its
 own runs when the book is built (`claims`), and the numbers it explains: how the steps
 of a comparison split into trials (`trial_steps`, `rod_episode_ends`), the ceiling of
-the goal-oriented learner's interest and the band of Figure 5 under it
-(`interest_ceiling`, `interest_band_top`), how high a mean of interest peaks and where
+the goal-oriented learner's interest and the mean and band of Figure 5 under it
+(`interest_ceiling`, `interest_mean_top`, `interest_band_top`), how high a mean of interest peaks and where
 it starts (`interest_peaks`), the phases of a press as they run (`press_phases`,
 checked on a recorded press by `press_claims`), the arm's joints as a table
 (`joint_table`), and how the arm holds a posture, with and without gravity compensation
@@ -163,6 +163,14 @@ def interest_ceiling():
     interest passes it; `claims` checks that the chapter's runs stay under it.
     """
     return max(math.dist(a, b) for a in buttons.EFFECTS for b in buttons.EFFECTS)
+
+
+def interest_mean_top(result):
+    """The highest point of Figure 5's mean curves for `result`: the largest mean over
+    seeds of the interest, over trials and tasks (a band's top is `interest_band_top`)."""
+    _validate.instance("result", result, GoalOrientedResult,
+                       "a GoalOrientedResult (from icm.experiments.run_goal_oriented)")
+    return float(result.interest.mean(axis=0).max())
 
 
 def interest_band_top(result):

@@ -11,7 +11,7 @@ from icm.chapters.words import in_seeds
 from icm.experiments.rod_episodes import WELL_PREDICTED_ERROR
 from icm.studies.maps import RobustnessResult
 from icm.studies.robustness import CLAIM_SHARE, STUDIES, check_study, show_value
-from icm.stats import share_interval
+from icm.stats import LEVEL, share_interval
 
 
 MAP_SEEDS = {"goal_oriented": 1000, "actor_critic": 1000, "rod_toppling": 1000}
@@ -71,13 +71,15 @@ def chance_to_hold(share, n_seeds, threshold=CLAIM_SHARE):
 
 def studies_table(studies=None):
     """A Markdown table of the claims the maps count: for each learner (with the paper's
-    figure), each claim, when it holds in one run, and the share of seeds it needs.
+    figure), each claim, when it holds in one run, and the share its seeds' whole 95%
+    interval must clear (a threshold on a share, not a number of runs).
 
     Args:
       studies: names or `Study` objects (default all of `STUDIES`).
     """
     studies = [check_study(s) for s in (STUDIES if studies is None else studies)]
-    lines = ["| learner | claim | holds in one run when | seeds needed |",
+    lines = ["| learner | claim | holds in one run when "
+             f"| threshold for the whole {LEVEL:.0%} interval of the share |",
              "|---|---|---|---|"]
     for study in studies:
         for i, claim in enumerate(study.claims):
