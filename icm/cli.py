@@ -359,6 +359,7 @@ def run_study_command(args, parser):
     every error is one line with status 2."""
     from icm import studies
     from icm.experiments.sweep import UnitError, connect
+    from icm.records import RecordError
     from icm.studies import engine
 
     def fail(message):
@@ -383,7 +384,7 @@ def run_study_command(args, parser):
         if args.import_seeds is not None:
             try:
                 old = engine.read_seed_blocks(args.name, args.import_seeds)
-            except ValueError as error:
+            except RecordError as error:  # (its message starts with the file's name)
                 fail(f"--import-seeds {error}")
             settings = studies.check_settings(args.name, args.seeds,
                                               imported_seeds=old.n_seeds, **options)

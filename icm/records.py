@@ -4,7 +4,9 @@ the line where there is one, and the field that is wrong.
 
 Files read here: a submitted notebook (what the grader needs of it), an assignment's
 manifest (written by `icm.course.assign`, which checks it with the same model before
-it writes it), a class roster (CSV rows). Every file read back, these and the built
+it writes it), a class roster (CSV rows), and a study's journal (each line), run log,
+file (what produced it) and the earlier file whose seeds a study imports
+(`icm.studies.engine`, `icm.experiments.sweep.read_journal`). Every file read back, these and the built
 book's pages (`read_text`), is read through `read_bytes`: a regular file of a bounded
 size, refused naming the file otherwise (a named pipe would never end; a huge file
 would fill the memory).
