@@ -271,88 +271,170 @@ COMMANDS = {
 """name -> (help text, function(args) -> Figure, function(subparser) adding options)."""
 
 
+def _integer_from(low, high, note=""):
+    """An argparse type: an integer from `low` to `high` (`note` says what the highest
+    is). Its errors say what is allowed."""
+    allowed = f"must be an integer from {low} to {high:,}{note}"
+
+    def parse(text):
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{allowed}, got {text!r}") from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"{allowed}, got {text!r}")
+        return value
+    return parse
+
+
+def _study_jobs(text):
+    """An argparse type for `study --jobs`: -1 (one per core) or from 1 to this
+    machine's cores (`icm.course.limits.CORES`): never more processes than cores."""
+    from icm.course import limits
+
+    allowed = (f"must be -1 (one per core) or an integer from 1 to {limits.CORES} (this "
+               f"machine's cores)")
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{allowed}, got {text!r}") from None
+    if value != -1 and not 1 <= value <= limits.CORES:
+        raise argparse.ArgumentTypeError(f"{allowed}, got {text!r}")
+    return value
+
+
 def _add_study_command(subparsers):
     """`python -m icm study NAME ...`: runs a long study (`icm.studies`)."""
     from icm import studies
+    from icm.studies import engine, registry
 
     text = ("Run a long study (every local core with joblib, or a Dask cluster) and write "
             "its JSON file; a run killed half-way continues from its journal "
-            "(<out>.journal) when started again with the same options.")
+            "(<out>.journal) when started again with the same options. Its estimated "
+            "run time is printed before it starts; a run estimated at more than "
+            f"{engine.MAX_CPU_HOURS:g} CPU-hours needs --confirm-long-run.")
     sub = subparsers.add_parser("study", help="run a long study: "
                                 + ", ".join(studies.STUDIES), description=text)
     sub.add_argument("name", choices=tuple(studies.STUDIES), metavar="NAME",
                      help="; ".join(f"{n}: {s.description}" for n, s in
                                     studies.STUDIES.items()))
-    sub.add_argument("--seeds", type=_positive_int, default=None,
-                     help="seeds; " + "; ".join(f"{n}: {s.seeds[1]} (default {s.seeds[0]})"
-                                               for n, s in studies.STUDIES.items()))
+    low, high = registry.SEEDS
+    sub.add_argument("--seeds", type=_integer_from(low, high), default=None,
+                     help=f"seeds, from {low} to {high:,}; "
+                          + "; ".join(f"{n}: {s.seeds[1]} (default {s.seeds[0]})"
+                                      for n, s in studies.STUDIES.items()))
     options = {}
     for study in studies.STUDIES.values():
         for option, (default, minimum, help_text) in study.options.items():
             options.setdefault(option, (minimum, []))[1].append(
                 f"{study.name}: {help_text} (default {default})")
     for option, (minimum, helps) in options.items():
-        sub.add_argument(f"--{option.replace('_', '-')}", type=_integer_at_least(minimum),
-                         default=None, help="; ".join(helps))
+        sub.add_argument(f"--{option.replace('_', '-')}",
+                         type=_integer_from(minimum, registry.SIZE_MAX), default=None,
+                         help=f"from {minimum} to {registry.SIZE_MAX:,}; " + "; ".join(helps))
     sub.add_argument("--backend", choices=("joblib", "dask", "serial"), default="joblib",
                      help="joblib: processes on this machine (default); dask: a Dask "
                           "cluster (--scheduler, or a local one with --jobs workers); "
                           "serial: this process")
-    sub.add_argument("--jobs", type=_integer_at_least(-1), default=-1,
-                     help="joblib processes, or the workers of the local Dask cluster "
-                          "(default -1: one per core)")
+    sub.add_argument("--jobs", type=_study_jobs, default=-1,
+                     help="joblib processes, or the workers of the local Dask cluster: "
+                          "from 1 to this machine's cores (default -1: one per core)")
     sub.add_argument("--scheduler", default=None,
                      help="the address of an existing Dask cluster's scheduler, e.g. "
-                          "tcp://10.0.0.5:8786 (with --backend dask)")
+                          "tcp://10.0.0.5:8786 (with --backend dask); one that does not "
+                          "answer within a few seconds is refused")
     sub.add_argument("--import-seeds", type=pathlib.Path, default=None, metavar="FILE",
                      help="an earlier file of the study with fewer seeds per root: its "
                           "seeds are kept after recomputing a sample of them")
     sub.add_argument("--out", type=pathlib.Path, required=True,
-                     help="the JSON file to write")
+                     help="the JSON file to write: new, or a file of this study (its "
+                          "journal <out>.journal and run log <out>.runs.jsonl beside it)")
+    sub.add_argument("--force", action="store_true",
+                     help="replace an --out (or a journal or run log beside it) that is "
+                          "not this study's")
+    sub.add_argument("--confirm-long-run", action="store_true",
+                     help=f"run even if the estimate is more than "
+                          f"{engine.MAX_CPU_HOURS:g} CPU-hours")
     sub.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+    def one_line(message):
+        sub.exit(2, f"{sub.prog}: error: {message} (see {sub.prog} --help)\n")
+    sub.error = one_line  # (argparse would print the usage too: errors are one line)
     return sub
 
 
 def run_study_command(args, parser):
-    """Runs `python -m icm study` with parsed `args`; returns the exit status."""
+    """Runs `python -m icm study` with parsed `args`; returns the exit status.
+    Everything is checked before any work (the options, the destinations, the
+    estimated run time, the file whose seeds are imported, the Dask scheduler), and
+    every error is one line with status 2."""
     from icm import studies
+    from icm.experiments.sweep import UnitError, connect
+    from icm.records import RecordError
+    from icm.studies import engine
+
+    def fail(message):
+        parser.exit(2, f"{parser.prog} study: error: {message}\n")
 
     study = studies.STUDIES[args.name]
     options = {o: getattr(args, o) for o in study.options}
     given = [o for o in set().union(*(s.options for s in studies.STUDIES.values()))
              if o not in study.options and getattr(args, o) is not None]
     if given:
-        parser.exit(2, f"{parser.prog} study: error: --{given[0].replace('_', '-')} is not "
-                       f"an option of study {args.name!r}\n")
+        fail(f"--{given[0].replace('_', '-')} is not an option of study {args.name!r}")
     if args.scheduler is not None and args.backend != "dask":
-        parser.exit(2, f"{parser.prog} study: error: --scheduler needs --backend dask\n")
-    if args.jobs == 0:
-        parser.exit(2, f"{parser.prog} study: error: --jobs must be >= 1 or -1, got 0\n")
+        fail("--scheduler needs --backend dask")
     common = dict(backend=args.backend, progress=not args.no_progress)
     cluster = client = None
     try:
+        settings = studies.check_settings(args.name, args.seeds, **options)
+        inputs = [] if args.import_seeds is None else [args.import_seeds]
+        engine.check_destinations(args.name, args.out, force=args.force, inputs=inputs,
+                                  what="--out")
+        done = ()
+        if args.import_seeds is not None:
+            try:
+                old = engine.read_seed_blocks(args.name, args.import_seeds)
+            except RecordError as error:  # (its message starts with the file's name)
+                fail(f"--import-seeds {error}")
+            settings = studies.check_settings(args.name, args.seeds,
+                                              imported_seeds=old.n_seeds, **options)
+            done = engine.imported_units(old)
+        seconds, n_units, basis = engine.check_run_length(
+            args.name, settings, args.out, done, long_run=args.confirm_long_run)
+        workers = (_cores() if args.jobs == -1 else args.jobs) \
+            if args.backend != "serial" and args.scheduler is None else 1
+        print(f"study {args.name}: {n_units} units to compute, estimated at "
+              f"{engine.duration(seconds)} of CPU ({basis})"
+              + (f", about {engine.duration(seconds / workers)} on {workers} "
+                 f"core{'s' if workers > 1 else ''}" if args.scheduler is None else ""),
+              flush=True)
         if args.backend == "dask" and args.scheduler is None:
-            import os
-
             from dask import distributed
 
-            workers = os.cpu_count() if args.jobs == -1 else args.jobs
             cluster = distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
                                                processes=True, dashboard_address=None)
             client = distributed.Client(cluster)
             common["client"] = client
         elif args.backend == "dask":
-            common["scheduler"] = args.scheduler
+            client = common["client"] = connect(args.scheduler)
         else:
             common["n_jobs"] = args.jobs
         extra = None
         if args.import_seeds is not None:
             kept, extra = studies.import_seeds(args.name, args.out, args.import_seeds,
-                                               args.seeds, **common, **options)
+                                               args.seeds, force=args.force, **common,
+                                               **options)
             options["imported_seeds"] = kept
-        studies.run_study(args.name, args.out, args.seeds, extra=extra, **common, **options)
-    except (ValueError, OSError) as error:
-        parser.exit(2, f"{parser.prog} study: error: {error}\n")
+        studies.run_study(args.name, args.out, args.seeds, extra=extra, force=args.force,
+                          inputs=inputs, long_run=args.confirm_long_run, **common,
+                          **options)
+    except (ValueError, OSError, UnitError) as error:
+        fail(str(error).replace("\n", " "))
+    except KeyboardInterrupt:
+        parser.exit(130, f"{parser.prog} study: interrupted; the units finished are kept "
+                         f"in {engine.journal_of(args.out)}: run the same command again "
+                         f"to continue\n")
     finally:
         if client is not None:
             client.close()
@@ -360,6 +442,13 @@ def run_study_command(args, parser):
             cluster.close()
     print(f"wrote {args.out}")
     return 0
+
+
+def _cores():
+    """This machine's cores (`icm.course.limits.CORES`)."""
+    from icm.course import limits
+
+    return limits.CORES
 
 
 def build_parser():

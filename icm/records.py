@@ -4,7 +4,9 @@ the line where there is one, and the field that is wrong.
 
 Files read here: a submitted notebook (what the grader needs of it), an assignment's
 manifest (written by `icm.course.assign`, which checks it with the same model before
-it writes it), a class roster (CSV rows). Every file read back, these and the built
+it writes it), a class roster (CSV rows), and a study's journal (each line), run log,
+file (what produced it) and the earlier file whose seeds a study imports
+(`icm.studies.engine`, `icm.experiments.sweep.read_journal`). Every file read back, these and the built
 book's pages (`read_text`), is read through `read_bytes`: a regular file of a bounded
 size, refused naming the file otherwise (a named pipe would never end; a huge file
 would fill the memory).
@@ -18,6 +20,7 @@ import re
 import stat
 
 import pydantic
+import pydantic_core
 from pydantic import BaseModel, ConfigDict, Field
 
 MAX_JSON_BYTES = 64 * 2 ** 20
@@ -274,3 +277,106 @@ class RosterRow(BaseModel):
         if re.search(r"[/\\]", value) or value in (".", ".."):
             raise ValueError("must be a file's name in the submissions' folder, not a path")
         return value
+
+
+# --- a study's journal, run log and file --------------------------------------------
+
+def json_digest(value):
+    """The SHA-256 (hex) of a JSON value's compact text: what a study's journal keeps
+    beside each result, so that a result changed since it was written is refused.
+
+    Args:
+      value: a JSON value (dicts, lists, strings, numbers, booleans, None).
+
+    Returns:
+      64 hexadecimal digits.
+    """
+    import hashlib
+
+    text = json.dumps(value, separators=(",", ":"))
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+class JournalHeader(BaseModel):
+    """A study journal's first line: what its units were computed with (the study's
+    name and settings, for `icm.studies.engine`)."""
+
+    model_config = ConfigDict(extra="forbid")
+    header: pydantic.JsonValue
+
+
+class JournalRecord(BaseModel):
+    """One finished unit of a study's journal (a line after the header): the unit, its
+    result, the CPU seconds it took, and the SHA-256 of the result as written
+    (`json_digest`): a result replaced since (a bare number for a dict, a list cut
+    short) does not match it."""
+
+    model_config = ConfigDict(extra="forbid")
+    unit: pydantic.JsonValue
+    result: pydantic.JsonValue
+    cpu: float = Field(ge=0, allow_inf_nan=False)
+    sha256: str = Field(pattern=r"^[0-9a-f]{64}$")
+
+    @pydantic.field_validator("sha256")
+    @classmethod
+    def _result_as_written(cls, sha256, info):
+        if "result" in info.data and json_digest(info.data["result"]) != sha256:
+            raise pydantic_core.PydanticCustomError(
+                "changed", "not that of the result on this line (the result was changed "
+                           "after the run wrote it)")
+        return sha256
+
+
+class RunLogLine(BaseModel):
+    """One line of a study's run log (``<out>.runs.jsonl``, `icm.studies.engine`): how
+    one run went (its settings, backend, units and their CPU seconds)."""
+
+    model_config = ConfigDict(extra="allow")
+    study: str | None = None
+    started: str
+    settings: dict
+    backend: str
+    units: int = Field(ge=0)
+    unit_cpu_seconds: list[float]
+
+
+class StudyProducedBy(BaseModel):
+    """What produced a study's file: the study's name (the rest is not read back)."""
+
+    model_config = ConfigDict(extra="allow")
+    study: str = Field(min_length=1)
+
+
+class StudyFileStamp(BaseModel):
+    """A study's file, as far as a command needs to know that it wrote it: its
+    "produced_by" names the study."""
+
+    model_config = ConfigDict(extra="allow")
+    produced_by: StudyProducedBy
+
+
+class SeedBlocksFile(BaseModel):
+    """A study's file of seed blocks per root (`icm.studies.forming_actions`: "remedies",
+    "goal-babbling"), as `--import-seeds` reads it: the seeds per root, the rollouts and
+    trials they ran, {label: {root: entry}}, 'reach' if the study has it, and what
+    produced it (the study's name)."""
+
+    model_config = ConfigDict(extra="allow")
+    n_seeds: int = Field(ge=1)
+    n_rollouts: int = Field(ge=1)
+    n_trials: int = Field(ge=1)
+    runs: dict[str, dict[str, dict[str, pydantic.JsonValue]]] = Field(min_length=1)
+    reach: pydantic.JsonValue = None
+    produced_by: StudyProducedBy
+
+    @pydantic.field_validator("runs")
+    @classmethod
+    def _roots(cls, runs):
+        for label, by_root in runs.items():
+            if not by_root:
+                raise ValueError(f"{label!r} has no root seed")
+            for root in by_root:
+                if not re.fullmatch(r"0|[1-9][0-9]{0,9}", root):
+                    raise ValueError(f"{label!r}: {root!r} is not a root seed (an "
+                                     f"integer >= 0)")
+        return runs

@@ -191,12 +191,38 @@ def sweep(run_fn, grid, n_seeds=20, seed=0, n_jobs=1, backend="joblib", client=N
     return pd.DataFrame(rows)
 
 
-def _timed(fn, unit):
-    """`fn(unit)` and the CPU seconds it took in its process (module level, so that
-    workers can unpickle it)."""
-    start = time.process_time()
-    result = fn(unit)
-    return unit, result, time.process_time() - start
+def _attempts(fn, retries, unit):
+    """`fn(unit)`, tried up to 1 + `retries` times while it raises: (unit, result, CPU
+    seconds of all the attempts in this process, the last error in words or None,
+    attempts made). Module level, so that workers can unpickle it."""
+    cpu, failure = 0.0, None
+    for attempt in range(1, retries + 2):
+        start = time.process_time()
+        try:
+            result = fn(unit)
+        except Exception as error:  # (any: it is reported with its unit, never lost)
+            cpu += time.process_time() - start
+            failure = f"{type(error).__name__}: {error}".splitlines()[0]
+            continue
+        return unit, result, cpu + time.process_time() - start, None, attempt
+    return unit, None, cpu, failure, retries + 1
+
+
+class UnitError(RuntimeError):
+    """Units whose function raised on every attempt (`run_units`): the message names
+    the first, its attempts and its error; the units that finished are in the journal.
+
+    Attributes:
+      failures: [(unit, attempts, error in words)], in the order they failed.
+    """
+
+    def __init__(self, failures, finished, journal):
+        self.failures = failures
+        unit, attempts, error = failures[0]
+        more = f"; {len(failures) - 1} other unit(s) failed too" if len(failures) > 1 else ""
+        kept = (f"; the {finished} unit(s) that finished are kept in the journal "
+                f"{journal}, run again to compute the rest" if journal is not None else "")
+        super().__init__(f"unit {_key(unit)} failed {attempts} time(s) ({error}){more}{kept}")
 
 
 def _key(unit):
@@ -219,50 +245,159 @@ def _check_unit(unit):
     return unit
 
 
-def read_journal(path, header=None):
-    """The units a journal holds: {unit's JSON text: (result, cpu seconds)}. A last
-    line cut short by a killed process is dropped (its unit runs again); any other
-    unreadable line raises ValueError, and so does a journal whose header (its first
-    line, {"header": ...}: what the units were computed with) is not `header`."""
+JOURNAL_BYTES = 2 ** 30
+"""The largest journal read back (a robustness study's rows of 1,000 seeds a point take
+tens of MiB)."""
+
+
+def _difference(found, header):
+    """In words, the first setting in which a journal's header differs from this
+    run's."""
+    if isinstance(found, dict) and isinstance(header, dict):
+        for key in list(header) + [k for k in found if k not in header]:
+            if key not in found:
+                return f"it has no {key}, this run's is {header[key]!r}"
+            if key not in header:
+                return f"its {key} is {found[key]!r}, this run has none"
+            if found[key] != header[key]:
+                return f"its {key} is {found[key]!r}, this run's {header[key]!r}"
+    return f"its header is {found!r}, this run's {header!r}"
+
+
+def read_journal(path, header=None, units=None):
+    """The units a journal holds: {unit's JSON text: (result, cpu seconds)}.
+
+    Each line is read through `icm.records` (`JournalHeader` for the first,
+    `JournalRecord` for the others: a unit, its result, its CPU seconds, and the
+    result's SHA-256 as written). A last line cut short (no newline after it: a process
+    killed while writing) is the one damage forgiven: it is left out and its unit runs
+    again (`run_units` cuts it off the file). Anything else is refused.
+
+    Args:
+      path: the journal (None, or a file that does not exist: no units).
+      header: what this run's units are computed with (a JSON value): the journal's
+        header must be the same.
+      units: None, or this run's units: a journal's unit must be one of them.
+
+    Returns:
+      The dict of units done.
+
+    Raises:
+      icm.records.RecordError: for a line that is not a record (a result changed since
+        it was written, a bare number for a record, an empty line, a unit repeated or
+        not of this run), naming the file and the line.
+      ValueError: for a journal whose header is not `header`, naming the first setting
+        that differs.
+    """
+    from icm import records
+
     done = {}
-    if path is None or not os.path.exists(path):
+    if path is None or not os.path.lexists(path):
         return done
-    with open(path, encoding="utf-8") as file:
-        lines = file.read().split("\n")
-    found = None
-    for number, line in enumerate(lines, 1):
-        if not line:
-            continue
-        try:
-            record = json.loads(line)
-            if number == 1 and isinstance(record, dict) and set(record) == {"header"}:
-                found = record["header"]
-                continue
-            done[_key(record["unit"])] = (record["result"], record["cpu"])
-        except (ValueError, KeyError, TypeError):
-            if number == len(lines):  # no newline after it: a write cut short
-                continue
-            raise ValueError(f"journal {path}: line {number} is not a unit's record "
-                             f"({line[:80]!r})") from None
-    if (found is not None or done) and found != json.loads(json.dumps(header)):
+    data = records.read_bytes(path, limit=JOURNAL_BYTES, follow=False)
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise records.RecordError(f"journal {path}: not UTF-8 text (byte {error.start})") \
+            from None
+    lines = text.split("\n")[:-1]  # (what follows the last newline is cut short)
+    if not lines:
+        return done
+    where = f"journal {path}, line 1"
+    found = records.parse_json(lines[0], records.JournalHeader, where).header
+    expected = json.loads(json.dumps(header))
+    if found != expected:
         raise ValueError(f"journal {path} was written by a run of other settings "
-                         f"({found}), not {header}: remove it to start again")
+                         f"({_difference(found, expected)}): remove it to start again, "
+                         f"or run with its settings")
+    allowed = None if units is None else {_key(u) for u in units}
+    first_line = {}
+    for number, line in enumerate(lines[1:], 2):
+        where = f"journal {path}, line {number}"
+        if not line.strip():
+            raise records.RecordError(f"{where}: empty, not a unit's record")
+        record = records.parse_json(line, records.JournalRecord, where)
+        key = _key(record.unit)
+        if allowed is not None and key not in allowed:
+            raise records.RecordError(f"{where}: the unit {key} is not one of this run's")
+        if key in first_line:
+            raise records.RecordError(f"{where}: the unit {key} is on line "
+                                      f"{first_line[key]} already")
+        first_line[key] = number
+        done[key] = (record.result, record.cpu)
     return done
 
 
+def _cut_short_line_removed(path):
+    """Cuts off a journal's last line if a killed write left it without its newline
+    (the file then ends at its last complete line); returns whether it did."""
+    if path is None or not os.path.isfile(path):
+        return False
+    with open(path, "rb+") as file:
+        data = file.read()
+        if not data or data.endswith(b"\n"):
+            return False
+        file.truncate(data.rfind(b"\n") + 1)
+        file.flush()
+        os.fsync(file.fileno())
+    return True
+
+
 def start_journal(path, header):
-    """Creates the journal `path` with its header line, unless it exists."""
-    if not os.path.exists(path):
+    """Creates the journal `path` with its header line, unless it has one."""
+    if not os.path.exists(path) or os.path.getsize(path) == 0:
         with open(path, "w", encoding="utf-8") as file:
             file.write(json.dumps({"header": header}, separators=(",", ":")) + "\n")
+            file.flush()
+            os.fsync(file.fileno())
 
 
 def append_unit(file, unit, result, cpu):
-    """Appends one finished unit to the open journal and flushes it to the disk."""
-    file.write(json.dumps({"unit": unit, "result": result, "cpu": cpu},
+    """Appends one finished unit to the open journal (with its result's SHA-256,
+    `icm.records.json_digest`) and flushes it to the disk."""
+    from icm import records
+
+    file.write(json.dumps({"unit": unit, "result": result, "cpu": cpu,
+                           "sha256": records.json_digest(result)},
                           separators=(",", ":")) + "\n")
     file.flush()
     os.fsync(file.fileno())
+
+
+SCHEDULER_SECONDS = 5
+"""How long `run_units` waits for a Dask scheduler to answer before it gives up."""
+
+
+def connect(scheduler, timeout=None):
+    """A `dask.distributed.Client` of the scheduler at `scheduler`, or a ValueError
+    naming the address if none answers within `timeout` seconds.
+
+    Args:
+      scheduler: the address, e.g. "tcp://10.0.0.5:8786".
+      timeout: seconds to wait (None: `SCHEDULER_SECONDS`).
+
+    Returns:
+      The client (close it when done).
+
+    Raises:
+      ValueError: for an address that is not one, or a scheduler that does not answer.
+    """
+    from dask import distributed
+
+    if not isinstance(scheduler, str):
+        raise _validate.ArgumentTypeError(f"scheduler must be an address such as "
+                                          f"'tcp://127.0.0.1:8786', got "
+                                          f"{_validate.show(scheduler)}")
+    timeout = SCHEDULER_SECONDS if timeout is None else _validate.real(
+        "timeout", timeout, 0, low_open=True)
+    try:
+        return distributed.Client(scheduler, timeout=timeout)
+    except (OSError, TimeoutError) as error:
+        raise ValueError(f"scheduler: no Dask scheduler answered at {scheduler} within "
+                         f"{timeout:g} s ({type(error).__name__})") from None
+    except (ValueError, TypeError) as error:
+        raise ValueError(f"scheduler: {scheduler!r} is not a Dask scheduler's address "
+                         f"({error})") from None
 
 
 def run_units(fn, units, backend="joblib", n_jobs=-1, client=None, scheduler=None,
@@ -285,25 +420,30 @@ def run_units(fn, units, backend="joblib", n_jobs=-1, client=None, scheduler=Non
       n_jobs: joblib's processes (>= 1, or -1 for one per core).
       client: a `dask.distributed.Client`, for backend "dask".
       scheduler: a Dask scheduler's address (e.g. "tcp://10.0.0.5:8786"), for
-        backend "dask" without `client`.
+        backend "dask" without `client`; one that does not answer within
+        `SCHEDULER_SECONDS` is refused (`connect`).
       progress: show a progress bar over the units.
-      journal: None, or a file (JSON lines) to which every finished unit is appended
-        and flushed; the units it already holds are not computed again, so a run
-        killed half-way continues where it stopped.
-      retries: how many times Dask reruns a unit whose function raised (a unit whose
-        worker died is rerun by Dask's scheduler in any case).
+      journal: None, or a file (JSON lines, `read_journal`) to which every finished
+        unit is appended and flushed as it finishes; the units it already holds are
+        not computed again, so a run killed half-way continues where it stopped.
+      retries: how many more times a unit whose function raised is tried, on every
+        backend (in the worker that ran it; a unit whose Dask worker died is rerun by
+        Dask's scheduler in any case).
       header: what the units are computed with (a JSON value, e.g. the study's
         settings), written as the journal's first line; a journal of another header
         is refused, so that no run reuses units computed with other settings.
 
     Returns:
       (results, cpu): two lists in the order of `units`: each unit's result, and the
-      CPU seconds its function took in its worker (as recorded in the journal for
-      units done earlier).
+      CPU seconds its function took in its worker, its failed attempts included (as
+      recorded in the journal for units done earlier).
 
     Raises:
       TypeError: for a `fn` that is not a function, or units that are not JSON values.
-      ValueError: for repeated units, or a bad backend, n_jobs, client or scheduler.
+      ValueError: for repeated units, a bad backend, n_jobs, client or scheduler, or a
+        journal refused (`read_journal`).
+      UnitError: when units failed on every attempt: after every other unit is
+        computed and journaled, naming the first failed unit and its error.
     """
     if not callable(fn) or isinstance(fn, type) or not _accepts_one_positional(fn):
         raise _validate.ArgumentTypeError(f"fn must be a function of one unit, got "
@@ -319,7 +459,7 @@ def run_units(fn, units, backend="joblib", n_jobs=-1, client=None, scheduler=Non
     _validate.one_of("backend", backend, ("serial",) + BACKENDS)
     n_jobs = _validate.n_jobs(n_jobs)
     _validate.boolean("progress", progress)
-    _validate.integer_at_least("retries", retries, 0)
+    retries = _validate.integer_at_least("retries", retries, 0)
     if (client is not None or scheduler is not None) and backend != "dask":
         raise ValueError(f"client and scheduler are used only with backend 'dask', got "
                          f"backend {backend!r}")
@@ -329,30 +469,43 @@ def run_units(fn, units, backend="joblib", n_jobs=-1, client=None, scheduler=Non
         raise _validate.ArgumentTypeError(f"scheduler must be an address such as "
                                           f"'tcp://127.0.0.1:8786', got "
                                           f"{_validate.show(scheduler)}")
-    done = read_journal(journal, header)
+    done = read_journal(journal, header, units)
     todo = [u for u, k in zip(units, keys) if k not in done]
-    if journal is not None:
-        start_journal(journal, header)
-    file = None if journal is None else open(journal, "a", encoding="utf-8")
+    own = connect(scheduler) if todo and scheduler is not None else None
+    failures = []
     try:
-        for unit, result, cpu in progress_bar(
-                _compute(fn, todo, backend, n_jobs, client, scheduler, retries), len(todo),
-                "study", progress, unit="unit"):
-            result = json.loads(json.dumps(result))
-            done[_key(unit)] = (result, cpu)
+        if journal is not None:
+            _cut_short_line_removed(journal)
+            start_journal(journal, header)
+        file = None if journal is None else open(journal, "a", encoding="utf-8")
+        try:
+            for unit, result, cpu, failure, attempts in progress_bar(
+                    _compute(fn, todo, backend, n_jobs, own or client, retries), len(todo),
+                    "study", progress, unit="unit"):
+                if failure is not None:
+                    failures.append((unit, attempts, failure))
+                    continue
+                result = json.loads(json.dumps(result))
+                done[_key(unit)] = (result, cpu)
+                if file is not None:
+                    append_unit(file, unit, result, cpu)
+        finally:
             if file is not None:
-                append_unit(file, unit, result, cpu)
+                file.close()
     finally:
-        if file is not None:
-            file.close()
+        if own is not None:
+            own.close()
+    if failures:
+        raise UnitError(failures, len(done), journal)
     return [done[k][0] for k in keys], [done[k][1] for k in keys]
 
 
-def _compute(fn, units, backend, n_jobs, client, scheduler, retries):
-    """(unit, result, cpu seconds) for every unit, as they finish."""
+def _compute(fn, units, backend, n_jobs, client, retries):
+    """(unit, result, cpu seconds, error or None, attempts) for every unit, as they
+    finish (`_attempts`)."""
     if not units:
         return
-    job = functools.partial(_timed, fn)
+    job = functools.partial(_attempts, fn, retries)
     if backend == "serial":
         yield from map(job, units)
     elif backend == "joblib":
@@ -363,14 +516,7 @@ def _compute(fn, units, backend, n_jobs, client, scheduler, retries):
     else:
         from dask import distributed
 
-        own = None
-        if client is None and scheduler is not None:
-            client = own = distributed.Client(scheduler)
         client = _running_client(client)
-        try:
-            futures = client.map(job, units, pure=False, retries=retries)
-            for future in distributed.as_completed(futures):
-                yield future.result()
-        finally:
-            if own is not None:
-                own.close()
+        futures = client.map(job, units, pure=False)
+        for future in distributed.as_completed(futures):
+            yield future.result()

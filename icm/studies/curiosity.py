@@ -44,6 +44,18 @@ def run_unit(settings, unit):
     return plain(result.seed_summaries())
 
 
+SEED_SECONDS = 0.0005
+"""CPU seconds a seed of one setting costs, roughly, at the study's default trials (100)
+or episodes (300), in proportion to them: the 24 settings at 100 seeds took 0.04 s each
+(2026-12-05)."""
+
+
+def unit_seconds(settings, unit):
+    """A rough figure of one unit's CPU seconds (`SEED_SECONDS`): `Study.unit_seconds`."""
+    length = settings["trials"] / 100 if unit[0] == "signal" else settings["episodes"] / 300
+    return SEED_SECONDS * settings["seeds"] * length
+
+
 def assemble(settings, units, results):
     """The study's file: {"n_seeds", "n_trials", "n_episodes", "seed", "signals":
     {"signal|interest_per|noisy": rows}, "rewards": {"reward|wobbly": rows}}."""
@@ -63,6 +75,6 @@ register(Study(
     seeds=(100, "per setting, the same for every setting"),
     options={"trials": (100, 1, "trials per run on the buttons"),
              "episodes": (300, 1, "episodes per run on the rods")},
-    units=units, run_unit=run_unit, assemble=assemble,
+    units=units, run_unit=run_unit, assemble=assemble, unit_seconds=unit_seconds,
     seeding=(f"every setting runs seeds 0..n-1 of root seed {CURIOSITY_SEED} (the same "
              "seeds for every setting, as in icm.experiments.curiosity)")))

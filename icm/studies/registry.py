@@ -25,6 +25,11 @@ class Study:
       seeding: what seeds its units use, in words (its file's "produced_by" keeps it).
       check: settings -> settings, raising ValueError for a bad combination.
       indent: the JSON file's indentation (None: compact), as its committed file has it.
+      unit_seconds: (settings, unit) -> a rough figure of the unit's CPU seconds, its
+        source stated where it is defined (None: `DEFAULT_UNIT_SECONDS` a unit), from
+        which the engine estimates a run's time before it starts
+        (`icm.studies.engine.estimate`; a run measured beside the output file scales
+        it).
     """
 
     name: str
@@ -37,7 +42,19 @@ class Study:
     seeding: str
     check: object = None
     indent: object = None
+    unit_seconds: object = None
 
+
+SEEDS = (1, 100_000)
+"""The range of a study's seeds (`--seeds`): 100,000 seeds of the remedies' 7
+conditions are 700,000 units, about 1,500 CPU-hours; the estimate of a run's time
+refuses far less (`icm.studies.engine.MAX_CPU_HOURS`)."""
+SIZE_MAX = 1_000_000
+"""The largest value of a study's other size options (rollouts, trials, episodes, ...;
+each has its own least value, `Study.options`)."""
+DEFAULT_UNIT_SECONDS = 10.0
+"""CPU seconds a unit is taken to cost when its study states no figure (the formed
+actions' units, the slowest registered, take 5 to 8 at their defaults)."""
 
 STUDIES = {}
 """The registered studies, by name, in the order their modules registered them."""

@@ -389,6 +389,20 @@ def run_unit(settings, unit):
                                     fixed, {a: va, b: vb}, per_seed=study.per_seed))
 
 
+SEED_SECONDS = 0.0005
+"""CPU seconds a seed of one map point costs, roughly, at its chapter's run length, in
+proportion to the length: the 76 points at 200 seeds took 0.04 to 0.08 s each
+(2026-12-05)."""
+
+
+def unit_seconds(settings, unit):
+    """A rough figure of one unit's CPU seconds (`SEED_SECONDS`): `Study.unit_seconds`."""
+    fixed = STUDIES[unit[0]].fixed
+    chapter = fixed.get("n_trials", fixed.get("n_episodes"))
+    length = 1.0 if settings.get("length") is None else settings["length"] / chapter
+    return SEED_SECONDS * settings["seeds"] * length
+
+
 def assemble(settings, units, results):
     """The study's file: {"n_seeds", "seed", "length", "maps": {learner: {"a|b": rows}}}."""
     maps = {}
@@ -417,7 +431,7 @@ registry.register(registry.Study(
     seeds=(200, "per map point, the same at every point"),
     options={"length": (0, 0, "trials (episodes on the rods) per run; 0: each "
                               "learner's chapter's")},
-    units=units, run_unit=run_unit, assemble=assemble,
+    units=units, run_unit=run_unit, assemble=assemble, unit_seconds=unit_seconds,
     seeding=(f"every map point runs seeds 0..n-1 of root seed {ROBUSTNESS_SEED} "
              "(the same seeds at every point, as in robustness.run_robustness)"),
     check=lambda settings: {**settings, "length": settings["length"] or None}))

@@ -200,3 +200,22 @@ FORMED_TRIALS = (formed_actions.DEFAULT_TRIALS, 1,
 """The option "trials" of the studies of formed presses."""
 ROLLOUTS = (goal_babbling.DEFAULT_N_ROLLOUTS, 1, "rollouts per seed")
 """The option "rollouts" of the studies of formed presses."""
+ROLLOUT_SECONDS = 0.0075
+"""CPU seconds one seed's rollout costs, roughly, its share of the formed presses'
+trials included: a seed of 1,000 rollouts took a median of 7.7 CPU-seconds over the
+561 units of the 80-seed remedies study (assets/remedies_study.json.runs.jsonl,
+2026-12-03), 7.2 over the 240 of the goal-babbling study; one of 100 rollouts 1.1 s
+(2026-12-05), hence `SEED_SECONDS` besides."""
+SEED_SECONDS = 0.35
+"""CPU seconds a seed costs beside its rollouts (setting up its learner and console)."""
+REACH_SECONDS = 0.022
+"""CPU seconds of the 'reach' unit per random movement of each range share (50 took
+1.1 s, 2026-12-05; the 1,000 of the remedies study up to 29 s on shared cores)."""
+
+
+def unit_seconds(settings, unit):
+    """A rough figure of the CPU seconds of one unit of the studies of formed presses
+    (`ROLLOUT_SECONDS`, `SEED_SECONDS`, `REACH_SECONDS`): `Study.unit_seconds`."""
+    if unit == ["reach"]:
+        return REACH_SECONDS * settings["reach_movements"]
+    return unit[3] * (SEED_SECONDS + ROLLOUT_SECONDS * settings["rollouts"])

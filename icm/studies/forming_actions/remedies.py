@@ -24,7 +24,7 @@ from icm.store import asset_path
 from icm.studies.forming_actions.arms import (ARMS, EARLY, FORMED_TRIALS, HELD_OUT_ROOTS,
                                               ROLLOUTS, SEEDING, TUNING_ROOTS,
                                               assemble_roots, budgets_of, join_entries,
-                                              run_arm)
+                                              run_arm, unit_seconds)
 from icm.studies.registry import Study, register
 
 STUDY_FILE = "remedies_study.json"
@@ -129,7 +129,8 @@ register(Study(
     options={"rollouts": ROLLOUTS, "trials": FORMED_TRIALS,
              "reach_movements": (REACH_MOVEMENTS, 1,
                                  "random movements per range share in 'reach'")},
-    units=units, run_unit=run_unit, assemble=assemble, seeding=SEEDING, check=_check))
+    units=units, run_unit=run_unit, assemble=assemble, seeding=SEEDING, check=_check,
+    unit_seconds=unit_seconds))
 
 
 def load_study():
@@ -299,7 +300,7 @@ register(Study(
     seeds=(POWERED_SEEDS, "per condition, on the fresh root 9001"),
     options={"rollouts": ROLLOUTS, "trials": FORMED_TRIALS},
     units=replication_units, run_unit=replication_unit, assemble=assemble_replication,
-    seeding=SEEDING))
+    seeding=SEEDING, unit_seconds=unit_seconds))
 
 
 def load_fresh_runs():

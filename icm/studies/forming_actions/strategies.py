@@ -18,7 +18,8 @@ from icm.experiments import formed_actions, goal_babbling
 from icm.store import asset_path
 from icm.studies.forming_actions.arms import (ARMS, FORMED_TRIALS, HELD_OUT_ROOTS,
                                               ROLLOUTS, SEEDING, TUNING_ROOTS,
-                                              assemble_roots, budgets_of, run_arm)
+                                              assemble_roots, budgets_of, run_arm,
+                                              unit_seconds)
 from icm.studies.registry import Study, register
 
 STUDY_FILE = "goal_babbling_study.json"
@@ -104,7 +105,7 @@ register(Study(
                "(and the held-out roots 300 and 400 for the default and its baseline)"),
     options={"rollouts": ROLLOUTS, "trials": FORMED_TRIALS},
     units=units, run_unit=run_unit, assemble=assemble, seeding=SEEDING, check=_check,
-    indent=1))
+    indent=1, unit_seconds=unit_seconds))
 
 
 def load_study():
