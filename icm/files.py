@@ -403,7 +403,9 @@ def tidy(folder):
 
 
 def write_bytes(path, data):
-    """Writes a file whole: into a temporary file in its folder, then renamed over it.
+    """Writes a file whole: into a temporary file in its folder, then renamed over it;
+    the file's mode is the one open() would give it (this process's umask), not the
+    temporary file's owner-only one.
 
     Args:
       path: the file.
@@ -413,6 +415,9 @@ def write_bytes(path, data):
     path.parent.mkdir(parents=True, exist_ok=True)
     handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part",
                                          dir=path.parent)
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(temporary, 0o666 & ~umask)
     try:
         with os.fdopen(handle, "wb") as file:
             file.write(data)

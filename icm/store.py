@@ -5,7 +5,7 @@ heavy, so the tabular twins can read their data without loading MuJoCo."""
 
 import pathlib
 
-from icm import _validate
+from icm import _validate, files
 
 _PACKAGE = pathlib.Path(__file__).resolve().parent
 ASSETS = next((folder for folder in (_PACKAGE / "assets", _PACKAGE.parent / "assets")
@@ -43,25 +43,9 @@ def write_text(path, text):
 
 
 def write_bytes(path, data):
-    """Writes the bytes `data` to the file `path` as `write_text` writes text."""
-    import os
-    import tempfile
-
-    path = pathlib.Path(path)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(temporary, 0o666 & ~umask)  # as open() would make it, not mkstemp's 0o600
-    try:
-        with os.fdopen(handle, "wb") as file:
-            file.write(data)
-            file.flush()
-            os.fsync(file.fileno())
-        os.replace(temporary, path)
-    except BaseException:
-        if os.path.exists(temporary):
-            os.unlink(temporary)
-        raise
+    """Writes the bytes `data` to the file `path` as `write_text` writes text (one
+    writer for the project: `icm.files.write_bytes`)."""
+    files.write_bytes(path, data)
 
 
 def versions(*others):
