@@ -665,3 +665,60 @@ def test_a_staged_write_that_fails_leaves_the_folder_as_it_was(tmp_path, before)
     assert state() == was
     if before == "none":
         assert not (tmp_path / "a").exists()  # the folders made for it removed too
+
+
+def test_each_refused_destination_says_exactly_why(tmp_path):
+    def refusal(call):
+        with pytest.raises(files.DestinationError) as error:
+            call()
+        return str(error.value)
+
+    source = tmp_path / "subs"
+    source.mkdir()
+    (source / "a.ipynb").write_text("{}")
+    assert refusal(lambda: files.check_folder(source, inputs=[source], what="--feedback")) \
+        == f"--feedback {source} is the input {source}: choose a destination outside it"
+    inner = source / "out"
+    assert refusal(lambda: files.check_folder(inner, inputs=[source], what="--feedback")) \
+        == f"--feedback {inner} is inside the input {source}: choose a destination outside it"
+    assert refusal(lambda: files.check_folder(tmp_path, inputs=[source], what="--out")) \
+        == f"--out {tmp_path} holds the input {source}: choose a destination that does not"
+    assert refusal(lambda: files.check_file(source / "g.csv", inputs=[source], what="--out")) \
+        == f"--out {source / 'g.csv'} is inside the input {source}: choose a destination " \
+           f"outside it"
+    ending = "is not empty and {}: choose another folder, or pass --force"
+    theirs = tmp_path / "theirs"
+    theirs.mkdir()
+    (theirs / "notes.txt").write_text("mine")
+    assert refusal(lambda: files.check_folder(theirs, what="--out")) == \
+        f"--out {theirs} exists, " + ending.format(f"was not written by icm (it has no "
+                                                   f"{files.MARKER})")
+    slides = files.fresh_folder(tmp_path / "slides", command="slides")
+    (slides / "deck.html").write_text("a deck")
+    assert refusal(lambda: files.check_folder(slides, what="--out", command="grade")) == \
+        f"--out {slides} exists, " + ending.format("was written by slides, not by this command")
+    plain = files.fresh_folder(tmp_path / "plain")
+    (plain / "x").write_text("x")
+    assert refusal(lambda: files.check_folder(plain, what="--out", command="grade")) == \
+        f"--out {plain} exists, " + ending.format("was written by another of icm's commands")
+    # A file on the way there, and a read-only folder, named with the destination.
+    (tmp_path / "a_file").write_text("x")
+    assert refusal(lambda: files.check_file(tmp_path / "a_file" / "g.csv", what="--out")) \
+        == f"--out {tmp_path / 'a_file' / 'g.csv'}: {tmp_path / 'a_file'} is a file, not a folder"
+
+
+def test_a_marker_is_read_only_from_a_small_regular_file_that_starts_as_ours(tmp_path):
+    folder = files.fresh_folder(tmp_path / "out", command="slides")
+    assert files.marker_command(folder) == "slides"
+    marker = folder / files.MARKER
+    marker.write_text(files.marker_text("slides") + "x" * (4096 - len(
+        files.marker_text("slides").encode())))
+    assert marker.stat().st_size == 4096 and files.marker_command(folder) == "slides"
+    marker.write_text(marker.read_text() + "x")  # 4097 bytes: not a marker
+    assert files.marker_command(folder) is None
+    marker.write_text("Signature: something else\nCommand: slides\n")
+    assert files.marker_command(folder) is None
+    marker.unlink()
+    (tmp_path / "elsewhere").write_text(files.marker_text("slides"))
+    marker.symlink_to(tmp_path / "elsewhere")
+    assert files.marker_command(folder) is None
