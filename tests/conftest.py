@@ -480,3 +480,29 @@ def pytest_sessionfinish(session, exitstatus):
     temporary = DURATIONS_RECORD.with_suffix(".tmp")
     temporary.write_text(json.dumps(record, indent=0))
     os.replace(temporary, DURATIONS_RECORD)
+
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+"""Debian's Chromium, which the tests in a browser drive (None where it is missing)."""
+CHROMIUM_FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                  "--disable-background-networking", "--disable-component-update",
+                  "--disable-sync"]
+"""How they start it: offline, without its sandbox (root in CI) or a GPU."""
+
+
+@contextlib.contextmanager
+def chromium(extra_flags=()):
+    """Headless Chromium through Playwright, for a module's `browser` fixture; skips the
+    test where Playwright or Chromium is missing, saying which."""
+    import pytest
+
+    playwright_api = pytest.importorskip("playwright.sync_api",
+                                         reason="Playwright is not installed (pip)")
+    if CHROMIUM is None:
+        pytest.skip("Chromium is not installed (Debian: apt-get install chromium)")
+    with playwright_api.sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=CHROMIUM,
+                                             args=CHROMIUM_FLAGS + list(extra_flags))
+        yield browser
+        browser.close()
+

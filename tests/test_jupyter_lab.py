@@ -16,7 +16,6 @@ import json
 import os
 import pathlib
 import re
-import shutil
 import socket
 import subprocess
 import sys
@@ -26,15 +25,11 @@ import urllib.request
 import nbformat
 import pytest
 
-from conftest import ROOT, toc_files
+from conftest import ROOT, chromium, toc_files
 
 sys.path.insert(0, str(ROOT / "book" / "_ext"))
 import lab_edition  # noqa: E402 (beside the build scripts)
 
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
-LAUNCH_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-               "--disable-background-networking", "--disable-component-update",
-               "--disable-sync"]
 CHAPTER = "button_experiment"
 """The chapter opened in the browser: the smallest (its page loads in seconds), with
 glued numbers, admonitions, dropdowns, every kind of exercise and solutions."""
@@ -299,14 +294,8 @@ def lab_server(built_book, tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def browser():
-    playwright_api = pytest.importorskip("playwright.sync_api",
-                                         reason="Playwright is not installed (pip)")
-    if CHROMIUM is None:
-        pytest.skip("Chromium is not installed (Debian: apt-get install chromium)")
-    with playwright_api.sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
-        yield chromium
-        chromium.close()
+    with chromium() as launched:
+        yield launched
 
 
 def _words(text):

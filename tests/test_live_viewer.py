@@ -21,20 +21,17 @@ import http.server
 import json
 import pathlib
 import re
-import shutil
 import threading
 
 import numpy as np
 import pytest
 
+from conftest import CHROMIUM, chromium
 from icm import viewer
 from icm.envs import buttons, rods
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 STATIC = ROOT / "book" / "_static"
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
-FLAGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 
 POSITION_TOLERANCE = 1e-4
 """Metres. Measured: the fingertip and the pressed button follow the same paths in both
@@ -185,15 +182,8 @@ SCENE, RODS, LEARNER, ROD_LEARNER, FORMED = range(5)  # the views' order on the 
 
 @pytest.fixture(scope="module")
 def browser():
-    playwright_api = pytest.importorskip("playwright.sync_api",
-                                         reason="Playwright is not installed (pip)")
-    if CHROMIUM is None:
-        pytest.skip("Chromium is not installed (Debian: apt-get install chromium)")
-    with playwright_api.sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=CHROMIUM,
-                                             args=FLAGS + ["--js-flags=--expose-gc"])
-        yield browser
-        browser.close()
+    with chromium(["--js-flags=--expose-gc"]) as launched:
+        yield launched
 
 
 class Visit:

@@ -10,14 +10,10 @@ import shutil
 
 import pytest
 
-from conftest import ROOT, first_objective
+from conftest import ROOT, chromium, first_objective
 
 from icm.course import assign, slides
 
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
-LAUNCH_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-               "--disable-background-networking", "--disable-component-update",
-               "--disable-sync"]
 WINDOWS = ((1280, 720), (1024, 768), (1920, 1080), (768, 1024))
 """The windows every deck is measured in: a 16:9 laptop or projector, a 4:3
 projector, a full-HD screen (the figures' old height, 62% of the window, ran out of
@@ -136,14 +132,8 @@ def test_an_item_too_long_for_a_slide_has_one_of_its_own_in_smaller_text():
 
 @pytest.fixture(scope="module")
 def browser():
-    playwright_api = pytest.importorskip("playwright.sync_api",
-                                         reason="Playwright is not installed (pip)")
-    if CHROMIUM is None:
-        pytest.skip("Chromium is not installed (Debian: apt-get install chromium)")
-    with playwright_api.sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
-        yield browser
-        browser.close()
+    with chromium() as launched:
+        yield launched
 
 
 MEASURE = """() => {
